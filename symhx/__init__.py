@@ -41,7 +41,7 @@ _EXPORTS: dict[str, str] = {
     "enumerate_circuits": "circuits",
     # distribution
     "Distribution": "distribution",
-    "distribution": "distribution",
+    "distribution_of": "distribution",
     "pmf": "distribution",
     "logpmf": "distribution",
     "normaliser": "distribution",

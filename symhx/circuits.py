@@ -102,7 +102,7 @@ def log_phi(N: int, k: int, *, dps: int = 50) -> mpmath.mpf:
 
 
 def total_simple_circuits(N: int) -> int:
-    """Total number of simple circuits, ``sum_k phi_N(k)`` (1, 3, 8, 24, 89, 415, ... for N = 1, 2, ...).
+    """Total number of simple circuits ``sum_k phi_N(k)``: 1, 3, 8, 24, 89, 415, ... (N >= 1).
 
     >>> [total_simple_circuits(N) for N in range(1, 7)]
     [1, 3, 8, 24, 89, 415]
@@ -257,7 +257,7 @@ def circuits_of_length(N: int, L: int) -> dict[tuple[int, ...], int]:
 
 # --------------------------------------------------------------------------- brute force
 def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
-    """Every circuit of length ``L`` on vertices ``0..N-1``, as its lexicographically least rotation.
+    """Every circuit of length ``L`` on vertices ``0..N-1``, as its least rotation.
 
     Brute force (the Fredricksen-Kessler-Maiorana algorithm), independent of the Burnside count;
     intended for small ``N**L`` (tests and teaching).

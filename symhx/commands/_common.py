@@ -19,7 +19,9 @@ def jsonable(obj: Any) -> Any:
     if isinstance(obj, int):
         return obj if abs(obj) < 2**53 else str(obj)
     if isinstance(obj, Fraction):
-        return f"{obj.numerator}/{obj.denominator}" if obj.denominator != 1 else jsonable(obj.numerator)
+        if obj.denominator == 1:
+            return jsonable(obj.numerator)
+        return f"{obj.numerator}/{obj.denominator}"
     if isinstance(obj, mpmath.mpf):
         return mpmath.nstr(obj, mpf_digits(obj), strip_zeros=False)
     if isinstance(obj, float):
