@@ -94,7 +94,7 @@ def as_fraction(p: Any) -> Fraction | None:
     if isinstance(p, mpmath.mpf):
         if not mpmath.isfinite(p):
             raise ValueError(f"p must be finite, got {p!r}")
-        man, exp = mpmath.mpf(p).man_exp
+        man, exp = p.man_exp  # exact: no re-rounding to the global precision
         return Fraction(man) * Fraction(2) ** exp if man else Fraction(0)
     if _sympy_number(p):
         if getattr(p, "is_Rational", False):

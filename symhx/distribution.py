@@ -165,23 +165,21 @@ class SimpleDistribution(Distribution):
         return (k * mpmath.log(self._pm) + (k - 1) * self._logN + self._logN
                 + G_mp(N, k - 1) - mpmath.log(k))
 
-    @cached_property
-    def _runs(self) -> tuple[mpmath.mpf, list[tuple[int, list[mpmath.mpf]]]]:
-        """(log of the largest term, [(k0, [Phi(k)/max for k = k0, k0+1, ...])...])."""
+    def _compute_runs(self, below: mpmath.mpf) -> tuple[mpmath.mpf, list[tuple[int, list]]]:
+        """(log of the largest term, [(k0, [Phi(k)/max for k = k0, k0+1, ...]), ...]) keeping
+        every term within ``exp(-below)`` of the largest (at most two runs)."""
         N = self.N
         with mpmath.workdps(self.dps + self._guard):
             self._pm = mp_value(self.p, self.fr)
             self._logN = mpmath.log(N)
             top = _candidates(N, self.fr, self._pm)
-            logs = {k: self._log_phi(k) for k in top}
-            lmax = max(logs.values())
-            cut = lmax - (self.dps + self._guard) * mpmath.log(10) - 2 * self._logN - 5
-            ks = _significant_ranges(N, self.fr, self._pm, self._log_phi, cut)
+            lmax = max(self._log_phi(k) for k in top)
+            ks = _significant_ranges(N, self.fr, self._pm, self._log_phi, lmax - below)
             runs = []
+            pm = self._pm
             for lo, hi in ks:
                 w = mpmath.exp(self._log_phi(lo) - lmax)
                 ws = [w]
-                pm = self._pm
                 for k in range(lo, hi):
                     w = w * pm * (N - k) * k / (k + 1)
                     ws.append(w)
@@ -190,13 +188,38 @@ class SimpleDistribution(Distribution):
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-        lmax, runs = self._runs
         with mpmath.workdps(self.dps + self._guard):
+            ln10 = mpmath.log(10)
+            below = (self.dps + self._guard) * ln10 + 2 * mpmath.log(self.N) + 5
+            lmax, runs = self._compute_runs(below)
             s0 = mpmath.fsum(w for _, ws in runs for w in ws)
             s1 = mpmath.fsum(w * (k0 + i) for k0, ws in runs for i, w in enumerate(ws))
             mu = s1 / s0
-            var = mpmath.fsum(w * (k0 + i - mu) ** 2 for k0, ws in runs for i, w in enumerate(ws))
-            return lmax + mpmath.log(s0), mu, var / s0
+
+            def central(runs: list[tuple[int, list]]) -> mpmath.mpf:
+                return mpmath.fsum(w * (k0 + i - mu) ** 2 for k0, ws in runs
+                                   for i, w in enumerate(ws))
+
+            # dropped terms contribute < N**3 exp(-below) to the variance numerator; when the
+            # variance is tiny (p -> 0: all mass at k = 1) widen the window until that is
+            # below the requested relative accuracy of the variance itself
+            v = central(runs)
+            for _ in range(4):
+                if v > 0:
+                    lv = mpmath.log(v)
+                else:  # one term holds all the kept mass: the variance is ~ its neighbours
+                    edge = [k for k0, ws in runs for k in (k0 - 1, k0 + len(ws))
+                            if 1 <= k <= self.N]
+                    if not edge:
+                        break
+                    lv = max(self._log_phi(k) for k in edge) - lmax
+                need = (self.dps + self._guard) * ln10 - lv + 3 * mpmath.log(self.N) + 5
+                if need <= below:
+                    break
+                below = need
+                _, runs = self._compute_runs(below)
+                v = central(runs)
+            return lmax + mpmath.log(s0), mu, v / s0
 
     def _round(self, x: mpmath.mpf) -> mpmath.mpf:
         with mpmath.workdps(self.dps):
