@@ -1,6 +1,7 @@
 """Critical point p_c, discriminant root p_d and the mode path (section 6)."""
 
 from fractions import Fraction
+from itertools import pairwise
 
 import mpmath
 import pytest
@@ -18,7 +19,7 @@ def rel(a, b):
         return abs(a - b) / abs(b)
 
 
-@pytest.mark.parametrize("N", list(range(2, 121)) + [200, 257, 400])
+@pytest.mark.parametrize("N", [*range(2, 121), 200, 257, 400])
 def test_critical_against_exhaustive_scan(N):
     cp = symhx.critical_point(N, dps=50)
     argmins, p_scan = critical_by_scan(N, 50)
@@ -87,8 +88,8 @@ def test_argmin_is_certified_locally(N):
 def test_c_is_unimodal_exhaustive(N):
     # DESIGN: log c_k is unimodal in k (proof in symhx.critical); check every k
     vals = [log_c_direct(N, k, 30) for k in range(2, N + 1)]
-    d = [b - a for a, b in zip(vals, vals[1:], strict=False)]
-    changes = sum(1 for x, y in zip(d, d[1:], strict=False) if (x < 0) != (y < 0))
+    d = [b - a for a, b in pairwise(vals)]
+    changes = sum(1 for x, y in pairwise(d) if (x < 0) != (y < 0))
     assert changes <= 1
 
 
