@@ -38,7 +38,7 @@ def jsonable(obj: Any) -> Any:
 def mpf_digits(x: mpmath.mpf) -> int:
     """Decimal digits carried by the mantissa of ``x`` (at least 17)."""
     bits = x._mpf_[3] if x._mpf_[1] else 53
-    return max(17, mpmath.libmp.prec_to_dps(max(bits, 53)))
+    return max(15, mpmath.libmp.prec_to_dps(max(bits, 53)))
 
 
 def dump_json(obj: Any) -> str:
@@ -46,9 +46,21 @@ def dump_json(obj: Any) -> str:
 
 
 def mpstr(x: Any, digits: int) -> str:
-    """Decimal string of ``x`` with ``digits`` significant digits (exact values printed exactly)."""
-    if isinstance(x, Fraction):
-        return f"{x.numerator}/{x.denominator}" if x.denominator != 1 else str(x.numerator)
+    """Decimal string of ``x`` with ``digits`` significant digits.
+
+    mpf values are printed from their own mantissa (never re-rounded to the global precision);
+    Fractions are printed as decimals with a trailing ``(exact a/b)`` when short enough.
+    """
     if isinstance(x, int):
         return str(x)
-    return mpmath.nstr(mpmath.mpf(x), digits, strip_zeros=False, min_fixed=-5, max_fixed=12)
+    if isinstance(x, Fraction):
+        if x.denominator == 1:
+            return str(x.numerator)
+        with mpmath.workdps(digits + 10):
+            dec = mpmath.nstr(mpmath.mpf(x.numerator) / x.denominator, digits)
+        exact = f"{x.numerator}/{x.denominator}"
+        return f"{dec}  (exact {exact})" if len(exact) <= 60 else f"{dec}  (exact rational)"
+    if isinstance(x, mpmath.mpf):
+        digits = min(digits, mpf_digits(x))
+        return mpmath.nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12)
+    return str(x)
