@@ -1,0 +1,558 @@
+"""Event-driven impact engine over exact (closed-form) flight: one algorithm, two arithmetics.
+
+This module is the *reference* engine (mpmath at any precision); the same code also runs in plain
+Python floats (the fallback of the fast engine, and an independent check of the C port in
+``_fast.c``, which follows this file line by line).
+
+Representation
+--------------
+Every pipe ``j = 0..n+1`` (``0`` and ``n + 1`` are the walls) moves as a trigonometric polynomial
+
+    x_j(t) = c0 + sum_m a_m cos(F_m t) + b_m sin(F_m t),   F = (omega, Omega_1, ..., Omega_K),
+
+stored as the vector ``[c0, a_0, b_0, a_1, b_1, ...]`` in absolute time (eq. 21 for a free pipe).
+A gap ``Delta_i = x_{i+1} - x_i`` is the difference of two such vectors.
+
+Certified first-root search (:meth:`_Engine.search`)
+---------------------------------------------------
+For ``g(t) = c0 + sum_m (a_m cos + b_m sin)`` put ``c_m = |(a_m, b_m)|`` and
+``M_k = sum_m c_m F_m**k`` so that ``|g^(k)| <= M_k``.
+
+* If ``c0 - sum c_m > 0`` the gap can never close: it is not searched at all.
+* From a point where ``g = D > 0`` and ``g' = V``, ``g(t + s) >= D + V s - M_2 s^2 / 2`` (and, for
+  ``s <= H``, ``>= D + V s + (g'' - M_3 H / 3) s^2 / 2``), so a step to the first root of either
+  lower bound can never jump over a root of ``g``.  Every quantity carries its rounding bound.
+* If ``V < 0`` and ``2 M_2 D < V^2``, ``g`` is strictly decreasing on ``[t, t + 2 D / |V|]`` and
+  negative at its end: exactly one root there, refined by safeguarded Newton to full precision.
+* If ``g`` comes within rounding of zero without a certified crossing, the local minimum is
+  located (Newton on ``g'``): a true dip below rounding is a (small-velocity) impact, otherwise a
+  **graze** (tangential contact, relative velocity zero within rounding) which is reported as an
+  event of its own and changes no velocity.
+* At a contact (``g = 0`` after an impact, graze or release) the search starts one-sidedly from
+  the Taylor bound ``V s + g'' s^2/2 - M_3 s^3/6`` (or the next non-vanishing derivative), so it
+  never rediscovers the same root.
+
+Events
+------
+``IMPACT``: Newton restitution ``u -> -r u`` between the two bodies (a body is a pipe or a stuck
+cluster; masses count pipes, walls are infinitely heavy).  ``GRAZE``: see above.  ``STICK``: chatter
+ends -- when the relative velocity at a contact is below ``v_stick`` while the free relative
+acceleration pushes the pair together, the two bodies merge (momentum kept) and move as one in
+closed form; the event's ``aux`` is the estimated accumulation time of the skipped impacts
+``t + 2 r |u| / (|Delta''| (1 - r))``.  ``RELEASE``: a stuck contact opens when its contact force
+(itself a trigonometric polynomial with the forcing frequencies only) crosses zero.
+
+Simultaneous events are processed in increasing time; exact ties in increasing site order, each
+pairwise; a contact left approaching by an earlier one fires at the same instant (sequential
+pairwise rule -- for ``r = 1`` and equal masses it reproduces Newton's cradle).
+"""
+
+from __future__ import annotations
+
+import math
+from bisect import bisect_right
+from typing import Any
+
+import mpmath
+
+from symhx.impact.model import PipeRow
+
+IMPACT, GRAZE, STICK, RELEASE = 0, 1, 2, 3
+KIND_NAMES = ("impact", "graze", "stick", "release")
+
+# search outcome codes
+_NONE, _CONT, _ROOT, _GRAZE, _NOW = 0, 1, 2, 3, 4
+_TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
+_MAXIT = 1_000_000
+
+
+class _FloatCtx:
+    is_mp = False
+    eps = 2.0**-52
+    inf = math.inf
+
+    @staticmethod
+    def num(x: Any) -> float:
+        return float(x)
+
+    cos = staticmethod(math.cos)
+    sin = staticmethod(math.sin)
+    sqrt = staticmethod(math.sqrt)
+
+    @staticmethod
+    def cos_sin(x: float) -> tuple[float, float]:
+        return math.cos(x), math.sin(x)
+
+
+class _MPCtx:
+    is_mp = True
+
+    def __init__(self) -> None:  # call inside workdps
+        self.eps = mpmath.mpf(2) ** (-mpmath.mp.prec)
+        self.inf = mpmath.inf
+
+    @staticmethod
+    def num(x: Any) -> mpmath.mpf:
+        return mpmath.mpf(x)
+
+    cos = staticmethod(mpmath.cos)
+    sin = staticmethod(mpmath.sin)
+    sqrt = staticmethod(mpmath.sqrt)
+    cos_sin = staticmethod(mpmath.cos_sin)
+
+
+class _Engine:
+    def __init__(self, row: PipeRow, ctx: Any, *, v_stick: Any, chunk: float | None = None):
+        self.row = row
+        self.ctx = ctx
+        num = ctx.num
+        n = row.n
+        self.n = n
+        self.r = num(row.restitution)
+        self.om = num(row.omega)
+        self.d = num(row.d)
+        self.F = [self.om] + [num(w) for w in row.Omega]
+        K = len(row.Omega)
+        self.K = K
+        L = 3 + 2 * K
+        self.L = L
+        om2 = self.om * self.om
+        zero = num(0)
+        self.zero = zero
+        # forced particular solution and raw force of each pipe (walls: zero)
+        self.forced = [[zero] * L for _ in range(n + 2)]
+        self.raw = [[zero] * L for _ in range(n + 2)]
+        for j in range(1, n + 1):
+            for m in range(K):
+                a = num(row.alpha[j - 1][m])
+                b = num(row.beta[j - 1][m])
+                den = om2 - self.F[m + 1] ** 2
+                self.forced[j][3 + 2 * m] = a / den
+                self.forced[j][4 + 2 * m] = b / den
+                self.raw[j][3 + 2 * m] = a
+                self.raw[j][4 + 2 * m] = b
+        self.coef: list[list[Any]] = [[zero] * L for _ in range(n + 2)]
+        self.coef[n + 1][0] = (n + 1) * self.d
+        for j in range(1, n + 1):
+            c = list(self.forced[j])
+            c[0] = j * self.d
+            x0 = num(row.x0[j - 1])
+            v0 = num(row.v0[j - 1])
+            # t = 0: cos = 1, sin = 0
+            fx = sum(c[3 + 2 * m] for m in range(K))
+            fv = sum(c[4 + 2 * m] * self.F[m + 1] for m in range(K))
+            c[1] = x0 - j * self.d - fx
+            c[2] = (v0 - fv) / self.om
+            self.coef[j] = c
+        self.stuck = [False] * (n + 1)
+        self.v_stick = num(v_stick)
+        self.chunk = num(chunk) if chunk is not None else 2 * num(math.pi) / self.om
+        # records
+        self.ev_t: list[Any] = []
+        self.ev_site: list[int] = []
+        self.ev_kind: list[int] = []
+        self.ev_u0: list[Any] = []
+        self.ev_u1: list[Any] = []
+        self.ev_aux: list[Any] = []
+        self.upd_t: list[list[Any]] = [[zero] for _ in range(n + 2)]
+        self.upd_c: list[list[list[Any]]] = [[list(self.coef[j])] for j in range(n + 2)]
+
+    # ---------------------------------------------------------------- trig polynomials
+    def derivs(self, g: list[Any], t: Any) -> tuple[Any, Any, Any, Any]:
+        """g, g', g'', g''' at t."""
+        D = g[0]
+        V = A = J = self.zero
+        for m, f in enumerate(self.F):
+            a = g[1 + 2 * m]
+            b = g[2 + 2 * m]
+            if not a and not b:
+                continue
+            c, s = self.ctx.cos_sin(f * t)
+            p = a * c + b * s          # value part
+            q = b * c - a * s          # derivative / f
+            D += p
+            V += f * q
+            f2 = f * f
+            A -= f2 * p
+            J -= f2 * f * q
+        return D, V, A, J
+
+    def bounds(self, g: list[Any]) -> tuple[Any, Any, Any, Any, Any, Any]:
+        """``(c0, S, M1..M4)``: constant part (zero frequencies folded in) and the bounds."""
+        sq = self.ctx.sqrt
+        c0 = g[0]
+        S = M1 = M2 = M3 = M4 = self.zero
+        for m, f in enumerate(self.F):
+            if not f:
+                c0 += g[1 + 2 * m]
+                continue
+            c = sq(g[1 + 2 * m] ** 2 + g[2 + 2 * m] ** 2)
+            S += c
+            M1 += c * f
+            M2 += c * f * f
+            M3 += c * f * f * f
+            M4 += c * f * f * f * f
+        return c0, S, M1, M2, M3, M4
+
+    # ---------------------------------------------------------------- certified search
+    def search(self, g: list[Any], t0: Any, t_hi: Any, *, is_gap: bool = True,
+               graze_restart: bool = False) -> tuple[Any, int]:
+        """First event of ``g`` in ``[t0, t_hi]`` (see the module docstring).
+
+        Returns ``(t, code)`` with code ``_NONE`` (never closes: ``t`` is inf), ``_CONT`` (no root
+        before ``t_hi``), ``_ROOT``, ``_GRAZE`` or ``_NOW`` (at contact and approaching at ``t0``).
+        """
+        ctx = self.ctx
+        eps = ctx.eps
+        c0, S, M1, M2, M3, M4 = self.bounds(g)
+        scale0 = abs(c0) + S
+        if M2 == 0:  # constant
+            return (ctx.inf, _NONE) if c0 > _TOL * eps * abs(c0) else (t0, _NOW)
+        if c0 - S > _TOL * eps * scale0:  # amplitude bound: can never reach zero
+            return ctx.inf, _NONE
+        t = t0
+        first = True
+        for _ in range(_MAXIT):
+            if t >= t_hi:
+                return t_hi, _CONT
+            D, V, A, J = self.derivs(g, t)
+            at = abs(t)
+            tolD = _TOL * eps * (scale0 + M1 * at)
+            tolV = _TOL * eps * (M1 + M2 * at)
+            tolA = _TOL * eps * (M2 + M3 * at)
+            tolJ = _TOL * eps * (M3 + M4 * at)
+            if first:
+                first = False
+                if D < -tolD:
+                    return t, _NOW
+                if D <= tolD:  # at contact: one-sided start
+                    if graze_restart and V < 0:
+                        V = self.zero
+                    if V < -tolV:
+                        return t, _NOW
+                    if V > tolV:
+                        if is_gap and V <= self.v_stick and A < -tolA:
+                            return t, _NOW
+                        Vl = V - tolV
+                        Al = A - tolA
+                        h = (Al / 2 + ctx.sqrt(Al * Al / 4 + 2 * Vl * M3 / 3)) / (M3 / 3)
+                    elif A < -tolA:
+                        return t, _NOW
+                    elif A > tolA:
+                        h = 3 * (A - tolA) / M3
+                    elif J < -tolJ:
+                        return t, _NOW
+                    elif J > tolJ:
+                        h = 4 * (J - tolJ) / M4
+                    else:
+                        raise RuntimeError(
+                            f"degenerate contact at t={t}: value and three derivatives vanish")
+                    t = t + h * 3 / 4
+                    continue
+            elif D <= tolD:
+                # came within rounding of zero from above (all earlier steps were certified)
+                if V < -tolV and (A <= 0 or V * V > 8 * M2 * tolD):
+                    return t + max(D, self.zero) / (-V), _ROOT
+                if A < -tolA and V <= tolV:   # compressed at zero speed: contact now
+                    return t, _NOW
+                return self._graze(g, t, t0, tolD)
+            # D > tolD here
+            Dl = D - tolD
+            if V < 0:
+                Vm = -V - tolV
+                Dp = D + tolD
+                if Vm > 0 and 2 * M2 * Dp < Vm * Vm:
+                    return self.refine(g, t, t + 2 * Dp / Vm), _ROOT
+            Vl = V - tolV
+            h = (Vl + ctx.sqrt(Vl * Vl + 2 * M2 * Dl)) / M2
+            # cubic-improved step: on [0, H], g >= Dl + Vl s + (A - tolA - M3 H/3) s^2/2
+            Al = A - tolA
+            H = 2 * h
+            for _k in range(5):
+                c = (Al - M3 * H / 3) / 2
+                if Dl + Vl * H + c * H * H <= 0:
+                    break
+                if c > 0 and Vl < 0 and -Vl < 2 * c * H and Dl - Vl * Vl / (4 * c) <= 0:
+                    break
+                h = H
+                H = 2 * H
+            t = t + h
+        raise RuntimeError(f"root search did not finish after {_MAXIT} steps (t={t})")
+
+    def _graze(self, g: list[Any], t: Any, t0: Any, tolD: Any) -> tuple[Any, int]:
+        eps = self.ctx.eps
+        tg = t
+        for _ in range(100):
+            _, V, A, _ = self.derivs(g, tg)
+            if A <= 0:
+                break
+            step = V / A
+            tg = tg - step
+            if abs(step) <= 4 * eps * (abs(tg) + 1):
+                break
+        if tg < t0:
+            tg = t
+        Dg = self.derivs(g, tg)[0]
+        if Dg < -tolD and tg > t:
+            return self.refine(g, t, tg), _ROOT
+        return tg, _GRAZE
+
+    def refine(self, g: list[Any], lo: Any, hi: Any) -> Any:
+        """Root of ``g`` in ``[lo, hi]`` where ``g(lo) > 0 > g(hi)`` and ``g`` is monotone.
+
+        Safeguarded Newton; stops when ``|g|`` is within its rounding bound or the step is below
+        the resolution of ``t`` (the last Newton step is then below the rounding of the root).
+        """
+        eps = self.ctx.eps
+        c0, S, M1, _, _, _ = self.bounds(g)
+        x = lo
+        for _ in range(400):
+            D, V, _, _ = self.derivs(g, x)
+            if abs(D) <= _TOL * eps * (abs(c0) + S + M1 * abs(x)) and V < 0:
+                return x - D / V
+            if D > 0:
+                lo = x
+            elif D < 0:
+                hi = x
+            else:
+                return x
+            xn = x - D / V if V < 0 else (lo + hi) / 2
+            if not lo < xn < hi:
+                xn = (lo + hi) / 2
+            if abs(xn - x) <= 2 * eps * abs(xn) or hi - lo <= 4 * eps * abs(hi):
+                return xn
+            x = xn
+        return x
+
+    # ---------------------------------------------------------------- bodies
+    def body(self, j: int) -> tuple[int, int]:
+        lo = j
+        while lo > 0 and self.stuck[lo - 1]:
+            lo -= 1
+        hi = j
+        while hi < self.n + 1 and self.stuck[hi]:
+            hi += 1
+        return lo, hi
+
+    def _is_wall(self, lo: int, hi: int) -> bool:
+        return lo == 0 or hi == self.n + 1
+
+    def _mass(self, lo: int, hi: int) -> Any:
+        return None if self._is_wall(lo, hi) else hi - lo + 1
+
+    def _pos_vel(self, j: int, t: Any) -> tuple[Any, Any]:
+        D, V, _, _ = self.derivs(self.coef[j], t)
+        return D, V
+
+    def set_motion(self, lo: int, hi: int, t: Any, X: Any, Vel: Any) -> None:
+        """Give the body ``lo..hi`` position ``X`` and velocity ``Vel`` at ``t`` (closed form)."""
+        n = self.n
+        if lo == 0:
+            c = [self.zero] * self.L
+        elif hi == n + 1:
+            c = [self.zero] * self.L
+            c[0] = (n + 1) * self.d
+        else:
+            m = hi - lo + 1
+            c = [sum(self.forced[j][k] for j in range(lo, hi + 1)) / m for k in range(self.L)]
+            c[0] = (lo + hi) * self.d / 2
+            fx, fv, _, _ = self.derivs(c, t)      # constant + forced part
+            y = X - fx
+            yv = (Vel - fv) / self.om
+            cs, sn = self.ctx.cos_sin(self.om * t)
+            c[1] = y * cs - yv * sn
+            c[2] = y * sn + yv * cs
+        for j in range(max(lo, 1), min(hi, n) + 1):
+            self.coef[j] = list(c)
+            self.upd_t[j].append(t)
+            self.upd_c[j].append(self.coef[j])
+
+    def kick(self, lo: int, hi: int, t: Any, dv: Any) -> None:
+        cs, sn = self.ctx.cos_sin(self.om * t)
+        for j in range(max(lo, 1), min(hi, self.n) + 1):
+            c = list(self.coef[j])
+            c[1] -= dv * sn / self.om
+            c[2] += dv * cs / self.om
+            self.coef[j] = c
+            self.upd_t[j].append(t)
+            self.upd_c[j].append(c)
+
+    def contact_force(self, k: int) -> list[Any]:
+        """Contact force at stuck gap ``k`` as a trig polynomial (per unit mass of one pipe)."""
+        lo, hi = self.body(k)
+        n, L = self.n, self.L
+        om2d = self.om * self.om * self.d
+        out = [self.zero] * L
+        if lo == 0:      # left wall body: lambda_k = -sum_{j>k} (om^2 j d + F_j)
+            for j in range(k + 1, hi + 1):
+                out[0] -= om2d * j
+                for q in range(3, L):
+                    out[q] -= self.raw[j][q]
+        elif hi == n + 1:  # right wall body: lambda_k = sum_{j<=k} (-om^2 (n+1-j) d + F_j)
+            for j in range(lo, k + 1):
+                out[0] -= om2d * (n + 1 - j)
+                for q in range(3, L):
+                    out[q] += self.raw[j][q]
+        else:             # free body: lambda_k = sum_{j<=k} (om^2 d (j - jbar) + F_j - Fbar)
+            m = hi - lo + 1
+            jbar2 = lo + hi   # 2 * jbar
+            fbar = [sum(self.raw[j][q] for j in range(lo, hi + 1)) / m for q in range(L)]
+            for j in range(lo, k + 1):
+                out[0] += om2d * (2 * j - jbar2) / 2
+                for q in range(3, L):
+                    out[q] += self.raw[j][q] - fbar[q]
+        return out
+
+    def gap_poly(self, i: int) -> list[Any]:
+        a, b = self.coef[i], self.coef[i + 1]
+        return [b[q] - a[q] for q in range(self.L)]
+
+    # ---------------------------------------------------------------- event loop
+    def run(self, t_end: Any, max_events: int | None = None) -> None:
+        n = self.n
+        ctx = self.ctx
+        t_end = ctx.num(t_end)
+        nt: list[Any] = [ctx.inf] * (n + 1)
+        nk: list[int] = [_NONE] * (n + 1)
+
+        def schedule(i: int, t: Any, graze_restart: bool = False) -> None:
+            t_hi = min(t + self.chunk, t_end)
+            if self.stuck[i]:
+                te, code = self.search(self.contact_force(i), t, t_hi, is_gap=False,
+                                       graze_restart=graze_restart)
+            else:
+                te, code = self.search(self.gap_poly(i), t, t_hi, graze_restart=graze_restart)
+            if code == _CONT and t_hi >= t_end:
+                te, code = ctx.inf, _NONE
+            nt[i] = te
+            nk[i] = code
+
+        t = self.zero
+        for i in range(n + 1):
+            schedule(i, t)
+        last_t = None
+        same = 0
+        count = 0
+        while True:
+            i = min(range(n + 1), key=nt.__getitem__)   # ties: smallest site
+            te = nt[i]
+            if te > t_end:
+                break
+            code = nk[i]
+            if te == last_t:
+                same += 1
+                if same > 20 * (n + 1) + 100:
+                    raise RuntimeError(
+                        f"more than {same} events at t={te}: degenerate contact configuration")
+            else:
+                same = 0
+                last_t = te
+            t = te
+            if code == _CONT:
+                schedule(i, t)
+                continue
+            count += 1
+            if max_events is not None and count > max_events:
+                raise RuntimeError(f"more than max_events={max_events} events before t_end")
+            if self.stuck[i]:
+                if code == _GRAZE:           # contact force touches zero: stays stuck
+                    schedule(i, t, graze_restart=True)
+                    continue
+                lo, hi = self.body(i)
+                X, Vel = self._body_state(lo, t)
+                self.stuck[i] = False
+                self.set_motion(lo, i, t, X, Vel)
+                self.set_motion(i + 1, hi, t, X, Vel)
+                self._record(t, i, RELEASE, self.zero, self.zero, t)
+                self._reschedule(lo, hi, t, schedule)
+                continue
+            if code == _GRAZE:
+                D, V, _, _ = self.derivs(self.gap_poly(i), t)
+                self._record(t, i, GRAZE, V, V, D)
+                schedule(i, t, graze_restart=True)
+                continue
+            lo, hi = self._impact(i, t)
+            self._reschedule(lo, hi, t, schedule)
+
+    def _body_state(self, lo: int, t: Any) -> tuple[Any, Any]:
+        if lo == 0:
+            return self.zero, self.zero
+        return self._pos_vel(lo, t)
+
+    def _reschedule(self, lo: int, hi: int, t: Any, schedule: Any) -> None:
+        for g in range(max(lo - 1, 0), min(hi, self.n) + 1):
+            schedule(g, t)
+
+    def _record(self, t: Any, site: int, kind: int, u0: Any, u1: Any, aux: Any) -> None:
+        self.ev_t.append(t)
+        self.ev_site.append(site)
+        self.ev_kind.append(kind)
+        self.ev_u0.append(u0)
+        self.ev_u1.append(u1)
+        self.ev_aux.append(aux)
+
+    def _impact(self, i: int, t: Any) -> tuple[int, int]:
+        eps = self.ctx.eps
+        lo, _ = self.body(i)
+        _, hi = self.body(i + 1)
+        g = self.gap_poly(i)
+        _, u, A, J = self.derivs(g, t)
+        _, _, _M1, M2, M3, _ = self.bounds(g)
+        tolA = _TOL * eps * (M2 + M3 * abs(t))
+        compressive = A < -tolA or (abs(A) <= tolA and J < 0)
+        mL = self._mass(lo, i)
+        mR = self._mass(i + 1, hi)
+        r = self.r
+        if abs(u) <= self.v_stick and compressive:
+            self._stick(i, lo, hi, t, r * abs(u), A, mL, mR)
+            return lo, hi
+        if u >= 0:   # numerically zero relative velocity without compression: a touch
+            self._record(t, i, GRAZE, u, u, self.zero)
+            return lo, hi
+        u1 = -r * u
+        # Newton's law between the bodies: u -> -r u, momentum kept
+        if mL is None:
+            dvL, dvR = self.zero, -(1 + r) * u
+        elif mR is None:
+            dvL, dvR = (1 + r) * u, self.zero
+        else:
+            dvL = (1 + r) * u * mR / (mL + mR)
+            dvR = -(1 + r) * u * mL / (mL + mR)
+        if mL is not None:
+            self.kick(lo, i, t, dvL)
+        if mR is not None:
+            self.kick(i + 1, hi, t, dvR)
+        self._record(t, i, IMPACT, u, u1, self.zero)
+        if u1 <= self.v_stick and compressive:
+            self._stick(i, lo, hi, t, abs(u1), A, mL, mR)
+        return lo, hi
+
+    def _stick(self, i: int, lo: int, hi: int, t: Any, u: Any, A: Any, mL: Any, mR: Any) -> None:
+        """Merge the bodies at gap ``i``; ``u`` = speed of the next (skipped) bounce."""
+        r = self.r
+        if r < 1 and A < 0:
+            aux = t + 2 * u / ((-A) * (1 - r))
+        else:
+            aux = t
+        if lo == 0:
+            X, Vel = self.zero, self.zero
+        elif hi == self.n + 1:
+            X, Vel = (self.n + 1) * self.d, self.zero
+        else:
+            xL, vL = self._pos_vel(i, t)
+            xR, vR = self._pos_vel(i + 1, t)
+            X = (mL * xL + mR * xR) / (mL + mR)
+            Vel = (mL * vL + mR * vR) / (mL + mR)
+        self.stuck[i] = True
+        self.set_motion(lo, hi, t, X, Vel)
+        self._record(t, i, STICK, -u, self.zero, aux)
+
+    # ---------------------------------------------------------------- state
+    def state(self, t: Any) -> tuple[list[Any], list[Any]]:
+        xs, vs = [], []
+        for j in range(1, self.n + 1):
+            k = bisect_right(self.upd_t[j], t) - 1
+            x, v, _, _ = self.derivs(self.upd_c[j][max(k, 0)], t)
+            xs.append(x)
+            vs.append(v)
+        return xs, vs
