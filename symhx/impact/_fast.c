@@ -1,0 +1,461 @@
+/* Float64 impact engine for symhx.impact: a line-by-line port of symhx/impact/engine.py
+ * (see its docstring for the algorithm: certified first-root search over closed-form flight,
+ * grazing, sequential simultaneous impacts, chatter -> sticking, release).
+ * Plain Python C API (no numpy headers), so `pip install .` needs only a C compiler. */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TOLF 64.0
+#define EPS 2.220446049250313e-16
+#define MAXIT 1000000
+enum { S_NONE, S_CONT, S_ROOT, S_GRAZE, S_NOW };
+enum { K_IMPACT, K_GRAZE, K_STICK, K_RELEASE };
+
+typedef struct {
+    int n, nf, L;
+    double om, d, r, vstick, chunk, tend, t_from;
+    const double *F;
+    double *coef, *forced, *raw;
+    unsigned char *stuck;
+    double *nt;
+    int *nk;
+    int record;
+    long long *counts;
+    double *ev;
+    size_t nev, cap_ev;
+    double *up;
+    size_t nup, cap_up;
+    long long nevents, max_events;
+    double *g;
+    int err;
+    char errmsg[200];
+} Eng;
+
+static void derivs(const Eng *E, const double *g, double t, double *D, double *V, double *A,
+                   double *J) {
+    double d = g[0], v = 0, a = 0, j = 0;
+    for (int m = 0; m < E->nf; m++) {
+        double ca = g[1 + 2 * m], cb = g[2 + 2 * m];
+        if (ca == 0.0 && cb == 0.0) continue;
+        double f = E->F[m], c = cos(f * t), s = sin(f * t);
+        double p = ca * c + cb * s, q = cb * c - ca * s;
+        d += p;
+        v += f * q;
+        a -= f * f * p;
+        j -= f * f * f * q;
+    }
+    *D = d; *V = v; *A = a; *J = j;
+}
+
+static void bounds(const Eng *E, const double *g, double *c0, double *S, double *M1, double *M2,
+                   double *M3, double *M4) {
+    double c00 = g[0], s = 0, m1 = 0, m2 = 0, m3 = 0, m4 = 0;
+    for (int m = 0; m < E->nf; m++) {
+        double f = E->F[m];
+        if (f == 0.0) { c00 += g[1 + 2 * m]; continue; }
+        double c = hypot(g[1 + 2 * m], g[2 + 2 * m]);
+        s += c; m1 += c * f; m2 += c * f * f; m3 += c * f * f * f; m4 += c * f * f * f * f;
+    }
+    *c0 = c00; *S = s; *M1 = m1; *M2 = m2; *M3 = m3; *M4 = m4;
+}
+
+static double refine(const Eng *E, const double *g, double lo, double hi) {
+    double c0, S, M1, M2, M3, M4, D, V, A, J, x = lo;
+    bounds(E, g, &c0, &S, &M1, &M2, &M3, &M4);
+    for (int it = 0; it < 400; it++) {
+        derivs(E, g, x, &D, &V, &A, &J);
+        if (fabs(D) <= TOLF * EPS * (fabs(c0) + S + M1 * fabs(x)) && V < 0) return x - D / V;
+        if (D > 0) lo = x;
+        else if (D < 0) hi = x;
+        else return x;
+        double xn = V < 0 ? x - D / V : 0.5 * (lo + hi);
+        if (!(lo < xn && xn < hi)) xn = 0.5 * (lo + hi);
+        if (fabs(xn - x) <= 2 * EPS * fabs(xn) || hi - lo <= 4 * EPS * fabs(hi)) return xn;
+        x = xn;
+    }
+    return x;
+}
+
+static int graze(const Eng *E, const double *g, double t, double t0, double tolD, double *te) {
+    double tg = t, D, V, A, J;
+    for (int it = 0; it < 100; it++) {
+        derivs(E, g, tg, &D, &V, &A, &J);
+        if (A <= 0) break;
+        double step = V / A;
+        tg -= step;
+        if (fabs(step) <= 4 * EPS * (fabs(tg) + 1)) break;
+    }
+    if (tg < t0) tg = t;
+    derivs(E, g, tg, &D, &V, &A, &J);
+    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg); return S_ROOT; }
+    *te = tg;
+    return S_GRAZE;
+}
+
+static int search(Eng *E, const double *g, double t0, double thi, int is_gap, int graze_restart,
+                  double *te) {
+    double c0, S, M1, M2, M3, M4, D, V, A, J;
+    bounds(E, g, &c0, &S, &M1, &M2, &M3, &M4);
+    double scale0 = fabs(c0) + S;
+    if (M2 == 0) {
+        if (c0 > TOLF * EPS * fabs(c0)) { *te = INFINITY; return S_NONE; }
+        *te = t0; return S_NOW;
+    }
+    if (c0 - S > TOLF * EPS * scale0) { *te = INFINITY; return S_NONE; }
+    double t = t0;
+    int first = 1;
+    for (long it = 0; it < MAXIT; it++) {
+        if (t >= thi) { *te = thi; return S_CONT; }
+        derivs(E, g, t, &D, &V, &A, &J);
+        double at = fabs(t);
+        double tolD = TOLF * EPS * (scale0 + M1 * at), tolV = TOLF * EPS * (M1 + M2 * at);
+        double tolA = TOLF * EPS * (M2 + M3 * at), tolJ = TOLF * EPS * (M3 + M4 * at);
+        if (first) {
+            first = 0;
+            if (D < -tolD) { *te = t; return S_NOW; }
+            if (D <= tolD) {
+                double h;
+                if (graze_restart && V < 0) V = 0;
+                if (V < -tolV) { *te = t; return S_NOW; }
+                if (V > tolV) {
+                    if (is_gap && V <= E->vstick && A < -tolA) { *te = t; return S_NOW; }
+                    double Vl = V - tolV, Al = A - tolA;
+                    h = (Al / 2 + sqrt(Al * Al / 4 + 2 * Vl * M3 / 3)) / (M3 / 3);
+                } else if (A < -tolA) { *te = t; return S_NOW; }
+                else if (A > tolA) h = 3 * (A - tolA) / M3;
+                else if (J < -tolJ) { *te = t; return S_NOW; }
+                else if (J > tolJ) h = 4 * (J - tolJ) / M4;
+                else {
+                    E->err = 1;
+                    snprintf(E->errmsg, sizeof E->errmsg,
+                             "degenerate contact at t=%.17g: value and three derivatives vanish", t);
+                    *te = t; return S_NONE;
+                }
+                t = t + h * 0.75;
+                continue;
+            }
+        } else if (D <= tolD) {
+            if (V < -tolV && (A <= 0 || V * V > 8 * M2 * tolD)) {
+                *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
+            }
+            if (A < -tolA && V <= tolV) { *te = t; return S_NOW; }
+            return graze(E, g, t, t0, tolD, te);
+        }
+        double Dl = D - tolD;
+        if (V < 0) {
+            double Vm = -V - tolV, Dp = D + tolD;
+            if (Vm > 0 && 2 * M2 * Dp < Vm * Vm) { *te = refine(E, g, t, t + 2 * Dp / Vm); return S_ROOT; }
+        }
+        double Vl = V - tolV;
+        double h = (Vl + sqrt(Vl * Vl + 2 * M2 * Dl)) / M2;
+        double Al = A - tolA, H = 2 * h;
+        for (int k = 0; k < 5; k++) {
+            double c = (Al - M3 * H / 3) / 2;
+            if (Dl + Vl * H + c * H * H <= 0) break;
+            if (c > 0 && Vl < 0 && -Vl < 2 * c * H && Dl - Vl * Vl / (4 * c) <= 0) break;
+            h = H;
+            H = 2 * H;
+        }
+        t = t + h;
+    }
+    E->err = 1;
+    snprintf(E->errmsg, sizeof E->errmsg, "root search did not finish (t=%.17g)", t);
+    *te = t;
+    return S_NONE;
+}
+
+/* ------------------------------------------------------------------ bodies */
+static void body(const Eng *E, int j, int *lo, int *hi) {
+    int a = j, b = j;
+    while (a > 0 && E->stuck[a - 1]) a--;
+    while (b < E->n + 1 && E->stuck[b]) b++;
+    *lo = a; *hi = b;
+}
+
+static int grow(double **buf, size_t *cap, size_t need) {
+    if (need <= *cap) return 0;
+    size_t nc = *cap ? *cap : 1024;
+    while (nc < need) nc *= 2;
+    double *p = realloc(*buf, nc * sizeof(double));
+    if (!p) return -1;
+    *buf = p; *cap = nc;
+    return 0;
+}
+
+static void record_update(Eng *E, int j, double t) {
+    if (!E->record) return;
+    size_t w = 2 + E->L;
+    if (grow(&E->up, &E->cap_up, (E->nup + 1) * w)) { E->err = 2; return; }
+    double *p = E->up + E->nup * w;
+    p[0] = j; p[1] = t;
+    memcpy(p + 2, E->coef + (size_t)j * E->L, E->L * sizeof(double));
+    E->nup++;
+}
+
+static void record_event(Eng *E, double t, int site, int kind, double u0, double u1, double aux) {
+    if (kind == K_IMPACT || kind == K_STICK) {
+        if (t >= E->t_from) E->counts[site]++;
+    }
+    if (!E->record) return;
+    if (grow(&E->ev, &E->cap_ev, (E->nev + 1) * 6)) { E->err = 2; return; }
+    double *p = E->ev + E->nev * 6;
+    p[0] = t; p[1] = site; p[2] = kind; p[3] = u0; p[4] = u1; p[5] = aux;
+    E->nev++;
+}
+
+static void set_motion(Eng *E, int lo, int hi, double t, double X, double Vel) {
+    int n = E->n, L = E->L;
+    double *c = E->g;
+    memset(c, 0, L * sizeof(double));
+    if (lo == 0) {
+    } else if (hi == n + 1) {
+        c[0] = (n + 1) * E->d;
+    } else {
+        int m = hi - lo + 1;
+        for (int k = 0; k < L; k++) {
+            double s = 0;
+            for (int j = lo; j <= hi; j++) s += E->forced[(size_t)j * L + k];
+            c[k] = s / m;
+        }
+        c[0] = (lo + hi) * E->d / 2;
+        double fx, fv, A, J;
+        derivs(E, c, t, &fx, &fv, &A, &J);
+        double y = X - fx, yv = (Vel - fv) / E->om;
+        double cs = cos(E->om * t), sn = sin(E->om * t);
+        c[1] = y * cs - yv * sn;
+        c[2] = y * sn + yv * cs;
+    }
+    int a = lo > 1 ? lo : 1, b = hi < n ? hi : n;
+    for (int j = a; j <= b; j++) {
+        memcpy(E->coef + (size_t)j * L, c, L * sizeof(double));
+        record_update(E, j, t);
+    }
+}
+
+static void kick(Eng *E, int lo, int hi, double t, double dv) {
+    double cs = cos(E->om * t), sn = sin(E->om * t);
+    int a = lo > 1 ? lo : 1, b = hi < E->n ? hi : E->n;
+    for (int j = a; j <= b; j++) {
+        double *c = E->coef + (size_t)j * E->L;
+        c[1] -= dv * sn / E->om;
+        c[2] += dv * cs / E->om;
+        record_update(E, j, t);
+    }
+}
+
+static void contact_force(Eng *E, int k, double *out) {
+    int lo, hi, n = E->n, L = E->L;
+    body(E, k, &lo, &hi);
+    double om2d = E->om * E->om * E->d;
+    memset(out, 0, L * sizeof(double));
+    if (lo == 0) {
+        for (int j = k + 1; j <= hi; j++) {
+            out[0] -= om2d * j;
+            for (int q = 3; q < L; q++) out[q] -= E->raw[(size_t)j * L + q];
+        }
+    } else if (hi == n + 1) {
+        for (int j = lo; j <= k; j++) {
+            out[0] -= om2d * (n + 1 - j);
+            for (int q = 3; q < L; q++) out[q] += E->raw[(size_t)j * L + q];
+        }
+    } else {
+        int m = hi - lo + 1, jbar2 = lo + hi;
+        for (int q = 3; q < L; q++) {
+            double fbar = 0;
+            for (int j = lo; j <= hi; j++) fbar += E->raw[(size_t)j * L + q];
+            fbar /= m;
+            for (int j = lo; j <= k; j++) out[q] += E->raw[(size_t)j * L + q] - fbar;
+        }
+        for (int j = lo; j <= k; j++) out[0] += om2d * (2 * j - jbar2) / 2.0;
+    }
+}
+
+static void gap_poly(const Eng *E, int i, double *out) {
+    const double *a = E->coef + (size_t)i * E->L, *b = E->coef + (size_t)(i + 1) * E->L;
+    for (int q = 0; q < E->L; q++) out[q] = b[q] - a[q];
+}
+
+static void schedule(Eng *E, int i, double t, int graze_restart, double *g) {
+    double thi = t + E->chunk, te;
+    if (thi > E->tend) thi = E->tend;
+    int code;
+    if (E->stuck[i]) {
+        contact_force(E, i, g);
+        code = search(E, g, t, thi, 0, graze_restart, &te);
+    } else {
+        gap_poly(E, i, g);
+        code = search(E, g, t, thi, 1, graze_restart, &te);
+    }
+    if (code == S_CONT && thi >= E->tend) { te = INFINITY; code = S_NONE; }
+    E->nt[i] = te;
+    E->nk[i] = code;
+}
+
+static void pos_vel(const Eng *E, int j, double t, double *x, double *v) {
+    double A, J;
+    derivs(E, E->coef + (size_t)j * E->L, t, x, v, &A, &J);
+}
+
+static void stick(Eng *E, int i, int lo, int hi, double t, double u, double A, int mL, int mR) {
+    double aux = (E->r < 1 && A < 0) ? t + 2 * u / ((-A) * (1 - E->r)) : t;
+    double X, Vel;
+    if (lo == 0) { X = 0; Vel = 0; }
+    else if (hi == E->n + 1) { X = (E->n + 1) * E->d; Vel = 0; }
+    else {
+        double xL, vL, xR, vR;
+        pos_vel(E, i, t, &xL, &vL);
+        pos_vel(E, i + 1, t, &xR, &vR);
+        X = (mL * xL + mR * xR) / (double)(mL + mR);
+        Vel = (mL * vL + mR * vR) / (double)(mL + mR);
+    }
+    E->stuck[i] = 1;
+    set_motion(E, lo, hi, t, X, Vel);
+    record_event(E, t, i, K_STICK, -u, 0.0, aux);
+}
+
+static void impact(Eng *E, int i, double t, int *plo, int *phi, double *g) {
+    int lo, hi, tmp;
+    body(E, i, &lo, &tmp);
+    body(E, i + 1, &tmp, &hi);
+    *plo = lo; *phi = hi;
+    gap_poly(E, i, g);
+    double D, u, A, J, c0, S, M1, M2, M3, M4;
+    derivs(E, g, t, &D, &u, &A, &J);
+    bounds(E, g, &c0, &S, &M1, &M2, &M3, &M4);
+    double tolA = TOLF * EPS * (M2 + M3 * fabs(t));
+    int compressive = A < -tolA || (fabs(A) <= tolA && J < 0);
+    int wallL = (lo == 0), wallR = (hi == E->n + 1);
+    int mL = i - lo + 1, mR = hi - i;
+    double r = E->r;
+    if (fabs(u) <= E->vstick && compressive) {
+        stick(E, i, lo, hi, t, r * fabs(u), A, mL, mR);
+        return;
+    }
+    if (u >= 0) { record_event(E, t, i, K_GRAZE, u, u, 0.0); return; }
+    double u1 = -r * u, dvL, dvR;
+    if (wallL) { dvL = 0; dvR = -(1 + r) * u; }
+    else if (wallR) { dvL = (1 + r) * u; dvR = 0; }
+    else {
+        dvL = (1 + r) * u * mR / (double)(mL + mR);
+        dvR = -(1 + r) * u * mL / (double)(mL + mR);
+    }
+    if (!wallL) kick(E, lo, i, t, dvL);
+    if (!wallR) kick(E, i + 1, hi, t, dvR);
+    record_event(E, t, i, K_IMPACT, u, u1, 0.0);
+    if (u1 <= E->vstick && compressive) stick(E, i, lo, hi, t, fabs(u1), A, mL, mR);
+}
+
+static void run(Eng *E) {
+    int n = E->n;
+    double *g = malloc(E->L * sizeof(double));
+    for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, g);
+    double last_t = NAN;
+    long same = 0;
+    while (!E->err) {
+        int i = 0;
+        double te = E->nt[0];
+        for (int k = 1; k <= n; k++)
+            if (E->nt[k] < te) { te = E->nt[k]; i = k; }
+        if (!(te <= E->tend)) break;
+        int code = E->nk[i];
+        if (te == last_t) {
+            if (++same > 20L * (n + 1) + 100) {
+                E->err = 1;
+                snprintf(E->errmsg, sizeof E->errmsg,
+                         "too many events at t=%.17g: degenerate contact configuration", te);
+                break;
+            }
+        } else { same = 0; last_t = te; }
+        double t = te;
+        if (code == S_CONT) { schedule(E, i, t, 0, g); continue; }
+        E->nevents++;
+        if (E->max_events > 0 && E->nevents > E->max_events) {
+            E->err = 3;
+            snprintf(E->errmsg, sizeof E->errmsg, "more than max_events=%lld events before t_end",
+                     E->max_events);
+            break;
+        }
+        int lo, hi;
+        if (E->stuck[i]) {
+            if (code == S_GRAZE) { schedule(E, i, t, 1, g); continue; }
+            body(E, i, &lo, &hi);
+            double X = 0, Vel = 0;
+            if (lo != 0) pos_vel(E, lo, t, &X, &Vel);
+            E->stuck[i] = 0;
+            set_motion(E, lo, i, t, X, Vel);
+            set_motion(E, i + 1, hi, t, X, Vel);
+            record_event(E, t, i, K_RELEASE, 0.0, 0.0, t);
+        } else if (code == S_GRAZE) {
+            double D, V, A, J;
+            gap_poly(E, i, g);
+            derivs(E, g, t, &D, &V, &A, &J);
+            record_event(E, t, i, K_GRAZE, V, V, D);
+            schedule(E, i, t, 1, g);
+            continue;
+        } else {
+            impact(E, i, t, &lo, &hi, g);
+        }
+        int a = lo - 1 > 0 ? lo - 1 : 0, b = hi < n ? hi : n;
+        for (int k = a; k <= b; k++) schedule(E, k, t, 0, g);
+    }
+    free(g);
+}
+
+/* run(n, omega, d, r, v_stick, chunk, t_end, t_from, record, max_events,
+ *     F: bytes nf doubles, coef/forced/raw: bytes (n+2)*L doubles)
+ * -> (counts bytes (n+1) int64, events bytes, updates bytes, n_events) */
+static PyObject *py_run(PyObject *self, PyObject *args) {
+    int n, record;
+    double om, d, r, vstick, chunk, tend, tfrom;
+    long long max_events;
+    Py_buffer bF, bc, bf, br;
+    if (!PyArg_ParseTuple(args, "idddddddpLy*y*y*y*", &n, &om, &d, &r, &vstick, &chunk, &tend,
+                          &tfrom, &record, &max_events, &bF, &bc, &bf, &br))
+        return NULL;
+    Eng E;
+    memset(&E, 0, sizeof E);
+    E.n = n; E.om = om; E.d = d; E.r = r; E.vstick = vstick; E.chunk = chunk; E.tend = tend;
+    E.t_from = tfrom; E.record = record; E.max_events = max_events;
+    E.nf = (int)(bF.len / sizeof(double));
+    E.L = 1 + 2 * E.nf;
+    size_t sz = (size_t)(n + 2) * E.L * sizeof(double);
+    PyObject *res = NULL;
+    if ((size_t)bc.len != sz || (size_t)bf.len != sz || (size_t)br.len != sz) {
+        PyErr_SetString(PyExc_ValueError, "coefficient buffers have the wrong size");
+        goto done;
+    }
+    E.F = (const double *)bF.buf;
+    E.coef = malloc(sz); E.forced = malloc(sz); E.raw = malloc(sz);
+    E.stuck = calloc(n + 1, 1);
+    E.nt = malloc((n + 1) * sizeof(double));
+    E.nk = malloc((n + 1) * sizeof(int));
+    E.counts = calloc(n + 1, sizeof(long long));
+    E.g = malloc(E.L * sizeof(double));
+    memcpy(E.coef, bc.buf, sz); memcpy(E.forced, bf.buf, sz); memcpy(E.raw, br.buf, sz);
+    Py_BEGIN_ALLOW_THREADS
+    run(&E);
+    Py_END_ALLOW_THREADS
+    if (E.err == 2) { PyErr_NoMemory(); goto done; }
+    if (E.err) { PyErr_SetString(PyExc_RuntimeError, E.errmsg); goto done; }
+    res = Py_BuildValue("(y#y#y#L)", (const char *)E.counts, (Py_ssize_t)((n + 1) * sizeof(long long)),
+                        (const char *)E.ev, (Py_ssize_t)(E.nev * 6 * sizeof(double)),
+                        (const char *)E.up, (Py_ssize_t)(E.nup * (2 + E.L) * sizeof(double)),
+                        E.nevents);
+done:
+    free(E.coef); free(E.forced); free(E.raw); free(E.stuck); free(E.nt); free(E.nk);
+    free(E.counts); free(E.g); free(E.ev); free(E.up);
+    PyBuffer_Release(&bF); PyBuffer_Release(&bc); PyBuffer_Release(&bf); PyBuffer_Release(&br);
+    return res;
+}
+
+static PyMethodDef methods[] = {
+    {"run", py_run, METH_VARARGS, "Run the float64 impact engine (see symhx.impact.fast)."},
+    {NULL, NULL, 0, NULL}};
+
+static struct PyModuleDef moddef = {PyModuleDef_HEAD_INIT, "_fast",
+                                    "Float64 impact engine (C).", -1, methods};
+
+PyMODINIT_FUNC PyInit__fast(void) { return PyModule_Create(&moddef); }
