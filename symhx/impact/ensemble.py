@@ -109,7 +109,7 @@ def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transie
 
     >>> p, s, ev = run_chunk(0.05, 0, [0, 1], 10, 10.0, 10.0, 1, 0.8, 1.0, 1.0, (SQRT2,))
     >>> p.tolist(), s.tolist()
-    [[0, 0], [0, 0]]
+    ([0, 0], [0, 0])
     """
     pipes = np.zeros(len(runs), dtype=np.int64)
     sites = np.zeros(len(runs), dtype=np.int64)
