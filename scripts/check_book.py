@@ -1,0 +1,358 @@
+#!/usr/bin/env python3
+"""Check the built symhx book in a real browser (headless Chromium).
+
+Usage::
+
+    python scripts/check_book.py [HTML_DIR] [--chromium /usr/bin/chromium] [--jobs 2]
+
+``HTML_DIR`` defaults to ``book/_build/html``. Every HTML page of the build (outside ``_static``,
+``_sources``, ``_images``) is opened with ``chromium --headless --dump-dom`` after its scripts
+have run (``--virtual-time-budget=10000``), with Chromium's network log switched on. The check
+fails (exit status 1, one line per problem) unless, for every page:
+
+* **math is typeset**: a page whose HTML holds math (elements of class ``math``) has at least as
+  many ``<mjx-container>`` elements after MathJax ran, no MathJax error (``mjx-merror``), and no
+  raw TeX left in the visible text (``$$``, ``\\(``, ``\\)``, ``\\[``, ``\\]``, ``\\begin{`` or a
+  ``$...$`` pair outside code);
+* **figures have images**: every ``<figure>`` of the built page holds an ``<img>`` or ``<svg>``
+  (a figure cell whose plot was not captured leaves an empty figure with its caption);
+* **images load**: every ``<img src>`` (after scripts ran) is a local file of the build, non-empty
+  and a PNG, JPEG, GIF, WebP or SVG image (``data:`` URIs are accepted);
+* **nothing comes from the internet**: no ``src``/``href``/``srcset``/``data``/``poster`` of a
+  resource (script, stylesheet, image, font, frame, media; ``<a href>`` and navigational
+  ``<link rel>`` are allowed) points to ``http(s)://`` or ``//``, neither in the built file nor in
+  the DOM after scripts ran, no local stylesheet pulls ``url(http...)`` or ``@import`` from the
+  internet, every local script and stylesheet a page loads exists, and Chromium's network log shows
+  no http(s) request initiated by the page (requests Chromium makes for itself, with initiator
+  ``"not an origin"``, are ignored).
+
+Exit status 2 means the check could not run (no build directory, no Chromium).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import unquote, urlsplit
+
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--virtual-time-budget=10000",
+    "--dump-dom",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-component-update",
+    "--disable-sync",
+]
+SKIP_DIRS = {"_static", "_sources", "_images", "_sphinx_design_static", ".doctrees"}
+REMOTE = re.compile(r"^\s*(https?:)?//", re.I)
+# <link rel=...> values that only name another document (no resource is fetched)
+NAV_RELS = {"index", "search", "next", "prev", "previous", "canonical", "alternate", "author",
+            "license", "help", "first", "last", "up", "bookmark", "external", "nofollow",
+            "noopener", "noreferrer", "top", "contents", "start", "copyright", "glossary"}
+# attributes through which a tag loads a resource
+RESOURCE_ATTRS = {
+    "script": ("src",), "img": ("src", "srcset"), "source": ("src", "srcset"),
+    "iframe": ("src",), "frame": ("src",), "embed": ("src",), "object": ("data",),
+    "video": ("src", "poster"), "audio": ("src",), "track": ("src",), "input": ("src",),
+    "image": ("href", "xlink:href"), "use": ("href", "xlink:href"),
+}
+HIDDEN_TEXT_TAGS = {"script", "style", "pre", "code", "textarea", "noscript", "template",
+                    "mjx-container", "mjx-assistive-mml", "svg", "math"}
+RAW_TEX = [
+    (re.compile(r"\$\$"), "$$"),
+    (re.compile(r"\\\("), r"\("),
+    (re.compile(r"\\\)"), r"\)"),
+    (re.compile(r"\\\["), r"\["),
+    (re.compile(r"\\\]"), r"\]"),
+    (re.compile(r"\\begin\{"), r"\begin{"),
+    (re.compile(r"(?<![\w$])\$[^$\s][^$\n]{0,80}?(?<=\S)\$(?![\w$])"), "$...$"),
+]
+CSS_URL = re.compile(r"""url\(\s*['"]?([^'")]+)['"]?\s*\)|@import\s+['"]([^'"]+)['"]""", re.I)
+IMAGE_MAGIC = (b"\x89PNG\r\n\x1a\n", b"\xff\xd8\xff", b"GIF87a", b"GIF89a")
+
+
+@dataclass
+class PageScan:
+    """What an HTML parse of one page found."""
+
+    resources: list[tuple[str, str, str]] = field(default_factory=list)  # (tag, attr, url)
+    local_assets: list[tuple[str, str]] = field(default_factory=list)    # (tag, url) script/css
+    images: list[str] = field(default_factory=list)
+    math_elements: int = 0
+    mjx_containers: int = 0
+    mjx_errors: int = 0
+    figures: int = 0
+    empty_figures: list[str] = field(default_factory=list)  # ids of <figure> without an image
+    inline_css: list[str] = field(default_factory=list)
+    text: list[str] = field(default_factory=list)
+
+
+class _Scanner(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.scan = PageScan()
+        self._hidden: list[str] = []
+        self._figures: list[list] = []  # open <figure>s: [id, has_image]
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        a = {k.lower(): (v or "") for k, v in attrs}
+        s = self.scan
+        classes = a.get("class", "").split()
+        if "math" in classes:
+            s.math_elements += 1
+        if tag == "mjx-container":
+            s.mjx_containers += 1
+        if tag == "mjx-merror" or "data-mjx-error" in a:
+            s.mjx_errors += 1
+        if "style" in a:
+            s.inline_css.append(a["style"])
+        for attr in RESOURCE_ATTRS.get(tag, ()):
+            if a.get(attr):
+                for url in _srcset_urls(a[attr]) if attr == "srcset" else [a[attr]]:
+                    s.resources.append((tag, attr, url))
+        if tag == "link" and a.get("href"):
+            rels = set(a.get("rel", "").lower().split())
+            if not rels or not rels <= NAV_RELS:
+                s.resources.append((tag, "href", a["href"]))
+                if rels & {"stylesheet", "preload", "modulepreload"}:
+                    s.local_assets.append((tag, a["href"]))
+        if tag == "script" and a.get("src"):
+            s.local_assets.append((tag, a["src"]))
+        if tag == "img" and a.get("src"):
+            s.images.append(a["src"])
+        if tag == "figure":
+            self.scan.figures += 1
+            self._figures.append([a.get("id", "?"), False])
+        if tag in ("img", "svg", "object", "embed") and self._figures:
+            self._figures[-1][1] = True
+        if tag in HIDDEN_TEXT_TAGS:
+            self._hidden.append(tag)
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag == "figure" and self._figures:
+            fig_id, has_image = self._figures.pop()
+            if not has_image:
+                self.scan.empty_figures.append(fig_id)
+        if tag in HIDDEN_TEXT_TAGS and tag in self._hidden:
+            while self._hidden and self._hidden.pop() != tag:
+                pass
+
+    def handle_data(self, data: str) -> None:
+        if self._hidden:
+            if self._hidden[-1] == "style":
+                self.scan.inline_css.append(data)
+            return
+        self.scan.text.append(data)
+
+
+def _srcset_urls(value: str) -> list[str]:
+    return [part.strip().split()[0] for part in value.split(",") if part.strip()]
+
+
+def scan_html(html: str) -> PageScan:
+    parser = _Scanner()
+    parser.feed(html)
+    parser.close()
+    return parser.scan
+
+
+def _local_target(page: Path, url: str, root: Path) -> Path | None:
+    """File that a relative URL of ``page`` names, or None if it is not a plain local path."""
+    parts = urlsplit(url)
+    if parts.scheme and parts.scheme != "file":
+        return None
+    path = unquote(parts.path)
+    if not path:
+        return None
+    if parts.scheme == "file":
+        return Path(path)
+    return (root / path.lstrip("/")) if path.startswith("/") else (page.parent / path)
+
+
+def _is_image(path: Path) -> bool:
+    head = path.read_bytes()[:512]
+    if head.startswith(IMAGE_MAGIC) or (head[:4] == b"RIFF" and head[8:12] == b"WEBP"):
+        return True
+    return b"<svg" in head.lower() or (head.lstrip().startswith(b"<?xml") and path.suffix == ".svg")
+
+
+def _css_remote_urls(css: str) -> list[str]:
+    css = re.sub(r"/\*.*?\*/", "", css, flags=re.S)
+    found = []
+    for m in CSS_URL.finditer(css):
+        url = m.group(1) or m.group(2)
+        if url and REMOTE.match(url):
+            found.append(url.strip())
+    return found
+
+
+def page_requests(netlog: Path) -> list[str]:
+    """http(s) URLs requested by the page itself (not by Chromium's own services)."""
+    try:
+        text = netlog.read_text(errors="replace")
+    except OSError:
+        return []
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError:  # log not closed properly: close the event list ourselves
+        try:
+            data = json.loads(text.rstrip().rstrip(",") + "]}")
+        except json.JSONDecodeError:
+            return [f"<unreadable network log {netlog}>"]
+    types = {v: k for k, v in data.get("constants", {}).get("logEventTypes", {}).items()}
+    urls = []
+    for ev in data.get("events", []):
+        params = ev.get("params") or {}
+        url = params.get("url", "")
+        if types.get(ev.get("type")) != "URL_REQUEST_START_JOB" or not REMOTE.match(url):
+            continue
+        if params.get("initiator") == "not an origin":
+            continue  # Chromium's own background traffic (updates, time, accounts)
+        urls.append(url)
+    return sorted(set(urls))
+
+
+def run_chromium(chromium: str, page: Path, workdir: Path) -> tuple[str, list[str], str]:
+    """Open ``page``; return (DOM after scripts, page-initiated http(s) requests, stderr tail)."""
+    netlog = workdir / "netlog.json"
+    cmd = [chromium, *CHROMIUM_FLAGS, f"--user-data-dir={workdir / 'profile'}",
+           f"--log-net-log={netlog}", "--net-log-capture-mode=Default", page.resolve().as_uri()]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120, check=False)
+    return proc.stdout, page_requests(netlog), proc.stderr[-2000:]
+
+
+def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list[str]]
+               ) -> tuple[list[str], dict]:
+    rel = page.relative_to(root).as_posix()
+    problems: list[str] = []
+    source = scan_html(page.read_text(encoding="utf-8", errors="replace"))
+    with tempfile.TemporaryDirectory(prefix="check_book_") as tmp:
+        dom_html, requests, stderr = run_chromium(chromium, page, Path(tmp))
+    if not dom_html.strip():
+        return [f"{rel}: Chromium returned no DOM; stderr:\n{stderr}"], {}
+    dom = scan_html(dom_html)
+
+    # -- nothing from the internet
+    for where, scan in (("built HTML", source), ("DOM after scripts", dom)):
+        for tag, attr, url in scan.resources:
+            if REMOTE.match(url):
+                problems.append(f"{rel}: remote resource in {where}: <{tag} {attr}={url!r}>")
+        for css in scan.inline_css:
+            for url in _css_remote_urls(css):
+                problems.append(f"{rel}: remote url in inline CSS ({where}): {url}")
+    for url in requests:
+        problems.append(f"{rel}: the page requested {url} (Chromium network log)")
+    for tag, url in source.local_assets:
+        if REMOTE.match(url):
+            continue  # already reported
+        target = _local_target(page, url, root)
+        if target is None:
+            continue
+        if not target.is_file():
+            problems.append(f"{rel}: <{tag}> asset {url!r} does not exist in the build")
+        elif target.suffix == ".css":
+            if target not in css_cache:
+                css_cache[target] = _css_remote_urls(target.read_text(errors="replace"))
+            for remote in css_cache[target]:
+                problems.append(f"{rel}: stylesheet {url} loads {remote}")
+
+    # -- figures hold images, and images load from local files
+    for fig_id in source.empty_figures:
+        problems.append(f"{rel}: <figure id={fig_id!r}> has no image (plot not captured?)")
+    for src in dom.images:
+        if src.startswith("data:"):
+            continue
+        if REMOTE.match(src):
+            continue  # reported above
+        target = _local_target(page, src, root)
+        if target is None or not target.is_file():
+            problems.append(f"{rel}: <img src={src!r}> does not resolve to a file of the build")
+        elif target.stat().st_size == 0 or not _is_image(target):
+            problems.append(f"{rel}: <img src={src!r}> is empty or not an image")
+
+    # -- math typeset
+    if source.math_elements:
+        if dom.mjx_containers == 0:
+            problems.append(f"{rel}: {source.math_elements} math elements but no <mjx-container>"
+                            " after loading: MathJax did not typeset")
+        elif dom.mjx_containers < source.math_elements:
+            problems.append(f"{rel}: only {dom.mjx_containers} <mjx-container> for "
+                            f"{source.math_elements} math elements")
+    if dom.mjx_errors:
+        problems.append(f"{rel}: {dom.mjx_errors} MathJax errors (mjx-merror)")
+    text = "".join(dom.text)
+    for pattern, name in RAW_TEX:
+        m = pattern.search(text)
+        if m:
+            context = text[max(0, m.start() - 40): m.end() + 40].replace("\n", " ")
+            problems.append(f"{rel}: raw TeX {name!r} in the rendered text: ...{context}...")
+    stats = {"page": rel, "math": source.math_elements, "mjx": dom.mjx_containers,
+             "images": len(dom.images), "figures": source.figures}
+    return problems, stats
+
+
+def pages_of(root: Path) -> list[Path]:
+    pages = []
+    for path in sorted(root.rglob("*.html")):
+        if SKIP_DIRS & set(path.relative_to(root).parts[:-1]):
+            continue
+        pages.append(path)
+    return pages
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("html_dir", nargs="?", default="book/_build/html")
+    ap.add_argument("--chromium", default=os.environ.get("CHROMIUM", "/usr/bin/chromium"))
+    ap.add_argument("--jobs", type=int, default=2, help="pages checked in parallel")
+    args = ap.parse_args(argv)
+
+    root = Path(args.html_dir)
+    if not (root / "index.html").is_file() and not any(root.glob("*.html")):
+        print(f"check_book: no built book at {root} (run jupyter-book build book)",
+              file=sys.stderr)
+        return 2
+    chromium = args.chromium if Path(args.chromium).is_file() else shutil.which(args.chromium)
+    if not chromium:
+        print(f"check_book: Chromium not found at {args.chromium} "
+              "(apt-get install -y chromium)", file=sys.stderr)
+        return 2
+
+    pages = pages_of(root)
+    css_cache: dict[Path, list[str]] = {}
+    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        results = list(pool.map(lambda p: check_page(p, root, chromium, css_cache), pages))
+
+    problems = [msg for page_problems, _ in results for msg in page_problems]
+    for _, stats in results:
+        if stats:
+            print(f"  {stats['page']:<28} math elements {stats['math']:4d}   "
+                  f"mjx-container {stats['mjx']:4d}   figures {stats['figures']:3d}   "
+                  f"images {stats['images']:3d}")
+    if problems:
+        print(f"\ncheck_book: FAILED, {len(problems)} problem(s) in {len(pages)} pages:",
+              file=sys.stderr)
+        for msg in problems:
+            print("  - " + msg, file=sys.stderr)
+        return 1
+    print(f"check_book: OK, {len(pages)} pages: math typeset, images local and loaded, "
+          "nothing requested from the internet")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
