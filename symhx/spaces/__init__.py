@@ -1,0 +1,3 @@
+"""tmp"""
+from symhx.spaces._classes import *  # noqa
+from symhx.spaces._dist import *  # noqa

@@ -1,0 +1,473 @@
+"""Sample spaces of circuits and their exact class counts (section 8, eqs. 28-41).
+
+Vocabulary
+----------
+* A *visit pattern* ``v = (m_1 >= m_2 >= ...)`` lists how often a circuit visits each vertex it
+  touches: ``k = len(v)`` distinct vertices (the value of X), length ``L = sum(v)``, *excess*
+  ``e = L - k``.
+* Its *class* (or *shape*) ``s`` is the tuple of the parts ``> 1``: ``()`` simple circuits,
+  ``(2,)`` one vertex twice (the paper's phi^1), ``(3,)`` once three times (phi^{1,0}),
+  ``(4,)`` (phi^{1,0,0}), ``(2, 2)`` two vertices twice (phi^2). A class with ``r`` parts and
+  excess ``e`` occurs for every ``k >= r`` (``k - r`` vertices visited once).
+
+The count, for ``k > r`` (at least one vertex visited once, so no rotation fixes a circuit), is
+
+``count(N, s, k) = N!/(N-k)! * (k+e-1)! / ((k-r)! * C_s * S_s)``,
+``C_s = prod_j c_j!`` (``c_j`` parts equal to ``j``), ``S_s = prod_i s_i!``;
+
+relative to the simple count ``phi_N(k) = N!/(k (N-k)!)`` (eq. 5) this is the polynomial
+
+``R_s(k) = rising(k, e) * falling(k, r) / (C_s * S_s)``
+
+which does not depend on N. At ``k = r`` (every vertex repeated) rotations can fix a circuit and
+the polynomial gives ``words / L`` instead of the number of necklaces: this is exactly where the
+paper's eqs. (35), (38)-(40) fail (DESIGN.md §3.1). The boundary value comes from Burnside's
+lemma (:func:`symhx.circuits.circuit_count`).
+
+A space is a finite set of classes plus a weighting. With ``w_e = p**e`` (length weighting,
+default) or ``w_e = 1`` (weighting by ``p**k``, "distinct"), the weight of ``X = k`` is
+
+``W(k) = Phi_{N,p}(k) * Q*(k),  Q*(k) = sum_e w_e U_e(k) / D``
+
+with integers ``U_e(k) = D * sum_{s: e_s = e} R*_s(k)`` (``R*`` includes the boundary values) and
+one common denominator ``D``; only ``Phi`` depends on N.
+"""
+
+from __future__ import annotations
+
+import math
+import operator
+import re
+from collections import Counter
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import lru_cache
+
+from symhx.circuits import _necklaces_with_content, normalise_visits, partitions
+
+__all__ = [
+    "EQ41_SHAPES",
+    "PRINTED_RANGES",
+    "Space",
+    "class_count",
+    "class_ratio",
+    "eq41_terms",
+    "paper_label",
+    "parse_space",
+    "printed_count",
+    "shape_excess",
+    "shapes_up_to",
+]
+
+#: the paper's five classes (eq. 41): simple, phi^1, phi^{1,0}, phi^2, phi^{1,0,0}
+EQ41_SHAPES: tuple[tuple[int, ...], ...] = ((), (2,), (3,), (2, 2), (4,))
+
+#: stated ranges of the printed formulas: eq -> (class, smallest valid length)
+PRINTED_RANGES: dict[str, tuple[tuple[int, ...], int]] = {
+    "35": ((2,), 3),
+    "38": ((3,), 4),
+    "39": ((4,), 5),
+    "40": ((2, 2), 5),
+}
+
+WEIGHTINGS = ("length", "distinct")
+
+
+def shape_excess(shape: tuple[int, ...]) -> int:
+    """Excess ``L - k`` of a class: ``sum(s_i - 1)``.
+
+    >>> shape_excess((2, 2)), shape_excess(())
+    (2, 0)
+    """
+    return sum(s - 1 for s in shape)
+
+
+def _check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
+    s = tuple(sorted((operator.index(x) for x in shape), reverse=True))
+    if any(x < 2 for x in s):
+        raise ValueError(f"a class lists the parts > 1 of a visit pattern, got {shape!r}")
+    return s
+
+
+def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
+    """All classes of excess ``<= m`` (partitions of ``e`` with each part increased by one).
+
+    Their number is ``sum_{e<=m} p(e)``: 1, 2, 4, 7, 12, 19, 30, ... for m = 0, 1, 2, ...
+
+    >>> shapes_up_to(2)
+    ((), (2,), (3,), (2, 2))
+    >>> [len(shapes_up_to(m)) for m in range(7)]
+    [1, 2, 4, 7, 12, 19, 30]
+    """
+    m = operator.index(m)
+    if m < 0:
+        raise ValueError(f"maximum excess must be >= 0, got {m}")
+    out: list[tuple[int, ...]] = [()]
+    for e in range(1, m + 1):
+        out += [tuple(x + 1 for x in part) for part in partitions(e)]
+    return tuple(out)
+
+
+def paper_label(shape: tuple[int, ...]) -> str:
+    """The paper's notation (eq. 37) ``phi^{delta_j ...}``: ``delta_j`` vertices visited ``j+1``
+    times, leading zeros omitted; ``phi`` for simple circuits.
+
+    >>> [paper_label(s) for s in EQ41_SHAPES]
+    ['phi', 'phi^1', 'phi^{1,0}', 'phi^2', 'phi^{1,0,0}']
+    """
+    s = _check_shape(shape)
+    if not s:
+        return "phi"
+    c = Counter(s)
+    top = max(s)
+    deltas = [c.get(j + 1, 0) for j in range(top - 1, 0, -1)]
+    inner = ",".join(str(d) for d in deltas)
+    return f"phi^{inner}" if len(deltas) == 1 else f"phi^{{{inner}}}"
+
+
+def _C(shape: tuple[int, ...]) -> int:
+    out = 1
+    for c in Counter(shape).values():
+        out *= math.factorial(c)
+    return out
+
+
+def _S(shape: tuple[int, ...]) -> int:
+    out = 1
+    for s in shape:
+        out *= math.factorial(s)
+    return out
+
+
+def _rising(k: int, e: int) -> int:
+    out = 1
+    for i in range(e):
+        out *= k + i
+    return out
+
+
+def _falling(k: int, r: int) -> int:
+    out = 1
+    for i in range(r):
+        out *= k - i
+    return out
+
+
+def _poly_ratio(shape: tuple[int, ...], k: int) -> Fraction:
+    """``R_s(k)`` from the ``k > r`` formula (also evaluated at the boundary ``k = r``)."""
+    e, r = shape_excess(shape), len(shape)
+    return Fraction(_rising(k, e) * _falling(k, r), _C(shape) * _S(shape))
+
+
+def _true_boundary_ratio(shape: tuple[int, ...]) -> Fraction:
+    """``count(N, s, r) / phi_N(r)`` at ``k = r`` (Burnside): ``r * necklaces(s) / C_s``."""
+    r = len(shape)
+    return Fraction(r * _necklaces_with_content(shape), _C(shape))
+
+
+def class_ratio(shape: tuple[int, ...], k: int, *, printed: bool = False) -> Fraction:
+    """``count(N, s, k) / phi_N(k)``: N-independent; 0 for ``k < r``.
+
+    ``printed=True`` gives the paper's counts: the formulas (35), (38)-(40) wherever they are
+    stated to hold, (36) ``phi^1(2) = N``, and 0 for the other excluded boundary lengths.
+
+    >>> class_ratio((2,), 1), class_ratio((2,), 3)     # phi^1(2)/phi(1) = N/N; phi^1(4)/phi(3)
+    (Fraction(1, 1), Fraction(9, 2))
+    >>> class_ratio((2, 2), 2), class_ratio((2, 2), 2, printed=True)
+    (Fraction(2, 1), Fraction(0, 1))
+    """
+    s = _check_shape(shape)
+    k = operator.index(k)
+    r = len(s)
+    if k < max(r, 1):
+        return Fraction(0)
+    if k > r:
+        return _poly_ratio(s, k)
+    if printed:
+        return Fraction(1) if s == (2,) else Fraction(0)
+    return _true_boundary_ratio(s)
+
+
+def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False) -> int:
+    """Number of circuits of class ``shape`` with ``k`` distinct vertices (length
+    ``k + excess``) in the complete digraph with loops on ``N`` vertices.
+
+    Equal to :func:`symhx.circuits.circuit_count` of the visit pattern ``shape + (1,)*(k-r)``;
+    ``printed=True`` gives the paper's count instead (see :func:`class_ratio`).
+
+    >>> class_count(100, (3,), 1), class_count(100, (3,), 1, printed=True)
+    (100, 0)
+    >>> class_count(10, (2, 2), 4)      # eq. (40) at length 6: (1/8) 5!/2! * 10!/6!
+    37800
+    """
+    N = operator.index(N)
+    k = operator.index(k)
+    if k < 1 or k > N:
+        return 0
+    val = class_ratio(shape, k, printed=printed) * Fraction(math.perm(N, k), k)
+    assert val.denominator == 1
+    return int(val)
+
+
+# --------------------------------------------------------------------------- printed formulas
+def printed_count(eq: str, N: int, L: int, *, outside: str = "zero") -> Fraction:
+    """The paper's printed count of eq. ``"35"``, ``"36"``, ``"38"``, ``"39"`` or ``"40"`` at
+    length ``L`` (the paper's ``k`` is the length).
+
+    ``outside="zero"`` returns 0 at lengths excluded by the stated range (except eq. 36, which
+    *is* the ``L = 2`` value of phi^1); ``outside="formula"`` evaluates the formula anyway,
+    showing what it would give there (``N/3``, ``N/4``, ``3N(N-1)/4``: words / L).
+
+    >>> printed_count("38", 10, 3), printed_count("38", 10, 3, outside="formula")
+    (Fraction(0, 1), Fraction(10, 3))
+    >>> printed_count("40", 10, 4, outside="formula")
+    Fraction(135, 2)
+    """
+    L = operator.index(L)
+    N = operator.index(N)
+    if eq == "36":
+        return Fraction(N) if L == 2 else Fraction(0)
+    if eq not in PRINTED_RANGES:
+        raise ValueError(f"eq must be one of 35, 36, 38, 39, 40; got {eq!r}")
+    shape, lo = PRINTED_RANGES[eq]
+    if L < sum(shape) or (outside == "zero" and L < lo):
+        return Fraction(0)
+    if outside not in ("zero", "formula"):
+        raise ValueError(f"outside must be 'zero' or 'formula', got {outside!r}")
+
+    def ff(n: int, j: int) -> int:  # n!/(n-j)!, 0 when j > n
+        return math.perm(n, j) if 0 <= j <= n else 0
+
+    if eq == "35":
+        return Fraction(L - 1, 2) * ff(N, L - 1)
+    if eq == "38":
+        return Fraction(math.factorial(L - 1), 6 * math.factorial(L - 3)) * ff(N, L - 2)
+    if eq == "39":
+        return Fraction(math.factorial(L - 1), 24 * math.factorial(L - 4)) * ff(N, L - 3)
+    return Fraction(math.factorial(L - 1), 8 * math.factorial(L - 4)) * ff(N, L - 2)
+
+
+def eq41_terms(N: int, k: int, *, printed: bool = False) -> dict[str, int]:
+    """The five terms of eq. (41) at ``k`` distinct vertices, as counts of circuits:
+    ``phi(k)``, ``phi^1(k+1)``, ``phi^{1,0}(k+2)``, ``phi^2(k+2)``, ``phi^{1,0,0}(k+3)``.
+
+    >>> eq41_terms(5, 1)
+    {'phi': 5, 'phi^1': 5, 'phi^{1,0}': 5, 'phi^2': 0, 'phi^{1,0,0}': 5}
+    >>> eq41_terms(5, 1, printed=True)
+    {'phi': 5, 'phi^1': 5, 'phi^{1,0}': 0, 'phi^2': 0, 'phi^{1,0,0}': 0}
+    """
+    return {paper_label(s): class_count(N, s, k, printed=printed) for s in EQ41_SHAPES}
+
+
+# --------------------------------------------------------------------------- spaces
+_SPACE_RE = re.compile(r"^\s*excess\s*<=\s*(\d+)\s*$")
+
+
+@dataclass(frozen=True)
+class Space:
+    """A sample space of circuits: a set of classes and a weighting.
+
+    Attributes
+    ----------
+    name : str
+        Canonical name, e.g. ``"eq41"``, ``"excess<=3"``, ``"eq41;distinct"``.
+    base : str
+        ``"simple"``, ``"eq41"``, ``"eq41-printed"`` or ``"excess"``.
+    max_excess : int
+        Largest excess of a class in the space.
+    weighting : str
+        ``"length"`` (a circuit weighs ``p**length``) or ``"distinct"`` (``p**k``).
+    shapes : tuple
+        The classes.
+    printed : bool
+        Boundary counts as printed in the paper (``eq41-printed``).
+    """
+
+    name: str
+    base: str
+    max_excess: int
+    weighting: str
+    shapes: tuple[tuple[int, ...], ...]
+    printed: bool = False
+    _cache: dict = field(default_factory=dict, compare=False, repr=False, hash=False)
+
+    @property
+    def levels(self) -> tuple[int, ...]:
+        """Excess levels ``0..max_excess``."""
+        return tuple(range(self.max_excess + 1))
+
+    @property
+    def max_parts(self) -> int:
+        """Largest number of repeated vertices ``r`` of a class; ``Q*`` is the polynomial for
+        ``k > max_parts``."""
+        return max(len(s) for s in self.shapes)
+
+    def ratio(self, shape: tuple[int, ...], k: int) -> Fraction:
+        """``count(N, shape, k) / phi_N(k)`` in this space (0 for a class not in it)."""
+        s = _check_shape(shape)
+        if s not in self.shapes:
+            return Fraction(0)
+        return class_ratio(s, k, printed=self.printed)
+
+    def count(self, N: int, shape: tuple[int, ...], k: int) -> int:
+        """Circuits of class ``shape`` with ``k`` distinct vertices counted by this space."""
+        s = _check_shape(shape)
+        if s not in self.shapes:
+            return 0
+        return class_count(N, s, k, printed=self.printed)
+
+    # ------------------------------------------------------------- integer tables
+    @property
+    def denominator(self) -> int:
+        """The common denominator ``D`` of every ``R*_s(k)``."""
+        if "D" not in self._cache:
+            D = 1
+            for s in self.shapes:
+                D = math.lcm(D, _C(s) * _S(s))
+                for k in range(1, len(s) + 1):
+                    D = math.lcm(D, class_ratio(s, k, printed=self.printed).denominator)
+            self._cache["D"] = D
+        return self._cache["D"]
+
+    @property
+    def coefficients(self) -> tuple[tuple[tuple[int, int], ...], ...]:
+        """For each excess ``e``: pairs ``(r, D * sum_{s: e_s=e, r_s=r} 1/(C_s S_s))``, so that
+        ``D * sum_s R_s(k) = rising(k, e) * sum_r coef_r * falling(k, r)`` (all terms >= 0)."""
+        if "coef" not in self._cache:
+            D = self.denominator
+            acc: list[dict[int, Fraction]] = [{} for _ in self.levels]
+            for s in self.shapes:
+                e, r = shape_excess(s), len(s)
+                acc[e][r] = acc[e].get(r, Fraction(0)) + Fraction(1, _C(s) * _S(s))
+            out = []
+            for d in acc:
+                pairs = []
+                for r in sorted(d):
+                    v = d[r] * D
+                    assert v.denominator == 1
+                    pairs.append((r, int(v.numerator)))
+                out.append(tuple(pairs))
+            self._cache["coef"] = tuple(out)
+        return self._cache["coef"]
+
+    def U(self, k: int) -> tuple[int, ...]:
+        """``U_e(k) = D * sum_{s: e_s = e} R*_s(k)`` for ``e = 0..max_excess`` (exact ints).
+
+        >>> parse_space("eq41").U(3)     # D = 24
+        (24, 108, 360, 180)
+        """
+        cache = self._cache.setdefault("U", {})
+        got = cache.get(k)
+        if got is not None:
+            return got
+        D = self.denominator
+        if k <= self.max_parts:  # boundary region: sum the classes one by one
+            vals = [Fraction(0)] * (self.max_excess + 1)
+            for s in self.shapes:
+                vals[shape_excess(s)] += class_ratio(s, k, printed=self.printed)
+            out = []
+            for v in vals:
+                v *= D
+                assert v.denominator == 1
+                out.append(int(v.numerator))
+            res = tuple(out)
+        else:
+            res = tuple(
+                _rising(k, e) * sum(c * _falling(k, r) for r, c in pairs)
+                for e, pairs in enumerate(self.coefficients)
+            )
+        if len(cache) < 200_000:
+            cache[k] = res
+        return res
+
+    def Qstar(self, k: int, p: Fraction | int) -> Fraction:
+        """``W(k) / Phi_{N,p}(k)`` exactly (N-independent): ``sum_e w_e U_e(k) / D``."""
+        U = self.U(k)
+        if self.weighting == "distinct":
+            return Fraction(sum(U), self.denominator)
+        p = Fraction(p)
+        a, b = p.numerator, p.denominator
+        m = self.max_excess
+        num = sum(u * a**e * b ** (m - e) for e, u in enumerate(U))
+        return Fraction(num, b**m * self.denominator)
+
+    def Qnum(self, k: int, a: int, b: int) -> int:
+        """Integer ``b**m * D * Q*(k)`` for ``p = a/b`` (``D * Q*`` for distinct weighting)."""
+        U = self.U(k)
+        if self.weighting == "distinct":
+            return sum(U)
+        m = self.max_excess
+        return sum(u * a**e * b ** (m - e) for e, u in enumerate(U))
+
+    def Qden(self, b: int) -> int:
+        """The denominator matching :meth:`Qnum`."""
+        if self.weighting == "distinct":
+            return self.denominator
+        return b**self.max_excess * self.denominator
+
+
+def _split_weighting(space: str, weighting: str | None) -> tuple[str, str]:
+    if not isinstance(space, str):
+        raise TypeError(f"space must be a str, got {type(space).__name__}")
+    base, _, suffix = space.partition(";")
+    suffix = suffix.strip()
+    if suffix.startswith("weight="):
+        suffix = suffix[len("weight="):]
+    if suffix and suffix not in WEIGHTINGS:
+        raise ValueError(f"unknown weighting {suffix!r} in space {space!r}; use "
+                         f"';length' or ';distinct'")
+    if weighting is not None and weighting not in WEIGHTINGS:
+        raise ValueError(f"weighting must be 'length' or 'distinct', got {weighting!r}")
+    if suffix and weighting and suffix != weighting:
+        raise ValueError(f"space {space!r} conflicts with weighting={weighting!r}")
+    return base.strip(), (suffix or weighting or "length")
+
+
+@lru_cache(maxsize=256)
+def _parse(base: str, weighting: str) -> Space:
+    suffix = "" if weighting == "length" else ";distinct"
+    if base == "simple":
+        return Space("simple" + suffix, "simple", 0, weighting, ((),))
+    if base == "eq41":
+        return Space("eq41" + suffix, "eq41", 3, weighting, EQ41_SHAPES)
+    if base == "eq41-printed":
+        return Space("eq41-printed" + suffix, "eq41-printed", 3, weighting, EQ41_SHAPES,
+                     printed=True)
+    mt = _SPACE_RE.match(base)
+    if mt:
+        m = int(mt.group(1))
+        return Space(f"excess<={m}" + suffix, "excess", m, weighting, shapes_up_to(m))
+    raise ValueError(
+        f"unknown sample space {base!r}: use 'simple', 'eq41', 'eq41-printed' or 'excess<=m' "
+        f"(m >= 0), optionally followed by ';length' (default) or ';distinct'"
+    )
+
+
+def parse_space(space: str | Space, weighting: str | None = None) -> Space:
+    """Parse a space string: ``"simple"``, ``"eq41"``, ``"eq41-printed"`` or ``"excess<=m"``,
+    optionally with the weighting suffix ``";length"`` (default: a circuit weighs
+    ``p**length``) or ``";distinct"`` (``p**k``, k distinct vertices). ``weighting=`` may be
+    given instead of the suffix.
+
+    >>> parse_space("excess<=2;distinct").shapes, parse_space("eq41", "distinct").name
+    (((), (2,), (3,), (2, 2)), 'eq41;distinct')
+    """
+    if isinstance(space, Space):
+        if weighting is not None and weighting != space.weighting:
+            return _parse(space.base if space.base != "excess" else
+                          f"excess<={space.max_excess}", weighting)
+        return space
+    base, w = _split_weighting(space, weighting)
+    return _parse(base, w)
+
+
+def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
+    """The visit pattern of class ``shape`` with ``k`` distinct vertices.
+
+    >>> visits_of((2,), 3)
+    (2, 1, 1)
+    """
+    s = _check_shape(shape)
+    if k < len(s):
+        raise ValueError(f"class {s} needs at least {len(s)} distinct vertices")
+    return normalise_visits(s + (1,) * (k - len(s))) if k else ()

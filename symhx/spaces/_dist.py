@@ -1,0 +1,544 @@
+"""The distribution of X over a higher-order sample space (section 8, eq. 41 and its
+generalisations): pmf, moments, modes and the class decomposition (figure 11).
+
+``P(X = k) = W(k) / sum_j W(j)`` with ``W(k) = Phi_{N,p}(k) Q*(k)`` (see
+:mod:`symhx.spaces._classes`): ``Phi`` is the simple-space weight of eq. (8) and ``Q*(k)`` a short
+sum of N-independent integers ``U_e(k)`` times ``p**e`` (or 1 for the ``;distinct`` weighting).
+
+Arithmetic (same contract as :mod:`symhx.distribution`):
+
+* exact ``Fraction`` results for int / Fraction / sympy Rational ``p`` (binary splitting of the
+  normaliser and moments; ``N <= 10**5``);
+* otherwise mpmath at ``dps`` digits (plus ``10 + 2 log10 N`` guard digits): for
+  ``N <= 20000`` every ``W(k)`` by a product recurrence; above, a float64 screen keeps only the
+  ``k`` whose weight is within ``dps`` + guard digits of the largest.
+* modes are decided exactly for every rational ``p`` (floats and mpf included, at their exact
+  binary value): a float64 screen of ``log W`` (absolute error < 1e-8 for ``N <= 10**6``) keeps
+  the ``k`` within a margin 100x that error of the maximum; those candidates are then compared
+  exactly (integers) or by interval arithmetic with an exact fall-back, so ties are found exactly.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from functools import cached_property
+from typing import Any
+
+import mpmath
+import numpy as np
+
+from symhx._numeric import (
+    G_mp,
+    UndecidedError,
+    certified_sign,
+    check_dps,
+    check_N,
+    check_p,
+    digits_of,
+    is_exact_type,
+    iv_bits_for,
+    mp_value,
+)
+from symhx.distribution import EXACT_N_LIMIT, Distribution, _binary_split
+from symhx.spaces._classes import Space, paper_label, parse_space, shape_excess
+
+__all__ = [
+    "ClassDecomposition",
+    "SpaceDistribution",
+    "class_decomposition",
+    "class_probabilities",
+    "distribution",
+    "modes",
+]
+
+#: below this N the mpmath path computes every W(k) (no float screen)
+DIRECT_LIMIT = 20_000
+#: exact integer comparisons are attempted up to this many bits
+EXACT_BITS_LIMIT = 8_000_000
+
+
+# --------------------------------------------------------------------------- float64 screen
+_LOGU: dict[str, np.ndarray] = {}
+
+
+def log_U_table(space: Space, K: int) -> np.ndarray:
+    """float64 ``log U_e(k)`` for ``e = 0..m`` (rows) and ``k = 1..K`` (columns); ``-inf`` for 0.
+
+    Computed as sums of logs of positive terms (no cancellation): relative error ~1e-15.
+    """
+    key = space.name
+    got = _LOGU.get(key)
+    if got is not None and got.shape[1] >= K:
+        return got[:, :K]
+    K2 = max(K, 2 * got.shape[1]) if got is not None else K
+    m = space.max_excess
+    out = np.full((m + 1, K2), -np.inf)
+    mp_ = min(space.max_parts, K2)
+    for k in range(1, mp_ + 1):
+        for e, u in enumerate(space.U(k)):
+            if u > 0:
+                out[e, k - 1] = math.log(u)
+    if K2 > mp_:
+        ks = np.arange(mp_ + 1, K2 + 1, dtype=float)
+        rmax = max((r for pairs in space.coefficients for r, _ in pairs), default=0)
+        logfall = [np.zeros_like(ks)]
+        for i in range(rmax):
+            logfall.append(logfall[-1] + np.log(ks - i))
+        logrise = np.zeros_like(ks)
+        for e, pairs in enumerate(space.coefficients):
+            if e:
+                logrise = logrise + np.log(ks + (e - 1))
+            if not pairs:
+                continue
+            terms = np.array([math.log(c) + logfall[r] for r, c in pairs])
+            top = terms.max(axis=0)
+            inner = top + np.log(np.exp(terms - top).sum(axis=0))
+            out[e, mp_:] = logrise + inner
+    _LOGU[key] = out
+    return out[:, :K]
+
+
+def _logp_float(fr: Fraction) -> float:
+    return math.log(fr.numerator) - math.log(fr.denominator)
+
+
+def log_Q_float(space: Space, K: int, logp: float) -> np.ndarray:
+    """float64 ``log Q*(k)``, ``k = 1..K``."""
+    lu = log_U_table(space, K)
+    if space.weighting == "length":
+        lu = lu + (np.arange(space.max_excess + 1) * logp)[:, None]
+    top = lu.max(axis=0)
+    return top + np.log(np.exp(lu - top).sum(axis=0)) - math.log(space.denominator)
+
+
+def log_W_float(space: Space, N: int, logp: float) -> np.ndarray:
+    """float64 ``log W(k)`` for ``k = 1..N`` (absolute error < 1e-8 for ``N <= 10**6``)."""
+    from scipy.special import gammaln
+
+    ks = np.arange(1, N + 1, dtype=float)
+    lphi = ks * logp + (gammaln(N + 1.0) - gammaln(N - ks + 1.0)) - np.log(ks)
+    return lphi + log_Q_float(space, N, logp)
+
+
+def screen_margin(N: int) -> float:
+    """Margin of the float64 screen: > 100x the worst rounding error of :func:`log_W_float`."""
+    return 1e-9 + 2e-13 * (N + 10) * math.log(N + 10) * 50
+
+
+# --------------------------------------------------------------------------- exact comparisons
+def _rational(p: Any, fr: Fraction | None) -> Fraction:
+    if fr is not None:
+        return fr
+    with mpmath.workdps(60):
+        pm = mp_value(p, None)
+    man, exp = pm.man_exp
+    return Fraction(man) * Fraction(2) ** exp
+
+
+def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
+    """Sign of ``W(k) - W(j)`` (certified; exact integers on a near tie)."""
+    if j == k:
+        return 0
+    if j > k:
+        return -compare_weights(space, N, fr, k, j)
+    a, b = fr.numerator, fr.denominator
+    d = k - j
+    Qk, Qj = space.Qnum(k, a, b), space.Qnum(j, a, b)
+
+    def exact() -> int:
+        bits = d * (N.bit_length() + max(a.bit_length(), b.bit_length()) + 1)
+        if bits > EXACT_BITS_LIMIT:
+            raise UndecidedError(f"W({k}) vs W({j}) for N={N}: exact comparison needs ~{bits} "
+                                 f"bits")
+        lhs = a**d * math.perm(N - j, d) * j * Qk
+        rhs = b**d * k * Qj
+        return (lhs > rhs) - (lhs < rhs)
+
+    if d <= 64 or N < 2000:
+        return exact()
+
+    def interval(iv: Any) -> Any:
+        return (d * (iv.log(iv.mpf(a)) - iv.log(iv.mpf(b)))
+                + iv.loggamma(iv.mpf(N - j + 1)) - iv.loggamma(iv.mpf(N - k + 1))
+                + iv.log(iv.mpf(j)) - iv.log(iv.mpf(k))
+                + iv.log(iv.mpf(Qk)) - iv.log(iv.mpf(Qj)))
+
+    start = iv_bits_for(N, digits_of(a) + digits_of(b) + 20)
+    return certified_sign(interval, start_bits=start, max_bits=16 * start, exact_fn=exact)
+
+
+def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tuple[int, ...]:
+    """All maximisers of ``P(X = k)`` over ``space`` (exact for rational ``p``)."""
+    frx = _rational(p, fr)
+    if N == 1:
+        return (1,)
+    lw = log_W_float(space, N, _logp_float(frx))
+    top = float(lw.max())
+    cand = [int(c) + 1 for c in np.nonzero(lw >= top - screen_margin(N))[0]]
+    best = [cand[0]]
+    for k in cand[1:]:
+        s = compare_weights(space, N, frx, best[0], k)
+        if s > 0:
+            best = [k]
+        elif s == 0:
+            best.append(k)
+    return tuple(sorted(best))
+
+
+# --------------------------------------------------------------------------- the distribution
+class SpaceDistribution(Distribution):
+    """X over a higher-order sample space. Build it with :func:`distribution`.
+
+    Attributes as :class:`symhx.distribution.Distribution`; ``space`` is the canonical name and
+    :attr:`sample_space` the parsed :class:`~symhx.spaces.Space`.
+    """
+
+    def __init__(self, N: int, p: Any, space: Space, *, dps: int = 50) -> None:
+        self.N = check_N(N, minimum=1)
+        self.fr, self.p = check_p(p)
+        self.dps = check_dps(dps)
+        self.exact = is_exact_type(p)
+        self.sample_space = space
+        self.space = space.name
+        if self.exact and self.N > EXACT_N_LIMIT:
+            raise ValueError(
+                f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT}; got N={self.N}. "
+                f"Pass p as a float or mpmath.mpf for the mpmath path at dps digits.")
+        self._guard = 10 + 2 * digits_of(self.N)
+
+    # ----------------------------------------------------------------- exact path
+    @cached_property
+    def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:
+        assert self.fr is not None
+        sp, N = self.sample_space, self.N
+        a, b = self.fr.numerator, self.fr.denominator
+        den = sp.Qden(b)
+        g = _binary_split(N, a, b, lambda j: (sp.Qnum(j, a, b), j)) / den
+        m1 = _binary_split(N, a, b, lambda j: (sp.Qnum(j, a, b), 1)) / den
+        m2 = _binary_split(N, a, b, lambda j: (j * sp.Qnum(j, a, b), 1)) / den
+        return g, m1, m2
+
+    def weight_exact(self, k: int) -> Fraction:
+        """``W(k) = Phi_{N,p}(k) Q*(k)`` exactly (needs rational ``p``)."""
+        fr = _rational(self.p, self.fr)
+        if not 1 <= k <= self.N:
+            return Fraction(0)
+        return fr**k * Fraction(math.perm(self.N, k), k) * self.sample_space.Qstar(k, fr)
+
+    # ----------------------------------------------------------------- mpmath path
+    def _runs(self) -> list[tuple[int, int]]:
+        N = self.N
+        if N <= DIRECT_LIMIT:
+            return [(1, N)]
+        fr = _rational(self.p, self.fr)
+        lw = log_W_float(self.sample_space, N, _logp_float(fr))
+        cut = lw.max() - (self.dps + self._guard) * math.log(10) - 20
+        idx = np.nonzero(lw >= cut)[0] + 1
+        runs: list[tuple[int, int]] = []
+        lo = prev = int(idx[0])
+        for k in idx[1:]:
+            k = int(k)
+            if k != prev + 1:
+                runs.append((lo, prev))
+                lo = k
+            prev = k
+        runs.append((lo, prev))
+        return runs
+
+    def _q_mp(self, k: int, pe: list[mpmath.mpf]) -> mpmath.mpf:
+        U = self.sample_space.U(k)
+        if self.sample_space.weighting == "distinct":
+            return pe[0] * sum(U)
+        total = pe[0] * U[0]
+        for e in range(1, len(U)):
+            if U[e]:
+                total += pe[e] * U[e]
+        return total
+
+    def _pe(self, pm: mpmath.mpf) -> list[mpmath.mpf]:
+        D = self.sample_space.denominator
+        if self.sample_space.weighting == "distinct":
+            return [mpmath.mpf(1) / D]
+        pe = [mpmath.mpf(1) / D]
+        for _ in range(self.sample_space.max_excess):
+            pe.append(pe[-1] * pm)
+        return pe
+
+    def _log_phi_mp(self, k: int, pm: mpmath.mpf) -> mpmath.mpf:
+        N = self.N
+        return (k * mpmath.log(pm) + k * mpmath.log(N) + G_mp(N, k - 1) - mpmath.log(k))
+
+    @cached_property
+    def _terms(self) -> dict[int, mpmath.mpf]:
+        """``{k: W(k)}`` (mpf at dps + guard) for every significant k."""
+        N = self.N
+        out: dict[int, mpmath.mpf] = {}
+        with mpmath.workdps(self.dps + self._guard):
+            pm = mp_value(self.p, self.fr)
+            pe = self._pe(pm)
+            for lo, hi in self._runs():
+                t = N * pm if lo == 1 else mpmath.exp(self._log_phi_mp(lo, pm))
+                for k in range(lo, hi + 1):
+                    out[k] = t * self._q_mp(k, pe)
+                    t = t * pm * ((N - k) * k) / (k + 1)
+        return out
+
+    @cached_property
+    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        terms = self._terms
+        with mpmath.workdps(self.dps + self._guard):
+            s0 = mpmath.fsum(terms.values())
+            mu = mpmath.fsum(k * w for k, w in terms.items()) / s0
+            var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
+            return s0, mu, var
+
+    def _round(self, x: mpmath.mpf) -> mpmath.mpf:
+        with mpmath.workdps(self.dps):
+            return +x
+
+    # ----------------------------------------------------------------- public
+    @property
+    def support(self) -> range:
+        """Values X can take: ``1..N``."""
+        return range(1, self.N + 1)
+
+    def pmf(self, k: int) -> Any:
+        """``P(X = k)``: Fraction when exact, else mpf; 0 outside ``1..N``."""
+        if not isinstance(k, int) or isinstance(k, bool):
+            raise TypeError(f"k must be an int, got {type(k).__name__}")
+        if not 1 <= k <= self.N:
+            return Fraction(0) if self.exact else mpmath.mpf(0)
+        if self.exact:
+            return self.weight_exact(k) / self._exact_moments[0]
+        w = self._terms.get(k)
+        if w is not None:
+            with mpmath.workdps(self.dps + self._guard):
+                val = w / self._mp_moments[0]
+            return self._round(val)
+        return self._round(mpmath.exp(self.logpmf(k)))
+
+    def logpmf(self, k: int) -> mpmath.mpf:
+        """``log P(X = k)`` (``-inf`` outside ``1..N``); never underflows."""
+        if not isinstance(k, int) or isinstance(k, bool):
+            raise TypeError(f"k must be an int, got {type(k).__name__}")
+        if not 1 <= k <= self.N:
+            return mpmath.ninf
+        if self.exact:
+            v = self.pmf(k)
+            with mpmath.workdps(self.dps + 5):
+                return self._round(mpmath.log(v.numerator) - mpmath.log(v.denominator))
+        s0 = self._mp_moments[0]
+        with mpmath.workdps(self.dps + self._guard):
+            w = self._terms.get(k)
+            if w is not None:
+                return self._round(mpmath.log(w) - mpmath.log(s0))
+            pm = mp_value(self.p, self.fr)
+            lw = self._log_phi_mp(k, pm) + mpmath.log(self._q_mp(k, self._pe(pm)))
+            return self._round(lw - mpmath.log(s0))
+
+    @property
+    def normaliser(self) -> Any:
+        """``sum_k W(k)``: the generalisation of ``Gamma_{N,p}`` (eq. 8) to this space."""
+        if self.exact:
+            return self._exact_moments[0]
+        return self._round(self._mp_moments[0])
+
+    @property
+    def log_normaliser(self) -> mpmath.mpf:
+        """``log`` of :attr:`normaliser`."""
+        g = self.normaliser
+        with mpmath.workdps(self.dps + 5):
+            if isinstance(g, Fraction):
+                return self._round(mpmath.log(g.numerator) - mpmath.log(g.denominator))
+            return self._round(mpmath.log(g))
+
+    @property
+    def mean(self) -> Any:
+        """``E[X]``."""
+        if self.exact:
+            g, m1, _ = self._exact_moments
+            return m1 / g
+        return self._round(self._mp_moments[1])
+
+    @property
+    def variance(self) -> Any:
+        """``Var[X]`` (as ``sum (k - mean)**2 P(X = k)`` on the mpmath path)."""
+        if self.exact:
+            g, m1, m2 = self._exact_moments
+            mu = m1 / g
+            return m2 / g - mu * mu
+        return self._round(self._mp_moments[2])
+
+    @property
+    def modes(self) -> tuple[int, ...]:
+        """All maximisers of ``P(X = k)`` (exact for rational ``p``)."""
+        return space_modes(self.sample_space, self.N, self.p, self.fr)
+
+    @property
+    def mode(self) -> int:
+        """The smallest maximiser."""
+        return self.modes[0]
+
+    def table(self) -> list[tuple[int, Any]]:
+        """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range)."""
+        if self.exact:
+            g = self._exact_moments[0]
+            return [(k, self.weight_exact(k) / g) for k in self.support]
+        terms = self._terms
+        s0 = self._mp_moments[0]
+        zero = mpmath.mpf(0)
+        with mpmath.workdps(self.dps):
+            return [(k, terms[k] / s0 if k in terms else zero) for k in self.support]
+
+
+def distribution(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
+                 weighting: str | None = None) -> Distribution:
+    """The distribution of X over a sample space (see :func:`symhx.spaces.parse_space`).
+
+    Parameters
+    ----------
+    N : int
+        Number of vertices (``N = n + 1`` for ``n`` pipes).
+    p : int, Fraction, sympy Rational, float or mpf
+        Impact probability ``> 0``; exact types give Fraction results.
+    space : str
+        ``"simple"``, ``"eq41"``, ``"eq41-printed"``, ``"excess<=m"``, optionally with
+        ``";distinct"``.
+    dps : int
+        Significant digits of mpmath results.
+    weighting : {"length", "distinct"}, optional
+        Alternative to the ``;distinct`` suffix.
+
+    Returns
+    -------
+    Distribution
+        :class:`symhx.distribution.SimpleDistribution` for the simple space (length weighting
+        and distinct weighting coincide there), else :class:`SpaceDistribution`.
+
+    >>> d = distribution(3, Fraction(1, 2), space="excess<=1")
+    >>> d.pmf(1), d.mean
+    (Fraction(36, 73), Fraction(123, 73))
+    """
+    sp = parse_space(space, weighting)
+    if sp.base == "simple":
+        from symhx.distribution import SimpleDistribution
+
+        return SimpleDistribution(N, p, dps=dps)
+    return SpaceDistribution(N, p, sp, dps=dps)
+
+
+def modes(N: int, p: Any, *, space: str | Space = "eq41", weighting: str | None = None
+          ) -> tuple[int, ...]:
+    """All maximisers of ``P(X = k)`` over ``space``, increasing (exact for rational ``p``).
+
+    >>> modes(100, Fraction(1, 50), space="eq41"), modes(100, Fraction(1, 50), space="simple")
+    ((53,), (49,))
+    """
+    sp = parse_space(space, weighting)
+    N = check_N(N, minimum=1)
+    fr, p = check_p(p)
+    if sp.base == "simple":
+        from symhx.distribution import _simple_modes
+
+        return _simple_modes(N, fr, p)
+    return space_modes(sp, N, p, fr)
+
+
+# --------------------------------------------------------------------------- classes
+class ClassDecomposition:
+    """``P(X = k, class = s)`` for every class ``s`` of a space (figure 11).
+
+    Attributes
+    ----------
+    shapes : tuple
+        The classes, e.g. ``((), (2,), (3,), (2, 2), (4,))`` for eq. (41).
+    labels : dict
+        class -> the paper's name (``"phi^{1,0}"``).
+    joint : dict
+        class -> list of ``P(X = k, class)`` for ``k = 1..N``.
+    totals : dict
+        class -> ``P(class)``.
+    by_excess : dict
+        excess -> total probability of the classes with that excess.
+    """
+
+    def __init__(self, dist: SpaceDistribution | Any, shapes: tuple[tuple[int, ...], ...],
+                 joint: dict[tuple[int, ...], list[Any]], totals: dict[tuple[int, ...], Any]
+                 ) -> None:
+        self.distribution = dist
+        self.shapes = shapes
+        self.labels = {s: paper_label(s) for s in shapes}
+        self.joint = joint
+        self.totals = totals
+        by: dict[int, Any] = {}
+        for s in shapes:
+            e = shape_excess(s)
+            by[e] = by.get(e, 0) + totals[s]
+        self.by_excess = by
+
+    def __repr__(self) -> str:
+        return f"ClassDecomposition({self.distribution!r}, classes={len(self.shapes)})"
+
+
+def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
+                        weighting: str | None = None) -> ClassDecomposition:
+    """Split ``P(X = k)`` by class (the paper's figure 11): exact for rational ``p``.
+
+    ``P(X = k, s) = Phi_{N,p}(k) w_e R*_s(k) / sum_j W(j)``; the classes add up to the pmf.
+
+    >>> cd = class_decomposition(4, Fraction(1, 2), space="eq41")
+    >>> sum(cd.totals.values()), cd.totals[(4,)]
+    (Fraction(1, 1), Fraction(8, 75))
+    """
+    sp = parse_space(space, weighting)
+    dist = distribution(N, p, space=sp, dps=dps)
+    N = dist.N
+    joint: dict[tuple[int, ...], list[Any]] = {}
+    totals: dict[tuple[int, ...], Any] = {}
+    if dist.exact:
+        fr = Fraction(dist.fr)
+        g = dist.normaliser
+        for s in sp.shapes:
+            we = fr ** shape_excess(s) if sp.weighting == "length" else Fraction(1)
+            row = [fr**k * Fraction(math.perm(N, k), k) * we * sp.ratio(s, k) / g
+                   for k in range(1, N + 1)]
+            joint[s] = row
+            totals[s] = sum(row, Fraction(0))
+        return ClassDecomposition(dist, sp.shapes, joint, totals)
+    if N > DIRECT_LIMIT:
+        raise ValueError(f"class_decomposition lists every k; use N <= {DIRECT_LIMIT}")
+    guard = 10 + 2 * digits_of(N)
+    with mpmath.workdps(dps + guard):
+        pm = mp_value(dist.p, dist.fr)
+        phis = []
+        t = N * pm  # Phi(1); mpf has no overflow, so the recurrence is safe for any N
+        for k in range(1, N + 1):
+            phis.append(t)
+            t = t * pm * ((N - k) * k) / (k + 1)
+        for s in sp.shapes:
+            we = pm ** shape_excess(s) if sp.weighting == "length" else mpmath.mpf(1)
+            row = []
+            for k in range(1, N + 1):
+                r = sp.ratio(s, k)
+                row.append(phis[k - 1] * we * r.numerator / r.denominator if r
+                           else mpmath.mpf(0))
+            joint[s] = row
+        s0 = mpmath.fsum(v for row in joint.values() for v in row)
+        joint = {s: [v / s0 for v in row] for s, row in joint.items()}
+        totals = {s: mpmath.fsum(row) for s, row in joint.items()}
+    with mpmath.workdps(dps):
+        joint = {s: [+v for v in row] for s, row in joint.items()}
+        totals = {s: +v for s, v in totals.items()}
+    return ClassDecomposition(dist, sp.shapes, joint, totals)
+
+
+def class_probabilities(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
+                        weighting: str | None = None) -> dict[str, Any]:
+    """``{paper label: P(class)}`` (the "probability of observing each class", figure 11).
+
+    >>> class_probabilities(4, Fraction(1, 2), space="eq41-printed")["phi^{1,0,0}"]
+    Fraction(4, 39)
+    """
+    cd = class_decomposition(N, p, space=space, dps=dps, weighting=weighting)
+    return {cd.labels[s]: cd.totals[s] for s in cd.shapes}
