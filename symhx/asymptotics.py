@@ -1,0 +1,452 @@
+"""Large-N asymptotics of the jump: ``p_d`` as a series, ``p_c`` and ``k_jump`` at several orders.
+
+Everything here is mpmath only (no sympy; the symbolic side of the same results lives in
+:mod:`symhx.symbolic.asymptotic`, and the tests check that the two agree).
+
+Notation. ``L = ln N``; ``q = N p - 1``. The jump happens at ``p_c = min_{k>=2} c_k`` and lands on
+the minimiser ``k_jump`` (see :mod:`symhx.critical`), where
+
+``log(N c_k) = h(k) = (log k - G(k-1)) / (k-1)``,  ``G(K) = lgamma(N) - lgamma(N-K) - K ln N``.
+
+For ``1 << k << N``, ``-G(K)/K = (K+1)/(2N) + (K+1)(2K+1)/(12 N**2) + ...`` (key
+``"log-Nc-expansion"`` of :func:`symhx.symbolic.derivations`), so
+``h(k) = log k/k + k/(2N) + O(1/N)`` near the minimiser.
+
+Orders of :func:`asymptotic_critical_point` (relative error of ``q``, measured by
+:func:`error_table` against the certified solver :func:`symhx.critical_point`):
+
+``"leading"``
+    ``k = sqrt(N L)``, ``q = sqrt(L / N)``. Error ``~ (ln L - 1) / (2 L)``: *very* slow (still
+    1.2 % at ``N = 10**100``).
+``"next"``
+    ``v = lam + ln lam`` with ``lam = L - 2`` (two terms of ``-W_{-1}(-e**2/N)``),
+    ``k = sqrt(N v)``, ``q = 1/k + k/N = (v + 1)/sqrt(N v)``. Error ``~ ln(lam) / (2 lam**2)``
+    (the omitted ``ln(lam)/lam`` of ``v``).
+``"lambert"``
+    the exact minimiser of the leading part ``log k/k + k/(2N)``: ``v = -W_{-1}(-e**2/N)``,
+    ``k = sqrt(N v)`` (key ``"pc-lambert"``), ``q = expm1(1/k + k/N)``.
+    Error ``O(sqrt(L / N))``.
+``"corrected"``
+    the Lambert point with first-order corrections: ``q = expm1(h_2(k_0))`` where
+    ``h_2 = log k/(k-1) + k/(2N) + k(2k-1)/(12 N**2)`` (by the envelope theorem the shift of the
+    minimiser only enters at second order) and one Newton step for ``k``. Error ``O(L / N)``.
+``"relaxed"``
+    the minimum over *real* ``k`` of the continuous relaxation of ``h`` (``Gamma`` for the
+    factorials; key ``"crossing-relaxed"``), found with mpmath. Error ``O(1 / (N L))`` (the
+    integer minimum lies at most half a step away, and ``h'' ~ L/k**3``).
+``"best"`` (default)
+    the relaxation evaluated at the two integers around its real minimiser, the smaller kept
+    (``c_k`` is unimodal in ``k``, so this is the integer minimum): the error is limited only by
+    the working precision. ``k`` is then an ``int``. Unlike :func:`symhx.critical_point` it is
+    not certified and does not detect exact ties (which need rational arithmetic).
+
+``p_d`` (eq. 16) has the convergent series in ``eps = N**(-1/2)``
+``p_d = eps**2 + 2 eps**3 + 2 eps**4 + 2 sum_{j>=1} binom(1/2, j) eps**(3+2j)``; :func:`pd_series`
+returns a partial sum with a rigorous error bound.
+
+>>> import symhx
+>>> a, exact = asymptotic_critical_point(10**6), symhx.critical_point(10**6)
+>>> a.order, a.k == exact.k_after, float(abs(a.q / exact.q - 1)) < 1e-40
+('best', True, True)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import mpmath
+
+__all__ = [
+    "ORDERS",
+    "AsymptoticCriticalPoint",
+    "PdSeries",
+    "asymptotic_critical_point",
+    "error_table",
+    "format_error_table",
+    "pd_series",
+    "pd_series_coefficients",
+]
+
+#: the available orders, from the crudest to the sharpest
+ORDERS: tuple[str, ...] = ("leading", "next", "lambert", "corrected", "relaxed", "best")
+
+#: smallest N for which the formulas are defined (W_{-1}(-e**2/N) is real for N >= e**3)
+MIN_N = 21
+
+#: how the relative error of q decays, per order (stated in the book and the error table)
+DECAY: dict[str, str] = {
+    "leading": "~ (ln ln N - 1) / (2 ln N)",
+    "next": "~ ln(ln N - 2) / (2 (ln N - 2)^2)",
+    "lambert": "O(sqrt(ln N / N))",
+    "corrected": "O(ln N / N)",
+    "relaxed": "O(1 / (N ln N))",
+    "best": "exact to the working precision",
+    "pd-series-5": "O(N^(-7/2)) relative (first omitted term N^(-9/2)/8)",
+}
+
+
+def _check_N(N: Any) -> int:
+    if isinstance(N, bool) or not isinstance(N, int):
+        if isinstance(N, float) and N.is_integer():
+            raise TypeError(f"N must be an int (got float {N!r}); write e.g. 10**100")
+        raise TypeError(f"N must be an int, got {type(N).__name__}")
+    if N < MIN_N:
+        raise ValueError(f"the asymptotic formulas need N >= {MIN_N}, got {N}; "
+                         "use symhx.critical_point for small N")
+    return N
+
+
+def _digits(N: int) -> int:
+    return int(N.bit_length() * 0.30103) + 1
+
+
+# ----------------------------------------------------------------------------- p_d series
+def pd_series_coefficients(n_terms: int = 5) -> tuple[tuple[int, Fraction], ...]:
+    """Exact coefficients of ``p_d = sum c * N**(-power/2)``: ``((power, c), ...)``.
+
+    From ``p_d = (N + 2 + 2 sqrt(N+1)) / N**2`` and the binomial series of ``sqrt(1 + 1/N)``.
+
+    >>> [(pw, str(c)) for pw, c in pd_series_coefficients(6)]
+    [(2, '1'), (3, '2'), (4, '2'), (5, '1'), (7, '-1/4'), (9, '1/8')]
+    """
+    if n_terms < 1:
+        raise ValueError("n_terms must be >= 1")
+    out: list[tuple[int, Fraction]] = [(2, Fraction(1)), (3, Fraction(2)), (4, Fraction(2))]
+    j = 1
+    while len(out) < n_terms:
+        out.append((3 + 2 * j, 2 * _binom_half(j)))
+        j += 1
+    return tuple(out[:n_terms])
+
+
+def _binom_half(j: int) -> Fraction:
+    c = Fraction(1)
+    for i in range(j):
+        c *= (Fraction(1, 2) - i) / (i + 1)
+    return c
+
+
+@dataclass(frozen=True)
+class PdSeries:
+    """A partial sum of the ``p_d`` series with its rigorous error bound."""
+
+    N: int
+    n_terms: int
+    value: mpmath.mpf
+    bound: mpmath.mpf  #: |p_d - value| <= bound (for every N >= 1)
+    coefficients: tuple[tuple[int, Fraction], ...]
+
+
+def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
+    """``p_d`` (eq. 16) from the first ``n_terms`` terms of its series in ``N**(-1/2)``.
+
+    The bound: the omitted terms of power ``>= 5`` form an alternating series with decreasing
+    terms for ``N >= 1`` (binomial series of ``sqrt(1 + 1/N)``), so they are bounded by the
+    first of them; omitted terms of power ``<= 4`` are added in full.
+
+    Parameters
+    ----------
+    N : int
+        Number of vertices, ``N >= 1``.
+    n_terms : int
+        Number of non-zero terms (5 gives error ``<= N**(-9/2)/8``).
+    dps : int
+        Working digits.
+
+    Returns
+    -------
+    PdSeries
+
+    >>> from symhx.critical import discriminant_root
+    >>> s = pd_series(10**6)
+    >>> mpmath.nstr(s.bound, 3), abs(s.value - discriminant_root(10**6)) <= s.bound
+    ('1.25e-28', True)
+    """
+    if not isinstance(N, int) or N < 1:
+        raise ValueError(f"N must be an int >= 1, got {N!r}")
+    coeffs = pd_series_coefficients(n_terms + 3)
+    used, omitted = coeffs[:n_terms], coeffs[n_terms:]
+    with mpmath.workdps(dps + 10):
+        eps = 1 / mpmath.sqrt(N)
+        value = mpmath.fsum(mpmath.mpf(c.numerator) / c.denominator * eps**pw for pw, c in used)
+        bound = mpmath.mpf(0)
+        for pw, c in omitted:
+            bound += abs(mpmath.mpf(c.numerator) / c.denominator) * eps**pw
+            if pw >= 5:
+                break
+    with mpmath.workdps(dps):
+        return PdSeries(N, n_terms, +value, +bound, used)
+
+
+# ------------------------------------------------------------------- the relaxation of h
+def _B(u: mpmath.mpf) -> mpmath.mpf:
+    """``-(1-u) log1p(-u) - u = -sum_{m>=2} u**m / (m (m-1))``, no cancellation for small u."""
+    if u < mpmath.mpf("0.1"):
+        total, power, m = mpmath.mpf(0), u * u, 2
+        while True:
+            term = power / (m * (m - 1))
+            total += term
+            if term < mpmath.eps * total:
+                return -total
+            power *= u
+            m += 1
+    return -(1 - u) * mpmath.log1p(-u) - u
+
+
+def _stirling(x: mpmath.mpf, derivative: bool = False) -> mpmath.mpf:
+    """``sum_r B_2r/(2r(2r-1) x**(2r-1))`` (or its x-derivative), summed to the working eps."""
+    total, r = mpmath.mpf(0), 1
+    while r < 200:
+        b = mpmath.bernoulli(2 * r)
+        term = (-b / (2 * r) / x ** (2 * r)) if derivative else b / (2 * r * (2 * r - 1)) / x ** (
+            2 * r - 1)
+        total += term
+        if abs(term) < mpmath.eps * max(abs(total), mpmath.eps):
+            break
+        r += 1
+    return total
+
+
+class _Relaxation:
+    """``h(kappa) = (log kappa - G(kappa - 1)) / (kappa - 1)`` for real ``kappa`` and its
+    derivative, with ``G`` rewritten as ``N B(K/N) + log1p(-K/N)/2 + Stirling`` for large ``N``
+    (no cancellation) and by ``loggamma`` with guard digits for small ``N``."""
+
+    def __init__(self, N: int) -> None:
+        self.N = N
+        self.large = N >= 10**4
+
+    def G(self, K: mpmath.mpf) -> mpmath.mpf:
+        N = self.N
+        if self.large:
+            u = K / N
+            return (N * _B(u) + mpmath.log1p(-u) / 2 + _stirling(mpmath.mpf(N))
+                    - _stirling(N - K))
+        with mpmath.extradps(_digits(N) + 10):
+            return mpmath.loggamma(N) - mpmath.loggamma(N - K) - K * mpmath.log(N)
+
+    def dG(self, K: mpmath.mpf) -> mpmath.mpf:
+        N = self.N
+        if self.large:  # psi(N-K) - log N with psi's asymptotic series
+            x = N - K
+            return mpmath.log1p(-K / N) - 1 / (2 * x) + _stirling(x, derivative=True)
+        with mpmath.extradps(_digits(N) + 10):
+            return mpmath.digamma(N - K) - mpmath.log(N)
+
+    def h(self, kappa: mpmath.mpf) -> mpmath.mpf:
+        K = kappa - 1
+        return (mpmath.log(kappa) - self.G(K)) / K
+
+    def F(self, K: mpmath.mpf) -> mpmath.mpf:
+        """``K**2 h'(K + 1)``: negative left of the minimiser, positive right of it."""
+        kappa = K + 1
+        return K * (1 / kappa - self.dG(K)) - (mpmath.log(kappa) - self.G(K))
+
+
+def _lambert_v(N: int) -> mpmath.mpf:
+    return -mpmath.lambertw(-mpmath.e**2 / N, -1).real
+
+
+# -------------------------------------------------------------------------- public result
+@dataclass(frozen=True)
+class AsymptoticCriticalPoint:
+    """Large-N approximation of the jump (see the module docstring for the orders).
+
+    Attributes
+    ----------
+    N : int
+    order : str
+    p : mpf
+        Approximate ``p_c``.
+    q : mpf
+        Approximate ``N p_c - 1`` (computed directly, no cancellation).
+    k : mpf or int
+        Approximate ``k_jump`` (real for the formula orders, an int for ``"best"``).
+    k_int : int
+        ``k`` rounded to the nearest integer (``k`` itself for ``"best"``).
+    dps : int
+    decay : str
+        How the relative error of ``q`` decays with N.
+    """
+
+    N: int
+    order: str
+    p: mpmath.mpf
+    q: mpmath.mpf
+    k: Any
+    k_int: int
+    dps: int
+    decay: str
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"N": self.N, "order": self.order, "p": self.p, "q": self.q, "k": self.k,
+                "k_int": self.k_int, "dps": self.dps, "decay": self.decay}
+
+
+def asymptotic_critical_point(N: int, *, order: str = "best",
+                              dps: int = 50) -> AsymptoticCriticalPoint:
+    """Large-N approximation of the critical point ``p_c`` and the jump target ``k_jump``.
+
+    Parameters
+    ----------
+    N : int
+        Number of vertices, ``N >= 21`` (any size: 10**100 and beyond).
+    order : str
+        One of ``"leading"``, ``"next"``, ``"lambert"``, ``"corrected"``, ``"relaxed"``,
+        ``"best"`` (see the module docstring for the formulas and their errors).
+    dps : int
+        Working decimal digits.
+
+    Returns
+    -------
+    AsymptoticCriticalPoint
+        ``.p``, ``.q`` (= ``N p - 1``), ``.k``, ``.k_int``, ``.order``, ``.decay``.
+
+    >>> a = asymptotic_critical_point(10**10, order="leading")
+    >>> mpmath.nstr(a.q, 3), a.k_int
+    ('4.8e-5', 479853)
+    >>> b = asymptotic_critical_point(10**10, order="corrected")
+    >>> mpmath.nstr(b.q, 8), b.k_int
+    ('5.1240457e-5', 492057)
+    """
+    N = _check_N(N)
+    if order not in ORDERS:
+        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
+    if not isinstance(dps, int) or dps < 5:
+        raise ValueError(f"dps must be an int >= 5, got {dps!r}")
+    with mpmath.workdps(dps + 15):
+        Nm = mpmath.mpf(N)
+        L = mpmath.log(Nm)
+        if order == "leading":
+            k = mpmath.sqrt(Nm * L)
+            q = mpmath.sqrt(L / Nm)
+        elif order == "next":
+            lam = L - 2
+            v = lam + mpmath.log(lam)
+            k = mpmath.sqrt(Nm * v)
+            q = (v + 1) / k
+        elif order in ("lambert", "corrected"):
+            k = mpmath.sqrt(Nm * _lambert_v(N))
+            if order == "lambert":
+                q = mpmath.expm1(1 / k + k / Nm)
+            else:
+                h2 = mpmath.log(k) / (k - 1) + k / (2 * Nm) + k * (2 * k - 1) / (12 * Nm**2)
+                q = mpmath.expm1(h2)
+                lk = mpmath.log(k)
+                dh = ((k - 1) - (2 * k - 1) * lk) / (k**2 * (k - 1) ** 2) + (4 * k - 1) / (
+                    12 * Nm**2)
+                k = k - dh / ((2 * lk - 3) / k**3)
+        else:
+            rel = _Relaxation(N)
+            K0 = mpmath.sqrt(Nm * _lambert_v(N)) - 1
+            lo, hi = K0 / 2, min(2 * K0, Nm - 2)
+            while rel.F(lo) > 0:
+                lo /= 2
+            while rel.F(hi) < 0 and hi < N - 2:
+                hi = min(2 * hi, Nm - 2)
+            Kstar = mpmath.findroot(rel.F, (lo, hi), solver="anderson")
+            kappa = Kstar + 1
+            if order == "relaxed":
+                k = kappa
+                q = mpmath.expm1(rel.h(kappa))
+            else:
+                lo_k = max(2, int(mpmath.floor(kappa)))
+                cands = [kk for kk in (lo_k, lo_k + 1) if kk <= N]
+                vals = {kk: rel.h(mpmath.mpf(kk)) for kk in cands}
+                hmin = min(vals.values())
+                tol = mpmath.mpf(10) ** (-(dps + 5)) * abs(hmin)
+                kbest = max(kk for kk, v in vals.items() if v - hmin <= tol)
+                k = kbest
+                q = mpmath.expm1(vals[kbest])
+        p = (1 + q) / Nm
+    with mpmath.workdps(dps):
+        k_out = k if isinstance(k, int) else +k
+        k_int = k if isinstance(k, int) else int(mpmath.nint(k))
+        return AsymptoticCriticalPoint(N=N, order=order, p=+p, q=+q, k=k_out, k_int=k_int,
+                                       dps=dps, decay=DECAY[order])
+
+
+# ----------------------------------------------------------------------------- error table
+DEFAULT_NS: tuple[int, ...] = (10**3, 10**6, 10**10, 10**30, 10**100)
+
+
+def error_table(Ns: tuple[int, ...] = DEFAULT_NS, *, dps: int = 120,
+                orders: tuple[str, ...] = ORDERS, pd_terms: int = 5) -> list[dict[str, Any]]:
+    """Relative errors of every formula against the exact (certified) solver.
+
+    For each ``N`` and each order: the approximate ``q = N p_c - 1`` and ``k_jump``, the exact
+    ones from :func:`symhx.critical_point`, and the relative errors; plus one row per ``N`` for
+    the ``pd_terms``-term series of ``p_d`` against :func:`symhx.discriminant_root` (with its
+    rigorous bound).
+
+    Parameters
+    ----------
+    Ns : tuple of int
+        Sizes (each ``>= 21``).
+    dps : int
+        Digits for both the approximations and the exact solver (errors below ``10**-dps`` are
+        reported as that floor).
+    orders : tuple of str
+    pd_terms : int
+
+    Returns
+    -------
+    list of dict
+        Keys ``N``, ``formula``, ``quantity`` (``"q"`` or ``"p_d"``), ``approx``, ``exact``,
+        ``rel_error``, ``k``, ``k_exact``, ``k_rel_error``, ``decay``, ``bound`` (p_d only).
+
+    >>> rows = error_table((10**3,), dps=30, orders=("leading", "best"))
+    >>> [(r["formula"], r["rel_error"] < 0.5) for r in rows]
+    [('leading', True), ('best', True), ('pd-series-5', True)]
+    """
+    from symhx.critical import critical_point, discriminant_root
+
+    rows: list[dict[str, Any]] = []
+    floor = mpmath.mpf(10) ** (-dps)
+    for N in Ns:
+        cp = critical_point(N, dps=dps)
+        for order in orders:
+            a = asymptotic_critical_point(N, order=order, dps=dps)
+            with mpmath.workdps(dps):
+                err = max(abs(a.q / cp.q - 1), floor)
+                kerr = abs(mpmath.mpf(a.k) / cp.k_after - 1)
+            rows.append({"N": N, "formula": order, "quantity": "q", "approx": a.q,
+                         "exact": cp.q, "rel_error": err, "k": a.k, "k_exact": cp.k_after,
+                         "k_rel_error": kerr, "decay": DECAY[order], "bound": None})
+        s = pd_series(N, pd_terms, dps=dps)
+        pdx = discriminant_root(N, dps=dps)
+        with mpmath.workdps(dps):
+            err = max(abs(s.value / pdx - 1), floor)
+            rows.append({"N": N, "formula": f"pd-series-{pd_terms}", "quantity": "p_d",
+                         "approx": s.value, "exact": pdx, "rel_error": err, "k": None,
+                         "k_exact": None, "k_rel_error": None,
+                         "decay": DECAY.get(f"pd-series-{pd_terms}", ""),
+                         "bound": s.bound / pdx})
+    return rows
+
+
+def format_error_table(rows: list[dict[str, Any]], *, digits: int = 3) -> str:
+    """A Markdown table (``N`` down, formulas across) of the relative errors of ``q``/``p_d``.
+
+    >>> print(format_error_table([{"N": 1000, "formula": "best", "rel_error": mpmath.mpf(0)}]))
+    | N | best |
+    |---|---|
+    | 1e3 | 0 |
+    """
+    formulas = list(dict.fromkeys(r["formula"] for r in rows))
+    Ns = list(dict.fromkeys(r["N"] for r in rows))
+    cell = {(r["N"], r["formula"]): r["rel_error"] for r in rows}
+    out = ["| N | " + " | ".join(formulas) + " |", "|---|" + "---|" * len(formulas)]
+    for N in Ns:
+        e = round(math.log10(N)) if N > 0 and 10 ** round(math.log10(N)) == N else None
+        name = f"1e{e}" if e is not None else str(N)
+        vals = []
+        for f in formulas:
+            v = cell.get((N, f))
+            vals.append("" if v is None else (
+                "0" if v == 0 else mpmath.nstr(mpmath.mpf(v), digits)))
+        out.append(f"| {name} | " + " | ".join(vals) + " |")
+    return "\n".join(out)

@@ -1,0 +1,613 @@
+"""Section 8 of the paper: higher-order circuits, eqs. (29)-(41), from one general count.
+
+The paper counts each class by hand and its formulas fail at the boundary lengths (DESIGN.md
+section 3). Here every class is a special case of one derived count (key ``"37"``): for a circuit of
+length ``k`` whose repeated vertices have multiplicities ``m_1, ..., m_r`` (total ``M``) and whose
+other ``k - M`` vertices are visited once,
+
+* choose the labelled vertices: ``N! / (N - r)!`` ordered choices for the repeated ones, divided by
+  ``nu = prod_j c_j!`` (``c_j`` repeated vertices share multiplicity ``j``), times
+  ``binomial(N - r, k - M)`` for the once-visited ones;
+* arrange them: ``k! / mu`` words, ``mu = prod_i m_i!``;
+* divide by the ``k`` rotations, which act freely when ``k > M`` (a once-visited vertex breaks
+  every rotational symmetry).
+
+At ``k = M`` (no once-visited vertex) rotations are not free and Burnside's lemma gives the count
+``(1/M) sum_{d | gcd(m)} totient(d) (M/d)! / prod (m_i/d)!`` of necklaces times the vertex choices;
+:func:`pattern_count` returns the ``Piecewise`` of both.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from fractions import Fraction
+from functools import lru_cache
+
+import sympy as sp
+
+from symhx.symbolic._core import Check, Derivation, N, all_exact, k, p, rhs, sym_equal
+from symhx.symbolic.simple import phi as phi_simple
+
+__all__ = ["build", "pattern_count", "pattern_count_general"]
+
+i_ = sp.Symbol("i", integer=True, positive=True)
+g1, g2 = sp.symbols("gamma_1 gamma_2", integer=True, nonnegative=True)
+n_, j_ = sp.symbols("n j", integer=True, positive=True)
+M_, r_ = sp.symbols("M r", integer=True, positive=True)
+mu_, nu_ = sp.symbols("mu nu", integer=True, positive=True)
+x_ = sp.Symbol("x")
+gam = sp.IndexedBase(r"\gamma")
+gamma_fn = sp.Function(r"\gamma")
+phi1_i = sp.Function(r"\phi^{1}_{N,i}")
+
+
+# --------------------------------------------------------------------------- general count
+@lru_cache(maxsize=1)
+def _general_steps() -> tuple[tuple[str, sp.Expr], ...]:
+    vertices = sp.ff(N, r_) / nu_ * sp.binomial(N - r_, k - M_)
+    words = sp.factorial(k) / mu_
+    circuits = vertices * words / k
+    simplified = sp.gammasimp(circuits.rewrite(sp.gamma)).rewrite(sp.factorial)
+    return (
+        ("labelled vertices", vertices),
+        ("words of length k with that content", words),
+        ("circuits: divide by the k free rotations (k > M)", circuits),
+        ("simplified", simplified),
+    )
+
+
+def pattern_count_general() -> sp.Expr:
+    """Eq. (37) generalised: circuits of length ``k > M`` with a given repeat pattern.
+
+    In the symbols ``M`` (visits of the repeated vertices), ``r`` (number of repeated vertices),
+    ``mu = prod m_i!`` and ``nu = prod_j c_j!``.
+
+    >>> pattern_count_general()
+    factorial(N)*factorial(k - 1)/(mu*nu*factorial(-M + k)*factorial(M + N - k - r))
+    """
+    return _general_steps()[-1][1]
+
+
+def _burnside_necklaces(content: tuple[int, ...]) -> sp.Integer:
+    L = sum(content)
+    g = 0
+    for m in content:
+        g = math.gcd(g, m)
+    total = sp.Integer(0)
+    for d in sp.divisors(g):
+        term = sp.totient(d) * sp.factorial(L // d)
+        for m in content:
+            term /= sp.factorial(m // d)
+        total += term
+    return total / L
+
+
+def _pattern_symbols(repeats: tuple[int, ...]) -> dict[sp.Symbol, sp.Expr]:
+    nu = sp.Integer(1)
+    for c in {m: repeats.count(m) for m in repeats}.values():
+        nu *= sp.factorial(c)
+    mu = sp.Integer(1)
+    for m in repeats:
+        mu *= sp.factorial(m)
+    return {M_: sum(repeats), r_: len(repeats), mu_: mu, nu_: nu}
+
+
+def pattern_count(repeats: tuple[int, ...], kk: sp.Expr = k) -> sp.Expr:
+    """Circuits of length ``kk`` whose repeated vertices have multiplicities ``repeats`` and whose
+    other vertices are visited once (exact at every length, boundary included).
+
+    Parameters
+    ----------
+    repeats : tuple of int
+        Multiplicities ``>= 2`` of the repeated vertices, e.g. ``(2,)``, ``(3,)``, ``(2, 2)``;
+        ``()`` gives the simple circuits.
+    kk : sympy expression
+        The circuit length (default the symbol ``k``).
+
+    Returns
+    -------
+    sympy.Piecewise
+        The generic formula for ``kk > M``, the Burnside value at ``kk = M`` and 0 below.
+
+    >>> pattern_count((3,), 3)
+    N
+    >>> pattern_count((2, 2), 4)
+    N*(N - 1)
+    """
+    repeats = tuple(sorted(repeats, reverse=True))
+    if any(m < 2 for m in repeats):
+        raise ValueError("repeats must be multiplicities >= 2")
+    subs = _pattern_symbols(repeats)
+    M = sum(repeats)
+    generic = sp.gammasimp(pattern_count_general().subs(subs)).rewrite(sp.factorial)
+    if not repeats:
+        return generic.subs(k, kk)
+    boundary = sp.factor(sp.ff(N, len(repeats)) / subs[nu_] * _burnside_necklaces(repeats))
+    pw = sp.Piecewise((generic, k > M), (boundary, sp.Eq(k, M)), (0, True))
+    return pw.subs(k, kk)
+
+
+def _circuit_count(n: int, pattern: tuple[int, ...]) -> int:
+    from symhx.circuits import circuit_count
+
+    return circuit_count(n, pattern)
+
+
+@lru_cache(maxsize=64)
+def _brute(n: int, L: int) -> dict[tuple[int, ...], list[tuple[int, ...]]]:
+    """Brute-force circuits of length L on n vertices, grouped by visit pattern."""
+    from collections import Counter
+
+    from symhx.circuits import enumerate_circuits
+
+    out: dict[tuple[int, ...], list[tuple[int, ...]]] = {}
+    for c in enumerate_circuits(n, L):
+        pat = tuple(sorted(Counter(c).values(), reverse=True))
+        out.setdefault(pat, []).append(c)
+    return out
+
+
+def _pattern_exact(repeats: tuple[int, ...], nmax: int = 10, brute_n: int = 4,
+                   brute_L: int = 7):
+    def check(d: Derivation) -> bool:
+        e = rhs(d)
+        M = sum(repeats)
+        pairs = []
+        for n in range(1, nmax + 1):
+            for kk in range(max(M, 1), n + M + 1):
+                pat = repeats + (1,) * (kk - M)
+                pairs.append((e.subs({N: n, k: kk}), _circuit_count(n, pat)))
+        for n in range(1, brute_n + 1):
+            for kk in range(max(M, 1), brute_L + 1):
+                pat = repeats + (1,) * (kk - M)
+                pairs.append((e.subs({N: n, k: kk}), len(_brute(n, kk).get(pat, []))))
+        return all_exact(pairs)
+    return check
+
+
+# ------------------------------------------------------------------------ eqs. 29-34
+def _d29_31() -> list[Derivation]:
+    left = sp.Product(N - i_, (i_, 1, g1)) * sp.Integer(1) * sp.Product(N - i_, (i_, g1 + 1,
+                                                                                 g1 + g2))
+    from sympy.simplify.simplify import product_simplify
+
+    combined = product_simplify(left)
+
+    def perm_brute(n: int, r: int) -> int:
+        return sum(1 for _ in itertools.permutations(range(1, n), r))
+
+    def c29_sym(d: Derivation) -> bool:
+        return sym_equal(sp.gammasimp(d.result.lhs.doit().rewrite(sp.gamma)),
+                         sp.gammasimp(rhs(d).doit().rewrite(sp.gamma)))
+
+    def c29_exact(d: Derivation) -> bool:
+        e = rhs(d)
+        return all_exact((e.subs({N: n, g1: a, g2: b}).doit(), perm_brute(n, a + b))
+                         for n in range(1, 7) for a in range(n) for b in range(n - a))
+
+    d29 = Derivation(
+        "29", "Paths i -> (gamma_1 new vertices) -> i -> (gamma_2 new vertices) -> i",
+        sp.Eq(left, combined),
+        checks=(
+            Check("both sides agree after evaluation, symbolic N, gamma_1, gamma_2", "symbolic",
+                  c29_sym),
+            Check("equals an itertools count of the vertex choices, N <= 6", "exact",
+                  c29_exact),
+        ),
+        paper=sp.Product(N - i_, (i_, 1, g1 + g2)), section=8,
+    )
+    sub = combined.subs(g2, k - 2 - g1)  # eq. (28): (gamma_1 + 1) + (gamma_2 + 1) = k
+    d30 = Derivation(
+        "30", "The same with the length constraint (28): gamma_1 + gamma_2 = k - 2",
+        sp.Eq(combined, sub),
+        checks=(
+            Check("equals eq. (29) with gamma_2 = k - 2 - gamma_1, symbolic", "symbolic",
+                  lambda d: sym_equal(rhs(d).doit(), combined.doit().subs(g2, k - 2 - g1))),
+            Check("equals perm(N-1, k-2), 2 <= k <= N+1 <= 9", "exact", lambda d: all_exact(
+                (rhs(d).subs({N: n, k: kk}).doit(), math.perm(n - 1, kk - 2))
+                for n in range(1, 9) for kk in range(2, n + 2))),
+        ),
+        paper=sp.Product(N - i_, (i_, 1, k - 2)), section=8,
+    )
+    evaluated = sp.Product(i_, (i_, N - k + 2, N - 1)).doit()  # re-indexed i -> N - i
+    evaluated = sp.piecewise_fold(sp.gammasimp(evaluated.rewrite(sp.gamma)))
+    if isinstance(evaluated, sp.Piecewise):
+        evaluated = evaluated.args[0].expr
+    evaluated = evaluated.rewrite(sp.factorial)
+    paper31 = sp.factorial(N - 1) / sp.factorial(N - (k - 1))
+
+    def c31_brute(d: Derivation) -> bool:
+        # eq. (30)'s product multiplied out term by term for integer N, k
+        e = rhs(d)
+        return all_exact((e.subs({N: n, k: kk}), math.prod(n - t for t in range(1, kk - 1)))
+                         for n in range(1, 9) for kk in range(2, n + 2))
+
+    def c31_enum(d: Derivation) -> bool:
+        e = rhs(d)
+        for n in range(1, 6):
+            for kk in range(3, n + 2):
+                for gg1 in range(kk - 1):
+                    cnt = 0
+                    for w in itertools.product(range(n), repeat=kk - 1):
+                        word = (0, *w)
+                        if word.count(0) == 2 and word[gg1 + 1] == 0 and len(set(w)) == kk - 1:
+                            cnt += 1
+                    if not all_exact([(e.subs({N: n, k: kk}), cnt)]):
+                        return False
+        return True
+
+    d31 = Derivation(
+        "31", "Number of such paths for a fixed split gamma_1: (N-1)!/(N-(k-1))!",
+        sp.Eq(sp.Product(N - i_, (i_, 1, k - 2)), evaluated),
+        checks=(
+            Check("equals the paper's (N-1)!/(N-(k-1))!, symbolic", "symbolic",
+                  lambda d: sym_equal(rhs(d), paper31)),
+            Check("equals eq. (30) multiplied out, 2 <= k <= N+1 <= 9", "exact", c31_brute),
+            Check("equals a brute-force count of words (fixed gamma_1), N <= 5", "exact",
+                  c31_enum),
+        ),
+        paper=paper31, section=8,
+    )
+    return [d29, d30, d31]
+
+
+def _d32() -> Derivation:
+    per_split = sp.factorial(N - 1) / sp.factorial(N - (k - 1))
+    total = sp.Sum(per_split, (g1, 0, k - 2))
+    derived = sp.factor(sp.Rational(1, 2) * total.doit())
+    paper = sp.binomial(k - 1, 1) / 2 * per_split  # gamma(k, 2)/2 with eq. (34)
+
+    def brute(d: Derivation) -> bool:
+        e = rhs(d)
+        pairs = []
+        for n in range(1, 6):
+            for kk in range(3, n + 2):
+                pat = (2,) + (1,) * (kk - 2)
+                cnt = sum(1 for c in _brute(n, kk).get(pat, []) if c.count(0) == 2)
+                pairs.append((e.subs({N: n, k: kk}), cnt))
+        return all_exact(pairs)
+
+    return Derivation(
+        "32", "Circuits of length k > 2 visiting a given vertex i twice, others at most once",
+        sp.Eq(phi1_i(k), derived),
+        checks=(
+            Check("equals the paper's gamma(k,2)/2 (N-1)!/(N-(k-1))!, symbolic", "symbolic",
+                  lambda d: sym_equal(rhs(d), paper)),
+            Check("equals brute-force enumeration (vertex 0 twice), 3 <= k <= N+1 <= 6",
+                  "exact", brute),
+        ),
+        steps=(("(1/2) sum over the splits gamma_1 = 0..k-2 of eq. (31)",
+                sp.Rational(1, 2) * total), ("evaluated", derived)),
+        paper=paper, section=8,
+    )
+
+
+def _d33_34() -> list[Derivation]:
+    relation = sp.Eq(sp.Sum(gam[i_], (i_, 1, j_)), n_)
+
+    def count_solutions(d: Derivation, n: int, j: int) -> int:
+        rel = d.result.subs(j_, j).doit()
+        syms = [gam[t] for t in range(1, j + 1)]
+        fn = sp.lambdify([*syms, n_], rel.lhs - rel.rhs)
+        return sum(1 for vals in itertools.product(range(1, n + 1), repeat=j)
+                   if fn(*vals, n) == 0)
+
+    def c33(d: Derivation) -> bool:
+        for n in range(1, 8):
+            for j in range(1, min(n, 4) + 1):
+                gf = sp.series((x_ / (1 - x_)) ** j, x_, 0, n + 1).removeO().coeff(x_, n)
+                if count_solutions(d, n, j) != gf:
+                    return False
+        return True
+
+    d33 = Derivation(
+        "33", "gamma(n, j): number of solutions of this equation in positive integers",
+        relation,
+        checks=(Check("number of positive solutions equals the x^n coefficient of "
+                      "(x/(1-x))^j, n <= 7, j <= 4 (brute force)", "exact", c33),),
+        section=8,
+    )
+    derived = sp.binomial(n_ - 1, j_ - 1)  # (j-1) cut points among the n-1 inner gaps
+
+    def pascal(d: Derivation) -> bool:
+        e = rhs(d)
+        G = sp.Lambda((n_, j_), e)
+        # first part = 1 (drop it) or > 1 (decrease it): gamma(n,j) = gamma(n-1,j-1) + gamma(n-1,j)
+        step = sp.simplify(sp.combsimp((G(n_ - 1, j_ - 1) + G(n_ - 1, j_)) / G(n_, j_))) == 1
+        base = sp.simplify(G(n_, 1)) == 1 and sp.simplify(G(j_, j_)) == 1
+        return bool(step and base)
+
+    def brute(d: Derivation) -> bool:
+        e = rhs(d)
+        pairs = []
+        for n in range(1, 11):
+            for j in range(1, n + 1):
+                cnt = sum(1 for cuts in itertools.combinations(range(1, n), j - 1))
+                # independent: count compositions directly for small n
+                if n <= 8:
+                    cnt = sum(1 for c in itertools.product(range(1, n + 1), repeat=j)
+                              if sum(c) == n) if j <= 4 else cnt
+                pairs.append((e.subs({n_: n, j_: j}), cnt))
+        return all_exact(pairs)
+
+    d34 = Derivation(
+        "34", "gamma(n, j) = binomial(n-1, j-1) (compositions of n into j parts)",
+        sp.Eq(gamma_fn(n_, j_), derived),
+        checks=(
+            Check("satisfies gamma(n,j) = gamma(n-1,j-1) + gamma(n-1,j), gamma(n,1) = "
+                  "gamma(j,j) = 1 (induction), symbolic", "symbolic", pascal),
+            Check("equals brute-force composition counts, n <= 10", "exact", brute),
+        ),
+        steps=(("(j-1) cut points among the n-1 inner gaps of n units", derived),),
+        paper=sp.binomial(n_ - 1, j_ - 1), section=8,
+    )
+    return [d33, d34]
+
+
+# ------------------------------------------------------------------------ eqs. 35-41
+def _d35_36() -> list[Derivation]:
+    per_vertex = sp.factor(sp.Rational(1, 2) * sp.Sum(
+        sp.factorial(N - 1) / sp.factorial(N - (k - 1)), (g1, 0, k - 2)).doit())
+    derived = sp.gammasimp(N * per_vertex).rewrite(sp.factorial)
+    paper35 = sp.Rational(1, 2) * (k - 1) * sp.factorial(N) / sp.factorial(N - (k - 1))
+    general = pattern_count((2,))
+
+    def exact35(d: Derivation) -> bool:
+        e = rhs(d)
+        return all_exact((e.subs({N: n, k: kk}), _circuit_count(n, (2,) + (1,) * (kk - 2)))
+                         for n in range(1, 11) for kk in range(3, n + 2))
+
+    d35 = Derivation(
+        "35", "phi^1_N(k): one vertex visited twice, others at most once (valid for k > 2)",
+        sp.Eq(sp.Function(r"\phi^{1}_{N}")(k), derived),
+        checks=(
+            Check("equals the paper's (1/2)(k-1) N!/(N-(k-1))!, symbolic", "symbolic",
+                  lambda d: sym_equal(rhs(d), paper35)),
+            Check("equals the general pattern count (37) for k > 2, symbolic", "symbolic",
+                  lambda d: sym_equal(rhs(d), general.args[0].expr)),
+            Check("equals symhx.circuits.circuit_count, 3 <= k <= N+1 <= 11", "exact", exact35),
+        ),
+        steps=(("N choices of the repeated vertex times eq. (32)", N * per_vertex),),
+        paper=paper35, section=8,
+    )
+    value2 = general.subs(k, 2)
+
+    def exact36(d: Derivation) -> bool:
+        e = rhs(d)
+        ok = all_exact((e.subs(N, n), _circuit_count(n, (2,))) for n in range(1, 21))
+        ok = ok and all_exact((e.subs(N, n), len(_brute(n, 2).get((2,), [])))
+                              for n in range(1, 7))
+        return ok
+
+    d36 = Derivation(
+        "36", "phi^1_N(2) = N: the boundary case, where eq. (35) would give N/2",
+        sp.Eq(sp.Function(r"\phi^{1}_{N}")(2), value2),
+        checks=(
+            Check("equals circuit_count(N, (2,)) for N <= 20 and brute force for N <= 6",
+                  "exact", exact36),
+            Check("differs from eq. (35) at k = 2 (N/2), symbolic", "symbolic",
+                  lambda d: not sym_equal(rhs(d), paper35.subs(k, 2))),
+        ),
+        paper=N, section=8,
+    )
+    return [d35, d36]
+
+
+def _d37() -> Derivation:
+    lhs = sp.Function(r"\phi^{(m_1,\dots,m_r)}_{N}")(k)
+
+    def exact(d: Derivation) -> bool:
+        from symhx.circuits import partitions
+
+        e = rhs(d)
+        pairs = []
+        for L in range(2, 9):
+            for pat in partitions(L):
+                if 1 not in pat or pat[0] == 1:
+                    continue  # generic branch: at least one repeated and one single vertex
+                repeats = tuple(m for m in pat if m > 1)
+                sub = _pattern_symbols(repeats)
+                for n in range(1, 10):
+                    pairs.append((e.subs(sub).subs({N: n, k: L}), _circuit_count(n, pat)))
+        return all_exact(pairs)
+
+    def brute(d: Derivation) -> bool:
+        e = rhs(d)
+        pairs = []
+        for n in range(1, 4):
+            for L in range(2, 8):
+                for pat, circs in _brute(n, L).items():
+                    if 1 not in pat or pat[0] == 1:
+                        continue
+                    sub = _pattern_symbols(tuple(m for m in pat if m > 1))
+                    pairs.append((e.subs(sub).subs({N: n, k: L}), len(circs)))
+        return all_exact(pairs)
+
+    return Derivation(
+        "37", "General count: circuits of length k > M with repeated multiplicities m_i "
+        "(sum M, r of them), the others visited once",
+        sp.Eq(lhs, pattern_count_general()),
+        checks=(
+            Check("equals symhx.circuits.circuit_count for every pattern of length <= 8 with "
+                  "a single vertex, N <= 9", "exact", exact),
+            Check("equals brute-force enumeration (FKM) by pattern, N <= 3, length <= 7",
+                  "exact", brute),
+        ),
+        steps=_general_steps(), section=8,
+    )
+
+
+_CLASSES = {
+    "38": ((3,), r"\phi^{1,0}_{N}", "one vertex visited three times",
+           sp.Rational(1, 6) * sp.factorial(k - 1) / sp.factorial(k - 3)
+           * sp.factorial(N) / sp.factorial(N - (k - 2))),
+    "39": ((4,), r"\phi^{1,0,0}_{N}", "one vertex visited four times",
+           sp.Rational(1, 24) * sp.factorial(k - 1) / sp.factorial(k - 4)
+           * sp.factorial(N) / sp.factorial(N - (k - 3))),
+    "40": ((2, 2), r"\phi^{2}_{N}", "two vertices visited twice",
+           sp.Rational(1, 8) * sp.factorial(k - 1) / sp.factorial(k - 4)
+           * sp.factorial(N) / sp.factorial(N - (k - 2))),
+}
+
+
+def _d38_40() -> list[Derivation]:
+    out = []
+    for label, (repeats, name, what, paper) in _CLASSES.items():
+        M = sum(repeats)
+        result = pattern_count(repeats)
+
+        def generic_vs_paper(d: Derivation, paper=paper) -> bool:
+            e = rhs(d)
+            return isinstance(e, sp.Piecewise) and sym_equal(e.args[0].expr, paper)
+
+        def erratum(d: Derivation, paper=paper, M=M) -> bool:
+            e = rhs(d)
+            # at the boundary k = M the paper's formula gives (words)/M, not the circuit count
+            return all(e.subs({N: n, k: M}) != paper.subs({N: n, k: M}) for n in range(2, 8))
+
+        out.append(Derivation(
+            label, f"Circuits of length k with {what}, others at most once (all k, boundary "
+            "corrected)",
+            sp.Eq(sp.Function(name)(k), result),
+            checks=(
+                Check(f"generic branch (k > {M}) equals the paper's formula, symbolic",
+                      "symbolic", generic_vs_paper),
+                Check("equals circuit_count for all k, N <= 10, and brute force for N <= 4, "
+                      "length <= 7", "exact", _pattern_exact(repeats)),
+                Check(f"at k = {M} differs from the paper's formula (corrected boundary), "
+                      "N = 2..7", "exact", erratum),
+            ),
+            paper=paper, section=8,
+        ))
+    return out
+
+
+_EQ41_TERMS = (((), 0), ((2,), 1), ((3,), 2), ((4,), 3), ((2, 2), 2))
+
+
+def _eq41_parts(weighted: bool) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """(generic k >= 3, value at k = 2, value at k = 1) of eq. (41)."""
+    generic = 0
+    for repeats, extra in _EQ41_TERMS:
+        if repeats:
+            term = pattern_count(repeats).args[0].expr.subs(k, k + extra)
+        else:
+            term = phi_simple(k)
+        generic += term * (p ** (k + extra) if weighted else 1)
+    total = sum((pattern_count(r, k + e) if r else phi_simple(k)) * (p ** (k + e) if weighted
+                                                                       else 1)
+                for r, e in _EQ41_TERMS)
+    at2 = sp.factor(sp.expand(total.subs(k, 2)))
+    at1 = sp.factor(sp.expand(total.subs(k, 1)))
+    generic = sp.factor(sp.gammasimp(generic.rewrite(sp.gamma)).rewrite(sp.factorial))
+    return generic, at2, at1
+
+
+def _eq41_brute(weighted: bool):
+    def check(d: Derivation) -> bool:
+        e = rhs(d)
+        pv = Fraction(1, 3)
+        pairs = []
+        for n in range(1, 5):
+            for kk in range(1, n + 1):
+                want = Fraction(0)
+                for repeats, extra in _EQ41_TERMS:
+                    if kk < len(repeats):
+                        continue
+                    L = kk + extra
+                    pat = repeats + (1,) * (kk - len(repeats))
+                    cnt = len(_brute(n, L).get(pat, [])) if L <= 7 else _circuit_count(n, pat)
+                    want += cnt * (pv**L if weighted else 1)
+                pairs.append((e.subs({N: n, k: kk, p: sp.Rational(1, 3)}), want))
+        return all_exact(pairs)
+    return check
+
+
+def _eq41_exact(weighted: bool):
+    def check(d: Derivation) -> bool:
+        e = rhs(d)
+        pv = Fraction(2, 7)
+        pairs = []
+        for n in range(1, 13):
+            for kk in range(1, n + 1):
+                want = Fraction(0)
+                for repeats, extra in _EQ41_TERMS:
+                    if kk < len(repeats):
+                        continue  # needs more distinct vertices than k
+                    pat = repeats + (1,) * (kk - len(repeats))
+                    want += _circuit_count(n, pat) * (pv ** (kk + extra) if weighted else 1)
+                pairs.append((e.subs({N: n, k: kk, p: sp.Rational(2, 7)}), want))
+        return all_exact(pairs)
+    return check
+
+
+def _d41() -> list[Derivation]:
+    out = []
+    paper41 = (phi_simple(k)
+               + (sp.Rational(1, 2) * (k - 1) * sp.factorial(N)
+                  / sp.factorial(N - (k - 1))).subs(k, k + 1)
+               + _CLASSES["38"][3].subs(k, k + 2) + _CLASSES["39"][3].subs(k, k + 3)
+               + _CLASSES["40"][3].subs(k, k + 2))
+    for weighted in (False, True):
+        generic, at2, at1 = _eq41_parts(weighted)
+        result = sp.Piecewise((generic, k > 2), (at2, sp.Eq(k, 2)), (at1, sp.Eq(k, 1)))
+        if weighted:
+            label, name = "41-weighted", "W_{N,p}"
+            desc = ("Weight p^length of the eq. (41) sample space with k distinct impacts "
+                    "(unnormalised pmf; DESIGN.md default)")
+        else:
+            label, name = "41", "n_{N}"
+            desc = ("Circuits with k distinct impacts in the eq. (41) sample space (five "
+                    "classes, boundary cases corrected)")
+        checks = [
+            Check("equals the sum of circuit_count over the five classes, k <= N <= 12"
+                  + (", p = 2/7" if weighted else ""), "exact", _eq41_exact(weighted)),
+            Check("equals brute-force enumeration, N <= 4" + (", p = 1/3" if weighted else ""),
+                  "exact", _eq41_brute(weighted)),
+        ]
+        if not weighted:
+            checks.append(Check(
+                "generic branch (k > 2) equals the paper's printed sum, symbolic", "symbolic",
+                lambda d: sym_equal(rhs(d).args[0].expr, paper41)))
+            checks.append(Check(
+                "k = 1 and k = 2 differ from the printed sum (corrected boundaries), N = 2..8",
+                "exact", lambda d: all(
+                    rhs(d).subs({N: n, k: kk}) != paper41.subs({N: n, k: kk})
+                    for n in range(2, 9) for kk in (1, 2))))
+        out.append(Derivation(label, desc, sp.Eq(sp.Function(name)(k), result),
+                              checks=tuple(checks), paper=paper41 if not weighted else None,
+                              section=8))
+    # the classes the truncation drops, compared with the kept "one vertex four times"
+    ratios = sp.Tuple(*[sp.factor(sp.gammasimp(
+        (pattern_count(r).args[0].expr / pattern_count((4,)).args[0].expr).rewrite(sp.gamma)))
+        .subs(k, k + 3) for r in ((3, 2), (2, 2, 2))])
+
+    def ratio_exact(d: Derivation) -> bool:
+        e = rhs(d)
+        pairs = []
+        for n in range(3, 12):
+            for kk in range(3, n + 1):
+                base = _circuit_count(n, (4,) + (1,) * (kk - 1))
+                pairs.append((e[0].subs({k: kk}),
+                              Fraction(_circuit_count(n, (3, 2) + (1,) * (kk - 2)), base)))
+                if kk >= 4:  # (2,2,2) with no single vertex (k = 3) is a Burnside boundary
+                    cnt = _circuit_count(n, (2, 2, 2) + (1,) * (kk - 3))
+                    pairs.append((e[1].subs({k: kk}), Fraction(cnt, base)))
+        return all_exact(pairs)
+
+    out.append(Derivation(
+        "41-truncation", "Dropped vs kept classes at length k+3: (3,2) and (2,2,2) relative to "
+        "(4,) -- both larger for k >= 3 (the (2,2,2) ratio is for k >= 4; 16/15 at k = 3)",
+        sp.Eq(sp.Tuple(sp.Symbol("R_{3,2}"), sp.Symbol("R_{2,2,2}")), ratios),
+        checks=(Check("equal ratios of circuit_count, 3 <= k <= N <= 11 (k >= 4 for (2,2,2))",
+                      "exact",
+                      ratio_exact),),
+        section=8,
+    ))
+    return out
+
+
+def build() -> list[Derivation]:
+    """All derivations of section 8."""
+    return [*_d29_31(), _d32(), *_d33_34(), *_d35_36(), _d37(), *_d38_40(), *_d41()]
