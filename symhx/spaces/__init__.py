@@ -1,3 +1,4 @@
 """tmp"""
 from symhx.spaces._classes import *  # noqa
 from symhx.spaces._dist import *  # noqa
+from symhx.spaces._critical import *  # noqa
