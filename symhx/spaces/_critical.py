@@ -57,8 +57,8 @@ def root_estimates(space: Space | str, N: int) -> np.ndarray:
     """float64 ``log(N c_k)`` for ``k = 2..N`` (index ``k - 2``).
 
     >>> s = root_estimates("eq41", 10)
-    >>> int(np.argmin(s)) + 2
-    3
+    >>> int(np.argmin(s)) + 2   # the jump of eq. (41) for N = 10 lands on k = 5
+    5
     """
     from scipy.special import gammaln
 
@@ -268,7 +268,7 @@ def critical_point(N: int, *, dps: int = 50, space: str | Space = "eq41",
 
     >>> cp = critical_point(101, space="eq41", dps=20)
     >>> cp.k_before, cp.k_after
-    (1, 12)
+    (1, 23)
     """
     sp = parse_space(space, weighting)
     N = check_N(N)
