@@ -1,0 +1,147 @@
+"""CLI: ``symhx spaces`` (a higher-order sample space: jump, moments, classes) and
+``symhx convergence`` (E[X] and p_c as the truncation m grows); the section-8 part of
+``symhx paper`` (figures 11-13 data and plots, the convergence table)."""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import time
+from pathlib import Path
+from typing import Any
+
+from symhx.commands._common import dump_json, jsonable, mpstr
+from symhx.commands.core import parse_int, parse_p
+
+ORDER = 60
+
+#: the paper's row for figures 11-13: 100 pipes -> N = 101
+PAPER_N = 101
+
+
+def register(sub: Any) -> None:
+    s = sub.add_parser("spaces", help="higher-order sample spaces (section 8): jump, E[X], "
+                       "modes, class probabilities")
+    s.add_argument("N", type=parse_int, help="number of vertices N = pipes + 1")
+    s.add_argument("p", type=parse_p, nargs="?", default=None,
+                   help="impact probability (exact, e.g. 0.01 or 1/100); omit for the jump only")
+    s.add_argument("--space", default="eq41",
+                   help="simple | eq41 | eq41-printed | excess<=m, optional ;distinct "
+                        "(default eq41)")
+    s.add_argument("--dps", type=int, default=30)
+    s.add_argument("--float", action="store_true", help="mpmath at --dps instead of exact")
+    s.add_argument("--classes", action="store_true", help="probability of each class")
+    s.add_argument("--json", action="store_true")
+    s.set_defaults(func=cmd_spaces)
+
+    c = sub.add_parser("convergence", help="E[X] and the jump p_c for excess<=m, m = 0..M, "
+                       "against eq. (41)")
+    c.add_argument("N", type=parse_int, nargs="?", default=100)
+    c.add_argument("--max-m", type=int, default=6)
+    c.add_argument("--p", action="append", default=None,
+                   help="p values (repeatable; default the paper's figure values)")
+    c.add_argument("--dps", type=int, default=20)
+    c.add_argument("--json", action="store_true")
+    c.set_defaults(func=cmd_convergence)
+
+
+def cmd_spaces(args: argparse.Namespace) -> int:
+    import mpmath
+
+    from symhx.spaces import class_probabilities, critical_point, distribution
+
+    cp = critical_point(args.N, space=args.space, dps=args.dps)
+    out: dict[str, Any] = {"N": args.N, "space": args.space, "critical": cp.as_dict()}
+    if args.p is not None:
+        p = args.p
+        with mpmath.workdps(args.dps + 10):
+            if args.float:
+                p = mpmath.mpf(args.p.numerator) / args.p.denominator
+            d = distribution(args.N, p, space=args.space, dps=args.dps)
+            out.update(p=args.p, mean=d.mean, variance=d.variance, modes=list(d.modes))
+            if args.classes:
+                out["classes"] = class_probabilities(args.N, p, space=args.space, dps=args.dps)
+    if args.json:
+        print(dump_json(out))
+        return 0
+    print(f"space {args.space}, N = {args.N}: mode jumps 1 -> {cp.k_after} at "
+          f"p_c = {mpstr(cp.p, args.dps)}")
+    if args.p is not None:
+        print(f"p = {args.p}: E[X] = {mpstr(out['mean'], args.dps)}, "
+              f"Var[X] = {mpstr(out['variance'], args.dps)}, modes {tuple(out['modes'])}")
+        for lab, v in out.get("classes", {}).items():
+            print(f"  P({lab}) = {mpstr(v, 12)}")
+    return 0
+
+
+def _convergence_rows(N: int, max_m: int, ps: list[str] | None, dps: int) -> list[dict]:
+    from symhx.spaces import DEFAULT_PS, convergence_study
+
+    rows = convergence_study(N, ms=range(0, max_m + 1), ps=ps or DEFAULT_PS, dps=dps)
+    return [r.as_dict() for r in rows]
+
+
+def cmd_convergence(args: argparse.Namespace) -> int:
+    rows = _convergence_rows(args.N, args.max_m, args.p, args.dps)
+    if args.json:
+        print(dump_json({"N": args.N, "rows": rows}))
+        return 0
+    ps = list(rows[0]["means"])
+    print(f"N = {args.N}: E[X] at p = {', '.join(ps)}")
+    print(f"{'space':>14s} {'p_c':>14s} {'k':>4s} " + " ".join(f"{p:>9s}" for p in ps))
+    for r in rows:
+        print(f"{r['space']:>14s} {mpstr(r['p_c'], 8):>14s} {r['k_after']:4d} "
+              + " ".join(f"{float(v):9.3f}" for v in r["means"].values()))
+    return 0
+
+
+def paper(out: Path, full: bool) -> list[str]:
+    """Figures 11-13 (data and plots), the boundary corrections and the convergence table."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from symhx.plots.higher_order import (
+        plot_class_decomposition,
+        plot_mean_vs_p_spaces,
+        plot_simple_vs_higher,
+    )
+    from symhx.spaces import boundary_table, class_decomposition, critical_point
+
+    t0 = time.perf_counter()
+    N = PAPER_N
+    for p in ("0.005", "0.01", "0.05"):
+        from fractions import Fraction
+
+        for space in ("eq41", "eq41-printed"):
+            cd = class_decomposition(N, float(Fraction(p)), space=space, dps=20)
+            with open(out / f"fig11_classes_{space}_p{p}.csv", "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(["k", *[cd.labels[s] for s in cd.shapes]])
+                for k in range(1, N + 1):
+                    w.writerow([k, *[jsonable(cd.joint[s][k - 1]) for s in cd.shapes]])
+        plot_class_decomposition(N, float(Fraction(p)), kmax=None if p == "0.05" else 40
+                                 ).savefig(out / f"fig11_p{p}.png", dpi=110, bbox_inches="tight")
+    for p in (0.015, 0.04):
+        plot_simple_vs_higher(N, p).savefig(out / f"fig12_p{p}.png", dpi=110,
+                                            bbox_inches="tight")
+    plot_mean_vs_p_spaces(N, spaces=("simple", "eq41", "eq41-printed", "excess<=6"),
+                          points=40 if full else 20).savefig(out / "fig13_theory.png", dpi=110,
+                                                             bbox_inches="tight")
+    plt.close("all")
+    (out / "section8_boundary.json").write_text(dump_json(
+        [{**r, "class": list(r["class"])} for r in boundary_table(N)]) + "\n")
+    lines = []
+    for n in (100, 101):
+        rows = _convergence_rows(n, 8 if full else 6, None, 20)
+        (out / f"convergence_N{n}.json").write_text(dump_json(rows) + "\n")
+        r0 = {r["space"]: r for r in rows}
+        lines.append(
+            f"N = {n}: p_c simple {mpstr(r0['excess<=0']['p_c'], 8)}, eq41 "
+            f"{mpstr(r0['eq41']['p_c'], 8)} (jump to {r0['eq41']['k_after']}), excess<=6 "
+            f"{mpstr(r0['excess<=6']['p_c'], 8)} (jump to {r0['excess<=6']['k_after']})")
+    cp = critical_point(10**6, space="eq41", dps=20)
+    lines.append(f"eq41, N = 10^6: p_c = {mpstr(cp.p, 15)}, jump 1 -> {cp.k_after}")
+    lines.append(f"section 8: {time.perf_counter() - t0:.1f} s")
+    return lines

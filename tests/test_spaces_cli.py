@@ -1,0 +1,17 @@
+"""CLI of the section-8 spaces."""
+
+from __future__ import annotations
+
+import json
+
+from symhx.cli import main
+
+
+def test_spaces_and_convergence_json(capsys):
+    assert main(["spaces", "20", "1/20", "--space", "excess<=2", "--classes", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["critical"]["k_before"] == 1 and len(out["classes"]) == 4
+    assert main(["convergence", "20", "--max-m", "1", "--p", "0.05", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["rows"]
+    assert [r["space"] for r in rows] == ["excess<=0", "excess<=1", "eq41", "eq41-printed"]
+    assert main(["spaces", "20", "--space", "bogus"]) == 2
