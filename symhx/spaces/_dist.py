@@ -277,10 +277,29 @@ class SpaceDistribution(Distribution):
         with mpmath.workdps(self.dps + self._guard):
             pm = mp_value(self.p, self.fr)
             pe = self._pe(pm)
-            for lo, hi in self._runs():
+            sp = self.sample_space
+            runs = self._runs()
+            # Q*(k) in fixed point: integers pe_int[e] ~ 2**P p**e / D. All terms are positive
+            # and Q*(k) >= 1 (U_0 = D), so the relative error is below (m+1) max(U) 2**-P;
+            # U_e(k) grows with k beyond max_parts, hence the max over small k and kmax.
+            kmax = max(hi for _, hi in runs)
+            small = range(1, min(kmax, sp.max_parts) + 1)
+            extra = max(u.bit_length() for k in (*small, kmax) for u in sp.U(k))
+            P = mpmath.mp.prec + extra + 20
+            pe_int = [int(mpmath.floor(x * mpmath.mpf(2) ** P)) for x in pe]
+            scale = mpmath.mpf(2) ** -P
+            distinct = sp.weighting == "distinct"
+            for lo, hi in runs:
                 t = N * pm if lo == 1 else mpmath.exp(self._log_phi_mp(lo, pm))
                 for k in range(lo, hi + 1):
-                    out[k] = t * self._q_mp(k, pe)
+                    U = sp.U(k)
+                    if distinct:
+                        q = pe_int[0] * sum(U)
+                    else:
+                        q = 0
+                        for a_, u in zip(pe_int, U, strict=True):
+                            q += a_ * u
+                    out[k] = t * q * scale
                     t = t * pm * ((N - k) * k) / (k + 1)
         return out
 
