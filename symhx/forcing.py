@@ -701,7 +701,9 @@ def _rs_float(scales: Sequence[float], x: float, kind: str) -> RayleighSumResult
         return RayleighSumResult(val, 4e-16 * abs(val), "closed form")
     lo = float(_conv_float(groups, xa, kind, 12)[0])
     hi = float(_conv_float(groups, xa, kind, 24)[0])
-    err = abs(hi - lo) + 4e-16 * abs(hi) * len(scales)
+    # quadrature (difference of two orders) + rounding: exp(-E) with E ~ |ln value| carries
+    # ~E * few eps from the roundings of its exponent
+    err = abs(hi - lo) + 4e-16 * abs(hi) * (len(scales) + 2 * abs(math.log(abs(hi) or 1e-300)))
     return RayleighSumResult(hi, err, f"nested Gauss-Legendre ({len(groups) - 1}-D)")
 
 
@@ -910,6 +912,12 @@ def _mp_d(d: Any, dps: int) -> mpmath.mpf:
 
 
 def _dispatch(sigma, sigma1, omega, Omega, d, dps, want: str) -> Any:
+    if _is_components(Omega) and len(Omega) == 1:  # one component given as a list
+        Omega = Omega[0]
+        if isinstance(sigma1, (list, tuple)):
+            if len(sigma1) != 1:
+                raise ValueError(f"sigma1: {len(sigma1)} values for 1 forcing component (Omega)")
+            sigma1 = sigma1[0]
     if _is_components(Omega):
         if dps is not None:
             dps = _check_dps(dps)
@@ -1160,10 +1168,9 @@ def _dp_float(sigma, sigma1, omega, Omega, d) -> Any:
 
 
 def _dp_mp(sigma, sigma1, omega, Omega, d, dps: int) -> mpmath.mpf:
-    with mpmath.workdps(dps + 12):
-        x, y = _mp_xy_forcing(sigma, sigma1, omega, Omega, d)
-        guard = _guard_digits(x, y)
-    with mpmath.workdps(dps + guard):
+    with mpmath.workprec(64):
+        e = _estimate(*_mp_xy_forcing(sigma, sigma1, omega, Omega, d))[0]
+    with mpmath.workdps(dps + _guard_digits(e) + 5):
         x, y = _mp_xy_forcing(sigma, sigma1, omega, Omega, d)
         s0 = _mp_arg("sigma", sigma)
         r = mpmath.sqrt(x + y)
@@ -1374,13 +1381,19 @@ def _inverse_mp(p: mpmath.mpf, kw: dict[str, Any], dps: int) -> mpmath.mpf:
             def f(ls: mpmath.mpf) -> mpmath.mpf:
                 return lt - log_no_impact_probability(mpmath.exp(ls), **kw, dps=work)
 
-        if s0 is None:  # far outside float64: bracket in mpmath
+        if s0 is None:  # far outside float64: bracket, then bisect in ln(sigma)
             lo = hi = mpmath.log(_mp_arg("d", kw["d"]))
             while f(lo) > 0:
-                lo -= 10
+                lo -= 4
             while f(hi) < 0:
-                hi += 10
-            x0 = mpmath.findroot(f, (lo, hi), solver="anderson")
+                hi += 4
+            for _ in range(60):
+                mid = (lo + hi) / 2
+                if f(mid) > 0:
+                    hi = mid
+                else:
+                    lo = mid
+            x0 = (lo + hi) / 2
         else:
             x0 = mpmath.log(s0)
         ls = mpmath.findroot(f, (x0, x0 + mpmath.mpf(10) ** -12), solver="secant",
