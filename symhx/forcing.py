@@ -111,11 +111,13 @@ def _float_arg(name: str, value: Any, *, positive: bool = True) -> np.ndarray:
         raise TypeError(f"{name} must be a real number or array of real numbers") from None
     bad = ~np.isfinite(arr)
     if bad.any():
-        raise ValueError(f"{name} must be finite, got {arr[bad].flat[0]!r}{_bad_index(arr, bad)}")
+        raise ValueError(f"{name} must be finite, got {float(arr[bad].flat[0])!r}"
+                         f"{_bad_index(arr, bad)}")
     if positive:
         bad = ~(arr > 0)
         if bad.any():
-            raise ValueError(f"{name} must be > 0, got {arr[bad].flat[0]!r}{_bad_index(arr, bad)}")
+            raise ValueError(f"{name} must be > 0, got {float(arr[bad].flat[0])!r}"
+                             f"{_bad_index(arr, bad)}")
     return arr
 
 
@@ -1320,7 +1322,8 @@ def sigma_for_impact_probability(
         pa = np.asarray(p, dtype=np.float64)
         bad = ~((pa > 0) & (pa < 1))
         if bad.any():
-            raise ValueError(f"p must be in (0, 1), got {pa[bad].flat[0]!r}{_bad_index(pa, bad)}")
+            raise ValueError(f"p must be in (0, 1), got {float(pa[bad].flat[0])!r}"
+                             f"{_bad_index(pa, bad)}")
         out = np.empty(pa.shape)
         for idx in np.ndindex(pa.shape):
             out[idx] = _inverse_float(float(pa[idx]), kw)
