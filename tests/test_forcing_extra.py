@@ -223,3 +223,22 @@ def test_property_p_and_q_complementary_and_accurate(sigma, ratio, omega, Omega,
     lp = F.log_impact_probability(sigma, **kw)
     ref = F.log_impact_probability(sigma, **kw, dps=25)
     assert abs(lp - ref) <= 1e-13 * max(1.0, abs(ref))
+
+
+# ----------------------------------------------------------------------------- CLI
+def test_cli_p_sigma(tmp_path, capsys):
+    from symhx.cli import main
+
+    assert main(["p-sigma", "0.12", "--dps", "40"]) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if ln.strip().startswith("p "))
+    with mpmath.workdps(50):
+        printed = mpmath.mpf(line.split("=")[1].strip())
+        assert rel(printed, F.impact_probability("0.12", dps=45)) < mpmath.mpf(10) ** -38
+    csvf = tmp_path / "grid.csv"
+    assert main(["p-sigma", "--grid", "0.01", "100", "7", "--csv", str(csvf)]) == 0
+    rows = csvf.read_text().splitlines()
+    assert rows[0].startswith("sigma,p,one_minus_p") and len(rows) == 8
+    assert main(["p-sigma", "-1"]) == 2
+    assert "sigma must be > 0" in capsys.readouterr().err
+    assert main(["p-sigma", "0.1", "--Omega", "1.0"]) == 2  # resonance
