@@ -444,7 +444,7 @@ def _single_mp(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> mpmath.mp
         if direct_q:
             q = 1 - _mp_p_from_xy(x, y)
             # a posteriori check of the digits lost; fall back to the adaptive loop if needed
-            if not (q > 0 and -mpmath.log10(q) <= guard - 4):
+            if not (q > 0 and -mpmath.mag(q) <= 3.3 * (guard - 4)):  # digits lost <= guard-4
                 q = _mp_q_from_xy(x, y)
         else:
             q = _mp_q_from_xy(x, y)
