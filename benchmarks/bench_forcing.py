@@ -35,7 +35,7 @@ def reference(sigmas):
 
 
 def max_rel(vals, refs):
-    with mpmath.workdps(80):
+    with mpmath.workdps(150):
         errs = [abs(mpmath.mpf(v) / r - 1) if v == v else mpmath.inf for v, r in
                 zip(vals, refs, strict=True)]
         return float(min(max(errs), 1e3))
