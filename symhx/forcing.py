@@ -290,9 +290,9 @@ def _pq_float(uv: _UV, want: str) -> np.ndarray:
         uv = _UV(*np.broadcast_arrays(*uv))
     with np.errstate(under="ignore", divide="ignore", invalid="ignore"):
         if want == "logp":
-            return -uv.e + np.log(_bracket_p(uv))
-        if want == "p":
-            return np.exp(-uv.e) * _bracket_p(uv)
+            return np.minimum(-uv.e + np.log(_bracket_p(uv)), 0.0)
+        if want == "p":  # p < 1 exactly; rounding can give 1 + ulp when p -> 1
+            return np.minimum(np.exp(-uv.e) * _bracket_p(uv), 1.0)
         flat = _UV(*(np.ravel(a) for a in uv))
         comp = np.minimum(flat.x, flat.y) < _Q_SWITCH
         out = np.empty(flat.u.shape)
