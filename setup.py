@@ -12,7 +12,7 @@ setup(
         Extension(
             "symhx.impact._fast",
             sources=["symhx/impact/_fast.c"],
-            extra_compile_args=["-O2", "-fno-fast-math"],
+            extra_compile_args=["-O2", "-fno-fast-math", "-ffp-contract=off"],  # = Python floats
             optional=True,
         )
     ]

@@ -22,6 +22,7 @@ typedef struct {
     unsigned char *stuck;
     double *nt;
     int *nk;
+    int *heap, *hpos;         /* binary min-heap of the sites by (nt, site) and their positions */
     int record;
     long long *counts;
     double *ev;
@@ -30,48 +31,100 @@ typedef struct {
     size_t nup, cap_up;
     long long nevents, max_events;
     double *g;
+    double *F2, *F3;          /* F_m^2, F_m^3 */
+    double *tc;               /* trig cache: 2 slots of [cos(F_m t)..., sin(F_m t)...] */
+    double tc_t[2], pin;      /* slot times; slot 0 holds the pinned (current event) time */
     int err;
     char errmsg[200];
 } Eng;
 
-static void derivs(const Eng *E, const double *g, double t, double *D, double *V, double *A,
+/* cos and sin of x: Cody-Waite reduction by pi/2 (three 33-bit parts, exact products for
+ * |x| < 2^19 pi/2) and the fdlibm minimax kernels on [-pi/4, pi/4] (error < 1 ulp, far inside the
+ * 64 eps rounding bounds of the search).  engine._cos_sin is the same sequence of IEEE operations
+ * in Python, so the float64 engines stay identical; larger |x| use libm in both. */
+static inline void cos_sin(double x, double *c, double *s) {
+    if (!(fabs(x) < 823549.6)) { *c = cos(x); *s = sin(x); return; }
+    double fn = floor(x * 6.36619772367581382433e-01 + 0.5);
+    double y = x - fn * 1.57079632673412561417e+00;
+    y = y - fn * 6.07710050630396597660e-11;
+    y = y - fn * 2.02226624871116645580e-21;
+    double z = y * y;
+    double sr = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
+        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z *
+        1.58969099521155010221e-10)));
+    double sv = y + z * y * (-1.66666666666666324348e-01 + z * sr);
+    double cr = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
+        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
+        2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+    double hz = 0.5 * z, w = 1.0 - hz;
+    double cv = w + (((1.0 - w) - hz) + z * cr);
+    switch (((long long)fn) & 3) {
+    case 0: *c = cv; *s = sv; break;
+    case 1: *c = -sv; *s = cv; break;
+    case 2: *c = -cv; *s = -sv; break;
+    default: *c = sv; *s = -cv; break;
+    }
+}
+
+/* cos(F_m t), sin(F_m t) for all m: the same libm values as a direct call, computed once per
+ * distinct t (the event time is pinned: the impact, the kicks and every re-search start there). */
+static const double *trig(Eng *E, double t) {
+    if (t == E->tc_t[0]) return E->tc;
+    int nf = E->nf;
+    if (t == E->tc_t[1]) return E->tc + 2 * nf;
+    int k = (t == E->pin) ? 0 : 1;
+    double *c = E->tc + 2 * k * nf;
+    for (int m = 0; m < nf; m++) {
+        cos_sin(E->F[m] * t, c + m, c + nf + m);
+    }
+    E->tc_t[k] = t;
+    return c;
+}
+
+static void derivs(Eng *E, const double *g, double t, double *D, double *V, double *A,
                    double *J) {
     double d = g[0], v = 0, a = 0, j = 0;
-    for (int m = 0; m < E->nf; m++) {
+    int nf = E->nf;
+    const double *cs = trig(E, t);
+    for (int m = 0; m < nf; m++) {
         double ca = g[1 + 2 * m], cb = g[2 + 2 * m];
         if (ca == 0.0 && cb == 0.0) continue;
-        double f = E->F[m], c = cos(f * t), s = sin(f * t);
+        double f = E->F[m], c = cs[m], s = cs[nf + m];
         double p = ca * c + cb * s, q = cb * c - ca * s;
         d += p;
         v += f * q;
-        a -= f * f * p;
-        j -= f * f * f * q;
+        a -= E->F2[m] * p;
+        j -= E->F3[m] * q;
     }
     *D = d; *V = v; *A = a; *J = j;
 }
 
-static void bounds(const Eng *E, const double *g, double *c0, double *S, double *M1, double *M2,
+static void bounds(Eng *E, const double *g, double *c0, double *S, double *M1, double *M2,
                    double *M3, double *M4) {
     double c00 = g[0], s = 0, m1 = 0, m2 = 0, m3 = 0, m4 = 0;
     for (int m = 0; m < E->nf; m++) {
         double f = E->F[m];
         if (f == 0.0) { c00 += g[1 + 2 * m]; continue; }
-        double c = hypot(g[1 + 2 * m], g[2 + 2 * m]);
+        double ga = g[1 + 2 * m], gb = g[2 + 2 * m], c = sqrt(ga * ga + gb * gb);
         s += c; m1 += c * f; m2 += c * f * f; m3 += c * f * f * f; m4 += c * f * f * f * f;
     }
     *c0 = c00; *S = s; *M1 = m1; *M2 = m2; *M3 = m3; *M4 = m4;
 }
 
-static double refine(const Eng *E, const double *g, double lo, double hi) {
-    double c0, S, M1, M2, M3, M4, D, V, A, J, x = lo;
-    bounds(E, g, &c0, &S, &M1, &M2, &M3, &M4);
+/* scaleD = |c0| + S, M1: the bounds of g (as computed by search) */
+static double refine(Eng *E, const double *g, double lo, double hi, double scaleD, double M1) {
+    double D, V, A, J, x = lo;
     for (int it = 0; it < 400; it++) {
         derivs(E, g, x, &D, &V, &A, &J);
-        if (fabs(D) <= TOLF * EPS * (fabs(c0) + S + M1 * fabs(x)) && V < 0) return x - D / V;
+        if (fabs(D) <= TOLF * EPS * (scaleD + M1 * fabs(x)) && V < 0) return x - D / V;
         if (D > 0) lo = x;
         else if (D < 0) hi = x;
         else return x;
-        double xn = V < 0 ? x - D / V : 0.5 * (lo + hi);
+        double xn;
+        if (V < 0) {   /* Halley, Newton if its denominator is not positive */
+            double den = 2 * V * V - D * A;
+            xn = den > 0 ? x - 2 * D * V / den : x - D / V;
+        } else xn = 0.5 * (lo + hi);
         if (!(lo < xn && xn < hi)) xn = 0.5 * (lo + hi);
         if (fabs(xn - x) <= 2 * EPS * fabs(xn) || hi - lo <= 4 * EPS * fabs(hi)) return xn;
         x = xn;
@@ -79,7 +132,8 @@ static double refine(const Eng *E, const double *g, double lo, double hi) {
     return x;
 }
 
-static int graze(const Eng *E, const double *g, double t, double t0, double tolD, double *te) {
+static int graze(Eng *E, const double *g, double t, double t0, double tolD, double scaleD,
+                 double M1, double *te) {
     double tg = t, D, V, A, J;
     for (int it = 0; it < 100; it++) {
         derivs(E, g, tg, &D, &V, &A, &J);
@@ -90,7 +144,7 @@ static int graze(const Eng *E, const double *g, double t, double t0, double tolD
     }
     if (tg < t0) tg = t;
     derivs(E, g, tg, &D, &V, &A, &J);
-    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg); return S_ROOT; }
+    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1); return S_ROOT; }
     *te = tg;
     return S_GRAZE;
 }
@@ -108,7 +162,7 @@ static int search(Eng *E, const double *g, double t0, double thi, int is_gap, in
     double t = t0;
     int first = 1;
     for (long it = 0; it < MAXIT; it++) {
-        if (t >= thi) { *te = thi; return S_CONT; }
+        if (t >= thi) { *te = t; return S_CONT; }   /* certified up to t >= thi: resume there */
         derivs(E, g, t, &D, &V, &A, &J);
         double at = fabs(t);
         double tolD = TOLF * EPS * (scale0 + M1 * at), tolV = TOLF * EPS * (M1 + M2 * at);
@@ -142,12 +196,15 @@ static int search(Eng *E, const double *g, double t0, double thi, int is_gap, in
                 *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
             }
             if (A < -tolA && V <= tolV) { *te = t; return S_NOW; }
-            return graze(E, g, t, t0, tolD, te);
+            return graze(E, g, t, t0, tolD, scale0, M1, te);
         }
         double Dl = D - tolD;
         if (V < 0) {
             double Vm = -V - tolV, Dp = D + tolD;
-            if (Vm > 0 && 2 * M2 * Dp < Vm * Vm) { *te = refine(E, g, t, t + 2 * Dp / Vm); return S_ROOT; }
+            if (Vm > 0 && 2 * M2 * Dp < Vm * Vm) {
+                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1);
+                return S_ROOT;
+            }
         }
         double Vl = V - tolV;
         double h = (Vl + sqrt(Vl * Vl + 2 * M2 * Dl)) / M2;
@@ -224,7 +281,8 @@ static void set_motion(Eng *E, int lo, int hi, double t, double X, double Vel) {
         double fx, fv, A, J;
         derivs(E, c, t, &fx, &fv, &A, &J);
         double y = X - fx, yv = (Vel - fv) / E->om;
-        double cs = cos(E->om * t), sn = sin(E->om * t);
+        const double *tr = trig(E, t);   /* F[0] = omega */
+        double cs = tr[0], sn = tr[E->nf];
         c[1] = y * cs - yv * sn;
         c[2] = y * sn + yv * cs;
     }
@@ -236,7 +294,8 @@ static void set_motion(Eng *E, int lo, int hi, double t, double X, double Vel) {
 }
 
 static void kick(Eng *E, int lo, int hi, double t, double dv) {
-    double cs = cos(E->om * t), sn = sin(E->om * t);
+    const double *tr = trig(E, t);   /* F[0] = omega */
+    double cs = tr[0], sn = tr[E->nf];
     int a = lo > 1 ? lo : 1, b = hi < E->n ? hi : E->n;
     for (int j = a; j <= b; j++) {
         double *c = E->coef + (size_t)j * E->L;
@@ -278,6 +337,34 @@ static void gap_poly(const Eng *E, int i, double *out) {
     for (int q = 0; q < E->L; q++) out[q] = b[q] - a[q];
 }
 
+/* ------------------------------------------------------------------ event queue
+ * An indexed binary min-heap of the sites keyed by (next event time, site): the earliest event,
+ * exact ties to the smallest site (the order of the reference engine's linear scan).  Only the
+ * re-searched sites move in it: O(log n) per event instead of a scan of all n + 1 sites. */
+static inline int hless(const Eng *E, int a, int b) {
+    double ta = E->nt[a], tb = E->nt[b];
+    return ta < tb || (ta == tb && a < b);
+}
+
+static void hswap(Eng *E, int p, int q) {
+    int a = E->heap[p], b = E->heap[q];
+    E->heap[p] = b; E->heap[q] = a;
+    E->hpos[b] = p; E->hpos[a] = q;
+}
+
+static void hfix(Eng *E, int i) {
+    int p = E->hpos[i], size = E->n + 1;
+    while (p > 0 && hless(E, i, E->heap[(p - 1) / 2])) { hswap(E, p, (p - 1) / 2); p = (p - 1) / 2; }
+    for (;;) {
+        int l = 2 * p + 1, r = l + 1, m = p;
+        if (l < size && hless(E, E->heap[l], E->heap[m])) m = l;
+        if (r < size && hless(E, E->heap[r], E->heap[m])) m = r;
+        if (m == p) break;
+        hswap(E, p, m);
+        p = m;
+    }
+}
+
 static void schedule(Eng *E, int i, double t, int graze_restart, double *g) {
     double thi = t + E->chunk, te;
     if (thi > E->tend) thi = E->tend;
@@ -289,12 +376,13 @@ static void schedule(Eng *E, int i, double t, int graze_restart, double *g) {
         gap_poly(E, i, g);
         code = search(E, g, t, thi, 1, graze_restart, &te);
     }
-    if (code == S_CONT && thi >= E->tend) { te = INFINITY; code = S_NONE; }
+    if (code == S_CONT && te >= E->tend) { te = INFINITY; code = S_NONE; }
     E->nt[i] = te;
     E->nk[i] = code;
+    hfix(E, i);
 }
 
-static void pos_vel(const Eng *E, int j, double t, double *x, double *v) {
+static void pos_vel(Eng *E, int j, double t, double *x, double *v) {
     double A, J;
     derivs(E, E->coef + (size_t)j * E->L, t, x, v, &A, &J);
 }
@@ -351,14 +439,17 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi, double *g) {
 static void run(Eng *E) {
     int n = E->n;
     double *g = malloc(E->L * sizeof(double));
+    for (int i = 0; i <= n; i++) {
+        E->nt[i] = -INFINITY;
+        E->heap[i] = i;
+        E->hpos[i] = i;
+    }
     for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, g);
     double last_t = NAN;
     long same = 0;
     while (!E->err) {
-        int i = 0;
-        double te = E->nt[0];
-        for (int k = 1; k <= n; k++)
-            if (E->nt[k] < te) { te = E->nt[k]; i = k; }
+        int i = E->heap[0];
+        double te = E->nt[i];
         if (!(te <= E->tend)) break;
         int code = E->nk[i];
         if (te == last_t) {
@@ -370,6 +461,7 @@ static void run(Eng *E) {
             }
         } else { same = 0; last_t = te; }
         double t = te;
+        E->pin = t;
         if (code == S_CONT) { schedule(E, i, t, 0, g); continue; }
         E->nevents++;
         if (E->max_events > 0 && E->nevents > E->max_events) {
@@ -432,8 +524,19 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
     E.stuck = calloc(n + 1, 1);
     E.nt = malloc((n + 1) * sizeof(double));
     E.nk = malloc((n + 1) * sizeof(int));
+    E.heap = malloc((n + 1) * sizeof(int));
+    E.hpos = malloc((n + 1) * sizeof(int));
     E.counts = calloc(n + 1, sizeof(long long));
     E.g = malloc(E.L * sizeof(double));
+    E.F2 = malloc(E.nf * sizeof(double));
+    E.F3 = malloc(E.nf * sizeof(double));
+    E.tc = malloc(4 * E.nf * sizeof(double));
+    E.tc_t[0] = E.tc_t[1] = NAN;
+    E.pin = 0.0;
+    for (int m = 0; m < E.nf; m++) {
+        E.F2[m] = E.F[m] * E.F[m];
+        E.F3[m] = E.F2[m] * E.F[m];
+    }
     memcpy(E.coef, bc.buf, sz); memcpy(E.forced, bf.buf, sz); memcpy(E.raw, br.buf, sz);
     Py_BEGIN_ALLOW_THREADS
     run(&E);
@@ -445,8 +548,8 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
                         (const char *)E.up, (Py_ssize_t)(E.nup * (2 + E.L) * sizeof(double)),
                         E.nevents);
 done:
-    free(E.coef); free(E.forced); free(E.raw); free(E.stuck); free(E.nt); free(E.nk);
-    free(E.counts); free(E.g); free(E.ev); free(E.up);
+    free(E.coef); free(E.forced); free(E.raw); free(E.stuck); free(E.nt); free(E.nk); free(E.heap); free(E.hpos);
+    free(E.counts); free(E.g); free(E.F2); free(E.F3); free(E.tc); free(E.ev); free(E.up);
     PyBuffer_Release(&bF); PyBuffer_Release(&bc); PyBuffer_Release(&bf); PyBuffer_Release(&br);
     return res;
 }

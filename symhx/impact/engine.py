@@ -66,6 +66,39 @@ _TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
 _MAXIT = 1_000_000
 
 
+def _cos_sin(x: float) -> tuple[float, float]:
+    """``(cos x, sin x)`` in float64, error below one ulp: Cody-Waite reduction by pi/2 (three
+    33-bit parts: exact products for ``|x| < 2**19 pi/2``) and the fdlibm minimax kernels on
+    ``[-pi/4, pi/4]``.  The C engine (``_fast.c``) runs the same IEEE operations in the same order,
+    so both float64 engines see identical values; larger ``|x|`` use libm in both.
+    """
+    if not abs(x) < 823549.6:
+        return math.cos(x), math.sin(x)
+    fn = float(math.floor(x * 6.36619772367581382433e-01 + 0.5))
+    y = x - fn * 1.57079632673412561417e+00
+    y = y - fn * 6.07710050630396597660e-11
+    y = y - fn * 2.02226624871116645580e-21
+    z = y * y
+    sr = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
+        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z
+                                          * 1.58969099521155010221e-10)))
+    sv = y + z * y * (-1.66666666666666324348e-01 + z * sr)
+    cr = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
+        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
+            2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))))
+    hz = 0.5 * z
+    w = 1.0 - hz
+    cv = w + (((1.0 - w) - hz) + z * cr)
+    q = int(fn) & 3
+    if q == 0:
+        return cv, sv
+    if q == 1:
+        return -sv, cv
+    if q == 2:
+        return -cv, -sv
+    return sv, -cv
+
+
 class _FloatCtx:
     is_mp = False
     eps = 2.0**-52
@@ -79,9 +112,7 @@ class _FloatCtx:
     sin = staticmethod(math.sin)
     sqrt = staticmethod(math.sqrt)
 
-    @staticmethod
-    def cos_sin(x: float) -> tuple[float, float]:
-        return math.cos(x), math.sin(x)
+    cos_sin = staticmethod(_cos_sin)
 
 
 class _MPCtx:
@@ -146,7 +177,10 @@ class _Engine:
             self.coef[j] = c
         self.stuck = [False] * (n + 1)
         self.v_stick = num(v_stick)
-        self.chunk = num(chunk) if chunk is not None else 2 * num(math.pi) / self.om
+        # search horizon per (re)search: a gap is mostly re-searched (a neighbour's impact) about
+        # every 1/omega to 3/omega at sigma = 0.3, so certifying further ahead is mostly wasted
+        # (benchmarks/bench_impact.py: 2/omega is ~1.7x faster than 2 pi/omega)
+        self.chunk = num(chunk) if chunk is not None else 2 / self.om
         # records
         self.ev_t: list[Any] = []
         self.ev_site: list[int] = []
@@ -200,7 +234,8 @@ class _Engine:
         """First event of ``g`` in ``[t0, t_hi]`` (see the module docstring).
 
         Returns ``(t, code)`` with code ``_NONE`` (never closes: ``t`` is inf), ``_CONT`` (no root
-        before ``t_hi``), ``_ROOT``, ``_GRAZE`` or ``_NOW`` (at contact and approaching at ``t0``).
+        before ``t``, the first certified point ``>= t_hi``), ``_ROOT``, ``_GRAZE`` or ``_NOW`` (at
+        contact and approaching at ``t0``).
         """
         ctx = self.ctx
         eps = ctx.eps
@@ -213,8 +248,8 @@ class _Engine:
         t = t0
         first = True
         for _ in range(_MAXIT):
-            if t >= t_hi:
-                return t_hi, _CONT
+            if t >= t_hi:   # certified up to t (>= t_hi): resume there, nothing is redone
+                return t, _CONT
             D, V, A, J = self.derivs(g, t)
             at = abs(t)
             tolD = _TOL * eps * (scale0 + M1 * at)
@@ -300,14 +335,15 @@ class _Engine:
     def refine(self, g: list[Any], lo: Any, hi: Any) -> Any:
         """Root of ``g`` in ``[lo, hi]`` where ``g(lo) > 0 > g(hi)`` and ``g`` is monotone.
 
-        Safeguarded Newton; stops when ``|g|`` is within its rounding bound or the step is below
-        the resolution of ``t`` (the last Newton step is then below the rounding of the root).
+        Safeguarded Halley (``g''`` comes free with ``g, g'``: cubic convergence, about one
+        evaluation fewer than Newton); stops when ``|g|`` is within its rounding bound (then a
+        last Newton step) or the step is below the resolution of ``t``.
         """
         eps = self.ctx.eps
         c0, S, M1, _, _, _ = self.bounds(g)
         x = lo
         for _ in range(400):
-            D, V, _, _ = self.derivs(g, x)
+            D, V, A, _ = self.derivs(g, x)
             if abs(D) <= _TOL * eps * (abs(c0) + S + M1 * abs(x)) and V < 0:
                 return x - D / V
             if D > 0:
@@ -316,7 +352,11 @@ class _Engine:
                 hi = x
             else:
                 return x
-            xn = x - D / V if V < 0 else (lo + hi) / 2
+            if V < 0:
+                den = 2 * V * V - D * A
+                xn = x - 2 * D * V / den if den > 0 else x - D / V
+            else:
+                xn = (lo + hi) / 2
             if not lo < xn < hi:
                 xn = (lo + hi) / 2
             if abs(xn - x) <= 2 * eps * abs(xn) or hi - lo <= 4 * eps * abs(hi):
@@ -422,7 +462,7 @@ class _Engine:
                                        graze_restart=graze_restart)
             else:
                 te, code = self.search(self.gap_poly(i), t, t_hi, graze_restart=graze_restart)
-            if code == _CONT and t_hi >= t_end:
+            if code == _CONT and te >= t_end:
                 te, code = ctx.inf, _NONE
             nt[i] = te
             nk[i] = code

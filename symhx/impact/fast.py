@@ -41,10 +41,58 @@ def _arrays(row: PipeRow, v_stick: float) -> tuple[_Engine, bytes, bytes, bytes,
     return eng, F, coef, forced, raw
 
 
+def _arrays_np(row: PipeRow) -> tuple[float, bytes, bytes, bytes, bytes]:
+    """``_arrays`` without building the Python engine: numpy, the same IEEE operations in the same
+    order as ``_Engine.__init__`` (so bit-identical arrays), ~20x faster.
+
+    >>> row = PipeRow.random(6, 0.1, seed=3, Omega=(0.37, 2.1), d=1.7)
+    >>> eng, *arrays = _arrays(row, 1e-6)
+    >>> chunk, *arrays_np = _arrays_np(row)
+    >>> arrays_np == arrays and chunk == eng.chunk
+    True
+    """
+    n, K = row.n, len(row.Omega)
+    om = float(row.omega)
+    d = float(row.d)
+    F = np.array([om] + [float(w) for w in row.Omega])
+    L = 3 + 2 * K
+    om2 = om * om
+    forced = np.zeros((n + 2, L))
+    raw = np.zeros((n + 2, L))
+    coef = np.zeros((n + 2, L))
+    fx = np.zeros(n)
+    fv = np.zeros(n)
+    for m in range(K):
+        a = np.asarray(row.alpha[:, m], dtype=np.float64)
+        b = np.asarray(row.beta[:, m], dtype=np.float64)
+        den = om2 - F[m + 1] ** 2
+        fa = a / den
+        fb = b / den
+        forced[1:n + 1, 3 + 2 * m] = fa
+        forced[1:n + 1, 4 + 2 * m] = fb
+        raw[1:n + 1, 3 + 2 * m] = a
+        raw[1:n + 1, 4 + 2 * m] = b
+        fx = fa if m == 0 else fx + fa
+        fv = fb * F[m + 1] if m == 0 else fv + fb * F[m + 1]
+    jd = np.arange(1, n + 1, dtype=np.float64) * d
+    coef[1:n + 1] = forced[1:n + 1]
+    coef[1:n + 1, 0] = jd
+    coef[1:n + 1, 1] = np.asarray(row.x0, dtype=np.float64) - jd - fx
+    coef[1:n + 1, 2] = (np.asarray(row.v0, dtype=np.float64) - fv) / om
+    coef[n + 1, 0] = (n + 1) * d
+    chunk = 2 / om   # as _Engine
+    return chunk, F.tobytes(), coef.tobytes(), forced.tobytes(), raw.tobytes()
+
+
 def _call(row: PipeRow, t_end: float, t_from: float, v_stick: float, record: bool,
           max_events: int | None) -> tuple[Any, ...]:
     if _fast is None:
         raise RuntimeError("the C extension symhx.impact._fast is not built")
+    if not record:   # counting only: no Python engine needed
+        chunk, F, coef, forced, raw = _arrays_np(row)
+        return None, _fast.run(row.n, float(row.omega), float(row.d), float(row.restitution),
+                               float(v_stick), chunk, float(t_end), float(t_from), False,
+                               int(max_events or 0), F, coef, forced, raw)
     eng, F, coef, forced, raw = _arrays(row, v_stick)
     return eng, _fast.run(row.n, float(row.omega), float(row.d), float(row.restitution),
                           float(v_stick), float(eng.chunk), float(t_end), float(t_from),
