@@ -235,6 +235,20 @@ def run_chromium(chromium: str, page: Path, workdir: Path) -> tuple[str, list[st
     return proc.stdout, page_requests(netlog), proc.stderr[-2000:]
 
 
+PLOT_CALL = re.compile(r"^(?!\s*(from|import)\b).*\bplot_\w+\(", re.M)
+CODE_CELL = re.compile(r"```\{code-cell\}[^\n]*\n(.*?)```", re.S)
+
+
+def expected_plot_cells(page: Path, root: Path) -> int:
+    """Code cells of the page's MyST source that call a ``plot_*`` function (each must render
+    an image; a backend switched to Agg would lose them silently)."""
+    source = root.parent.parent / page.relative_to(root).with_suffix(".md")
+    if not source.is_file():
+        return 0
+    cells = CODE_CELL.findall(source.read_text(encoding="utf-8", errors="replace"))
+    return sum(1 for cell in cells if PLOT_CALL.search(cell))
+
+
 def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list[str]]
                ) -> tuple[list[str], dict]:
     rel = page.relative_to(root).as_posix()
@@ -283,6 +297,13 @@ def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list
             problems.append(f"{rel}: <img src={src!r}> does not resolve to a file of the build")
         elif target.stat().st_size == 0 or not _is_image(target):
             problems.append(f"{rel}: <img src={src!r}> is empty or not an image")
+
+    # -- every code cell that draws with symhx.plots produced at least one image
+    expected = expected_plot_cells(page, root)
+    real_images = [s for s in dom.images if not s.startswith("data:")]
+    if len(real_images) < expected:
+        problems.append(f"{rel}: {expected} code cells call a plot_* function but only "
+                        f"{len(real_images)} images were rendered (figures lost?)")
 
     # -- math typeset
     if source.math_elements:

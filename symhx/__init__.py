@@ -55,6 +55,39 @@ _EXPORTS: dict[str, str] = {
     "CriticalPoint": "critical",
     "mode_path": "critical",
     "ModePath": "critical",
+    # asymptotics (mpmath only; the sympy derivations live in symhx.symbolic)
+    "asymptotic_critical_point": "asymptotics",
+    "AsymptoticCriticalPoint": "asymptotics",
+    "pd_series": "asymptotics",
+    "error_table": "asymptotics",
+    # forcing (eqs. 22-27)
+    "impact_probability": "forcing",
+    "no_impact_probability": "forcing",
+    "log_impact_probability": "forcing",
+    "log_no_impact_probability": "forcing",
+    "naive_impact_probability": "forcing",
+    "dp_dsigma": "forcing",
+    "sigma_for_impact_probability": "forcing",
+    "rayleigh_scales": "forcing",
+    "rayleigh_sum_probability": "forcing",
+    "RayleighSumResult": "forcing",
+    "theory_curve": "forcing",
+    "TheoryCurve": "forcing",
+    # impact simulation (eqs. 17-21)
+    "PipeRow": "impact",
+    "simulate": "impact",
+    "ensemble": "impact",
+    "EnsembleResult": "impact",
+    "History": "impact",
+    "free_flight_closure_fraction": "impact",
+    # higher-order sample spaces (section 8)
+    "class_count": "spaces",
+    "class_decomposition": "spaces",
+    "class_probabilities": "spaces",
+    "convergence_study": "spaces",
+    "pattern_count_symbolic": "spaces",
+    "parse_space": "spaces",
+    "eq41_terms": "spaces",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -1,7 +1,8 @@
 """The ``symhx`` command line.
 
-Sub-commands live in :mod:`symhx.commands`: every module there defines ``register(subparsers)``
-and, optionally, ``paper(out, args, report)`` which contributes its part of ``symhx paper`` (the
+Sub-commands live in :mod:`symhx.commands`: every module there defines
+``register(subparsers)`` and, optionally, ``paper(out: Path, full: bool) -> list[str]``, which
+contributes its part of ``symhx paper`` (the
 main job: recompute the paper's numbers and figures into a folder). Modules run in the order of
 their ``ORDER`` attribute.
 """

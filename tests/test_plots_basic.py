@@ -110,3 +110,14 @@ def test_circuit_fractions_drop_underflow():
     fig = plots.plot_circuit_counts(200)
     xs, ys = fig.axes[0].lines[0].get_data()
     assert (ys > 0).all() and len(xs) == int((fracs > 0).sum())
+
+
+def test_plot_modules_do_not_choose_a_backend():
+    # a library module calling matplotlib.use() would switch a notebook kernel away from the
+    # inline backend and silently drop every figure of the book
+    from pathlib import Path
+
+    import symhx.plots
+
+    for src in Path(symhx.plots.__file__).parent.glob("*.py"):
+        assert "matplotlib.use(" not in src.read_text(), src.name
