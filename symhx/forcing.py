@@ -169,39 +169,66 @@ def _delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
 _PHI1_C = [(-1.0) ** n / math.factorial(n + 1) for n in range(1, 20)]
 _PSI1_C = [(-1.0) ** n / (math.factorial(n) * (2 * n + 1)) for n in range(1, 21)]
 
+#: truncation error allowed in the series: that of the full 19/20 terms at z = 1 (the worst
+#: case of the full series, ~1e-19 relative to the O(1) values), so shorter sums for smaller z
+#: are exactly as accurate
+_SERIES_TOL = 1.0 / math.factorial(21)
 
-def _horner(z: np.ndarray, coeffs: list[float]) -> np.ndarray:
-    """``sum_k coeffs[k] z**k`` by in-place Horner (alternating terms, |z| < 1)."""
-    acc = np.full_like(z, coeffs[-1])
-    for c in coeffs[-2::-1]:
+
+def _series_zmax(coeffs: list[float]) -> list[float]:
+    """``zmax[k]``: below it the first ``k`` terms are within ``_SERIES_TOL`` (k >= 1)."""
+    out = [0.0]
+    for k in range(1, len(coeffs)):
+        out.append((_SERIES_TOL / abs(coeffs[k])) ** (1.0 / k))  # first omitted term c_k z^k
+    out.append(math.inf)
+    return out
+
+
+_PHI1_ZMAX = _series_zmax(_PHI1_C)
+_PSI1_ZMAX = _series_zmax(_PSI1_C)
+# rows x, y (phi~, padded with a leading zero coefficient to 20 terms) and u^2, v^2 (psi~)
+_SERIES_COLS = [np.array([[c1], [c1], [c2], [c2]])
+                for c1, c2 in zip([*_PHI1_C, 0.0], _PSI1_C, strict=True)]
+
+#: float64 work is done in chunks of this many values, so that the ~50 temporaries stay in cache
+_CHUNK = 8192
+
+
+def _n_terms(zmax: float, table: list[float]) -> int:
+    k = 1
+    while zmax > table[k]:
+        k += 1
+    return k
+
+
+def _series_rows(z: np.ndarray) -> np.ndarray:
+    """Rows ``phi~(x), phi~(y), psi~(u^2), psi~(v^2)`` for ``z`` = those 4 rows (shape (4, m)).
+
+    ``phi~(z) = ((1 - exp(-z))/z - 1)/z`` (-> -1/2) and ``psi~(z) = (sqrt(pi) erf(sqrt z)/
+    (2 sqrt z) - 1)/z`` (-> -1/3): Taylor series (Horner on all four rows at once, as many terms
+    as the largest ``z < 1`` of the rows needs) below 1, closed forms (no cancellation) above.
+    """
+    small = z < 1.0
+    zs = np.max(z, axis=1, where=small, initial=0.0)
+    k = max(2, _n_terms(max(zs[0], zs[1]), _PHI1_ZMAX), _n_terms(max(zs[2], zs[3]), _PSI1_ZMAX))
+    cols = _SERIES_COLS
+    acc = np.empty_like(z)
+    acc[...] = cols[k - 1]
+    for c in reversed(cols[: k - 1]):
         acc *= z
         acc += c
+    if not small.all():
+        big = ~small
+        b = big[:2]
+        if b.any():
+            zl = z[:2][b]
+            acc[:2][b] = -(np.expm1(-zl) + zl) / (zl * zl)
+        b = big[2:]
+        if b.any():
+            zl = z[2:][b]
+            sz = np.sqrt(zl)
+            acc[2:][b] = ((0.5 * _SQRT_PI) * sc.erf(sz) / sz - 1.0) / zl
     return acc
-
-
-def _phi1t_float(z: np.ndarray) -> np.ndarray:
-    """``((1 - exp(-z))/z - 1)/z`` for ``z > 0`` (Taylor series below 1; -> -1/2 at 0)."""
-    small = z < 1.0
-    if small.all():
-        return _horner(z, _PHI1_C)
-    out = np.empty_like(z)
-    out[small] = _horner(z[small], _PHI1_C)
-    zl = z[~small]
-    out[~small] = -(sc.expm1(-zl) + zl) / (zl * zl)
-    return out
-
-
-def _psi1t_float(z: np.ndarray) -> np.ndarray:
-    """``(sqrt(pi) erf(sqrt z)/(2 sqrt z) - 1)/z`` for ``z > 0`` (series below 1; -> -1/3)."""
-    small = z < 1.0
-    if small.all():
-        return _horner(z, _PSI1_C)
-    out = np.empty_like(z)
-    out[small] = _horner(z[small], _PSI1_C)
-    zl = z[~small]
-    sz = np.sqrt(zl)
-    out[~small] = ((0.5 * _SQRT_PI) * sc.erf(sz) / sz - 1.0) / zl
-    return out
 
 
 class _UV(NamedTuple):
@@ -244,17 +271,56 @@ def _uv_forcing(sig0, sig1, omega, Omega, d) -> _UV:
     return _UV(x, y, r, u, v, e)
 
 
+def _uv_chunk(sig0, sig1, delta, d, m: int) -> _UV:
+    """:func:`_uv_forcing` on a chunk of ``m`` values from ``|Delta|`` (the same roundings);
+    arguments are 1-D arrays of length ``m`` or scalars; the error state is the caller's."""
+    hx = d / (2.0 * sig0)
+    hy = (d * delta) / (2.0 * sig1)
+    if np.ndim(hx) == 0:
+        hx = np.full(m, hx)
+    if np.ndim(hy) == 0:
+        hy = np.full(m, hy)
+    x = hx * hx
+    y = hy * hy
+    # e = uv = d**2 / (4 (sigma0**2 + (sigma1/Delta)**2)): few roundings (~2 eps)
+    t = sig1 / delta
+    t *= t
+    t += sig0 * sig0
+    t *= 4.0
+    e = (d * d) / t
+    if np.ndim(e) == 0:
+        e = np.full(m, e)
+    r = x + y
+    np.sqrt(r, out=r)
+    u = x / r
+    v = y / r
+    return _UV(x, y, r, u, v, e)
+
+
 def _bracket_p(uv: _UV) -> np.ndarray:
-    """``B/r`` with ``p = exp(-uv) B/r`` (all terms positive)."""
+    """``B/r`` with ``p = exp(-uv) B/r`` (all terms positive); shared pieces once if u == v."""
     u, v = uv.u, uv.v
-    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
-        b = v * np.exp(-u * u) + u * np.exp(-v * v) + _SQRT_PI * (u * v) * (sc.erf(u) + sc.erf(v))
-        return b / uv.r
-
-
-def _p_float(uv: _UV) -> np.ndarray:
-    with np.errstate(under="ignore"):
-        return np.exp(-uv.e) * _bracket_p(uv)
+    eu = u * u
+    np.negative(eu, out=eu)
+    np.exp(eu, out=eu)
+    fu = sc.erf(u)
+    if np.array_equal(u, v):  # e.g. sigma1 = sigma and |omega**2 - Omega**2| = 1 (the paper)
+        ev, fv = eu, fu
+    else:
+        ev = v * v
+        np.negative(ev, out=ev)
+        np.exp(ev, out=ev)
+        fv = sc.erf(v)
+    b = v * eu
+    ev = u * ev
+    b += ev
+    fu = fu + fv
+    w = u * v
+    w *= _SQRT_PI
+    w *= fu
+    b += w
+    b /= uv.r
+    return b
 
 
 def _q_small_float(uv: _UV) -> np.ndarray:
@@ -266,16 +332,36 @@ def _q_small_float(uv: _UV) -> np.ndarray:
     for huge ``sigma``.
     """
     x, y, r, u, v, e = uv
-    a = u / r
-    b = v / r
-    with np.errstate(invalid="ignore", divide="ignore"):
-        emt = np.where(e > 1e-300, sc.expm1(-e) / e, -1.0)
-    t_u = _psi1t_float(u * u)
-    t_v = _psi1t_float(v * v)
-    ab = a * b
-    chi_u = emt * ab * (1.0 + (u * u) * t_u) + (a * a) * t_u
-    chi_v = emt * ab * (1.0 + (v * v) * t_v) + (b * b) * t_v
-    return a * _phi1t_float(x) + b * _phi1t_float(y) - 2.0 * (a * chi_u + b * chi_v)
+    m = u.shape[0]
+    ab2 = np.empty((2, m))  # rows a, b
+    np.divide(u, r, out=ab2[0])
+    np.divide(v, r, out=ab2[1])
+    emt = np.negative(e)
+    np.expm1(emt, out=emt)
+    emt /= e
+    if not e.min() > 1e-300:
+        emt[~(e > 1e-300)] = -1.0
+    z = np.empty((4, m))
+    z[0] = x
+    z[1] = y
+    np.multiply(u, u, out=z[2])
+    np.multiply(v, v, out=z[3])
+    t = _series_rows(z)
+    emt *= ab2[0]
+    emt *= ab2[1]  # em~ a b
+    chi = z[2:] * t[2:]
+    chi += 1.0
+    chi *= emt
+    sq = ab2 * ab2
+    sq *= t[2:]
+    chi += sq  # rows chi~_u, chi~_v
+    chi *= ab2
+    ph = ab2 * t[:2]
+    res = ph[0] + ph[1]
+    s = chi[0] + chi[1]
+    s *= 2.0
+    res -= s
+    return res
 
 
 #: below this min(x, y) the complement 1 - p uses its own form; above, p < 0.69 and 1 - p
@@ -283,48 +369,90 @@ def _q_small_float(uv: _UV) -> np.ndarray:
 _Q_SWITCH = 2.0
 
 
+def _pq_kernel(uv: _UV, want: str) -> np.ndarray:
+    """p, q=1-p, log p or log q (``want`` in {'p','q','logp','logq'}) on 1-D arrays of one
+    length (a chunk; error state handled by the caller)."""
+    if want == "logp":
+        b = _bracket_p(uv)
+        np.log(b, out=b)
+        b -= uv.e
+        return np.minimum(b, 0.0, out=b)
+    if want == "p":  # p < 1 exactly; rounding can give 1 + ulp when p -> 1
+        b = _bracket_p(uv)
+        b *= np.exp(-uv.e)
+        return np.minimum(b, 1.0, out=b)
+    x, y = uv.x, uv.y
+    comp = np.minimum(x, y) < _Q_SWITCH
+    ncomp = int(np.count_nonzero(comp))
+    if ncomp == comp.shape[0]:
+        return _q_comp(uv, want)
+    if ncomp == 0:
+        return _q_direct(uv, want)
+    out = np.empty(comp.shape[0])
+    rest = ~comp
+    out[comp] = _q_comp(_UV(*(a[comp] for a in uv)), want)
+    out[rest] = _q_direct(_UV(*(a[rest] for a in uv)), want)
+    return out
+
+
+def _q_comp(uv: _UV, want: str) -> np.ndarray:
+    qs = _q_small_float(uv)
+    if want == "q":
+        xy = uv.x * uv.y
+        qs *= xy
+        return qs
+    lq = np.log(uv.x)
+    lq += np.log(uv.y)
+    lq += np.log(qs, out=qs)
+    return lq
+
+
+def _q_direct(uv: _UV, want: str) -> np.ndarray:
+    p = _bracket_p(uv)
+    p *= np.exp(-uv.e)
+    if want == "q":
+        np.subtract(1.0, p, out=p)
+        return p
+    np.negative(p, out=p)
+    return np.log1p(p, out=p)
+
+
 def _pq_float(uv: _UV, want: str) -> np.ndarray:
     """Return p, q=1-p, log p or log q (``want`` in {'p','q','logp','logq'})."""
     shape = uv.u.shape
-    if uv.x.shape != shape or uv.y.shape != shape:
+    if any(a.shape != shape for a in uv):
         uv = _UV(*np.broadcast_arrays(*uv))
-    with np.errstate(under="ignore", divide="ignore", invalid="ignore"):
-        if want == "logp":
-            return np.minimum(-uv.e + np.log(_bracket_p(uv)), 0.0)
-        if want == "p":  # p < 1 exactly; rounding can give 1 + ulp when p -> 1
-            return np.minimum(np.exp(-uv.e) * _bracket_p(uv), 1.0)
-        flat = _UV(*(np.ravel(a) for a in uv))
-        comp = np.minimum(flat.x, flat.y) < _Q_SWITCH
-        out = np.empty(flat.u.shape)
-        if comp.all():
-            parts = [(slice(None), flat, None)]
-        else:
-            rest = ~comp
-            parts = [(comp, _UV(*(a[comp] for a in flat)), None),
-                     (rest, _UV(*(a[rest] for a in flat)), 1)]
-        for idx, sub, direct in parts:
-            if direct:
-                p = np.exp(-sub.e) * _bracket_p(sub)
-                out[idx] = 1.0 - p if want == "q" else np.log1p(-p)
-            elif want == "q":
-                out[idx] = (sub.x * sub.y) * _q_small_float(sub)
-            else:
-                out[idx] = np.log(sub.x) + np.log(sub.y) + np.log(_q_small_float(sub))
+    flat = _UV(*(np.ravel(a) for a in uv))
+    n = flat.u.shape[0]
+    out = np.empty(n)
+    with np.errstate(all="ignore"):
+        for i in range(0, n, _CHUNK):
+            j = min(i + _CHUNK, n)
+            out[i:j] = _pq_kernel(_UV(*(a[i:j] for a in flat)), want)
     return out.reshape(shape)
 
 
 def _single_float(sigma, sigma1, omega, Omega, d, want: str) -> Any:
     sig0 = _float_arg("sigma", sigma)
-    sig1 = sig0 if sigma1 is None else _float_arg("sigma1", sigma1)
+    sig1 = None if sigma1 is None else _float_arg("sigma1", sigma1)
     om = _float_arg("omega", omega)
     Om = None if Omega is None else _float_arg("Omega", Omega)
     dd = _float_arg("d", d)
-    uv = _uv_forcing(sig0, sig1, om, Om, dd)
-    shape = uv.r.shape
-    if any(a.shape != shape for a in uv):
-        uv = _UV(*np.broadcast_arrays(*uv))
-    out = _pq_float(uv, want)
-    return float(out) if out.ndim == 0 else out
+    delta = np.abs(_delta_float(om, Om))
+    arrs = [sig0, delta, dd] + ([] if sig1 is None else [sig1])
+    shape = np.broadcast_shapes(*(a.shape for a in arrs))
+    n = math.prod(shape)
+    # scalars stay scalars (np.float64: same IEEE semantics as the arrays), the rest is flat
+    flat = [a.reshape(-1)[0] if a.size == 1 and n > 1 else np.ravel(np.broadcast_to(a, shape))
+            for a in arrs]
+    out = np.empty(n)
+    with np.errstate(all="ignore"):
+        for i in range(0, n, _CHUNK):
+            j = min(i + _CHUNK, n)
+            s0, de, d_, *s1 = (a if a.ndim == 0 else a[i:j] for a in flat)
+            uv = _uv_chunk(s0, s1[0] if s1 else s0, de, d_, j - i)
+            out[i:j] = _pq_kernel(uv, want)
+    return float(out[0]) if not shape else out.reshape(shape)
 
 
 # =========================================================================== mpmath core
