@@ -193,6 +193,7 @@ class SimpleDistribution(Distribution):
             below = (self.dps + self._guard) * ln10 + 2 * mpmath.log(self.N) + 5
             lmax, runs = self._compute_runs(below)
             s0 = mpmath.fsum(w for _, ws in runs for w in ws)
+            self._pmf_runs = [(k0, [w / s0 for w in ws]) for k0, ws in runs]
             s1 = mpmath.fsum(w * (k0 + i) for k0, ws in runs for i, w in enumerate(ws))
             mu = s1 / s0
 
@@ -243,7 +244,12 @@ class SimpleDistribution(Distribution):
             return Fraction(0) if self.exact else mpmath.mpf(0)
         if self.exact:
             return self._phi_exact(k) / self._exact_moments[0]
-        return self._round(mpmath.exp(self.logpmf(k)))
+        self._mp_moments  # noqa: B018 - fills the cached, normalised significant terms
+        for k0, ws in self._pmf_runs:
+            if k0 <= k < k0 + len(ws):
+                return self._round(ws[k - k0])
+        with mpmath.workdps(self.dps + self._guard):
+            return self._round(mpmath.exp(self._logpmf_raw(k)))
 
     def logpmf(self, k: int) -> mpmath.mpf:
         """``log P(X = k)`` as an mpf (``-inf`` outside ``1..N``), never underflows."""
@@ -252,11 +258,16 @@ class SimpleDistribution(Distribution):
             return mpmath.ninf
         if self.exact:
             with mpmath.workdps(self.dps + 5):
-                return self._round(mpmath.log(mpmath.mpf(self.pmf(k).numerator))
-                                   - mpmath.log(self.pmf(k).denominator))
+                pk = self.pmf(k)
+                return self._round(mpmath.log(pk.numerator) - mpmath.log(pk.denominator))
+        return self._round(self._logpmf_raw(k))
+
+    def _logpmf_raw(self, k: int) -> mpmath.mpf:
+        """log P(X = k) at the working precision with guard digits (not rounded: exp() of a
+        log rounded to dps digits would lose log10|log P| digits)."""
         log_gamma = self._mp_moments[0]
         with mpmath.workdps(self.dps + self._guard):
-            return self._round(self._log_phi(k) - log_gamma)
+            return self._log_phi(k) - log_gamma
 
     @property
     def normaliser(self) -> Any:
@@ -303,8 +314,22 @@ class SimpleDistribution(Distribution):
         return self.modes[0]
 
     def table(self) -> list[tuple[int, Any]]:
-        """``[(k, P(X = k)) for k in 1..N]`` (for plots and small N)."""
-        return [(k, self.pmf(k)) for k in self.support]
+        """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N).
+
+        The mpmath path runs the term ratio ``Phi(k+1)/Phi(k) = p (N-k) k/(k+1)`` across the
+        whole support from ``P(X = 1)``, with guard digits for the ``N`` roundings.
+        """
+        if self.exact:
+            return [(k, self.pmf(k)) for k in self.support]
+        N = self.N
+        with mpmath.workdps(self.dps + self._guard):
+            w = mpmath.exp(self._logpmf_raw(1))
+            pm = mp_value(self.p, self.fr)
+            out = []
+            for k in range(1, N + 1):
+                out.append((k, self._round(w)))
+                w = w * pm * (N - k) * k / (k + 1)
+        return out
 
 
 # --------------------------------------------------------------------------- structure of Phi

@@ -170,3 +170,16 @@ def test_sympy_rational_is_exact():
         w = [p**k * mpmath.factorial(7) / (k * mpmath.factorial(7 - k)) for k in range(1, 8)]
         want = mpmath.fsum(k * x for k, x in enumerate(w, 1)) / mpmath.fsum(w)
         assert abs(v - want) < mpmath.mpf(10) ** -28
+
+
+@pytest.mark.parametrize(("N", "p"), [(2, 0.5), (100, 0.02), (101, 1e-300), (300, 0.9)])
+def test_table_matches_exact(N, p):
+    exact = pmf_table(N, Fraction(p)) if N <= 101 or p > 1e-10 else None
+    tab = symhx.distribution_of(N, p, dps=30).table()
+    assert [k for k, _ in tab] == list(range(1, N + 1))
+    if exact is None:
+        return
+    with mpmath.workdps(50):
+        for (_, got), want in zip(tab, exact, strict=True):
+            w = mpmath.mpf(want.numerator) / want.denominator
+            assert abs(got - w) <= mpmath.mpf(10) ** -29 * w

@@ -14,3 +14,17 @@ def test_readme_examples():
     result = doctest.testfile(str(README), module_relative=False,
                               optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 5 and result.failed == 0
+
+
+def test_readme_benchmark_table_is_rendered_from_results():
+    import subprocess
+    import sys
+
+    if not README.exists():
+        import pytest
+
+        pytest.skip("README.md not present")
+    script = README.parent / "scripts" / "bench_table.py"
+    table = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                           check=True).stdout.strip()
+    assert table in README.read_text(), "run: python scripts/bench_table.py --readme"

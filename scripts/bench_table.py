@@ -1,0 +1,109 @@
+"""Render the README's benchmark table from ``benchmarks/results/*.json``.
+
+    python scripts/bench_table.py            # print the Markdown table
+    python scripts/bench_table.py --readme   # rewrite the block between the markers in README.md
+
+The numbers are read from the result files, never typed in; ``tests/test_readme.py`` checks that
+the README's block matches what this script renders.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "benchmarks" / "results"
+START, END = "<!-- bench-table:start -->", "<!-- bench-table:end -->"
+
+
+def _load(name: str) -> dict | None:
+    path = RESULTS / f"{name}.json"
+    return json.loads(path.read_text()) if path.exists() else None
+
+
+def rows() -> list[tuple[str, str, str]]:
+    out: list[tuple[str, str, str]] = []
+    core = _load("core")
+    if core:
+        def pick(task, method, N, dps):
+            for r in core["rows"]:
+                if (r["task"], r["method"], r["N"], r["dps"]) == (task, method, N, dps):
+                    return r
+            return None
+
+        for N in (10**3, 10**5):
+            a = pick("critical", "symhx.critical_point", N, 20)
+            b = pick("critical", "naive mpmath scan", N, 20)
+            if a and b:
+                out.append((f"critical point p_c, N = 10^{len(str(N)) - 1}, 20 digits",
+                            f"{a['time'] * 1e3:.1f} ms, rel. error {a['error']:.0e}",
+                            f"mpmath scan of all k: {b['time'] * 1e3:.0f} ms, "
+                            f"error {b['error']:.0e}"))
+        a = pick("mean", "symhx.mean (log space)", 10**4, 50)
+        b = pick("mean", "naive mpmath full sum", 10**4, 50)
+        if a and b:
+            out.append(("E[X], N = 1e4, 50 digits", f"{a['time'] * 1e3:.0f} ms, "
+                        f"error {a['error']:.0e}", f"mpmath sum of all terms: "
+                        f"{b['time'] * 1e3:.0f} ms"))
+    forcing = _load("forcing")
+    if forcing:
+        f64 = forcing["float64_1e6_array"]
+        mp50 = forcing["mpmath_50_digits"]
+        out.append(("p(σ) float64, 1e6 array, one core",
+                    f"{f64['impact_probability']['values_per_second']:.2e} values/s "
+                    f"(1 − p: {f64['no_impact_probability']['values_per_second']:.2e})",
+                    "target 1e7 values/s"))
+        out.append(("p(σ) mpmath, 50 digits",
+                    f"{mp50['impact_probability']['microseconds_per_value']:.0f} µs/value "
+                    f"(1 − p: {mp50['no_impact_probability']['microseconds_per_value']:.0f})",
+                    "target 200 µs/value"))
+        naive = forcing.get("naive_at_0.05")
+        if isinstance(naive, dict):
+            out.append((f"p(σ = {naive['sigma']}), where the paper's eq. (27) fails",
+                        f"{float(naive['true_p']):.6e} (checked against quadrature of eq. 26)",
+                        f"1 − scipy dblquad(eq. 27): {naive['naive_1_minus_dblquad']:.3e}"))
+    thr = _load("impact_throughput")
+    if thr:
+        out.append((f"impact engine (C), {thr['n']} pipes, σ = {thr['sigma']}",
+                    f"{thr['impacts_per_s_one_core']:.2e} impacts/s (one core)",
+                    f"two processes: {thr['impacts_per_s_two_processes_wall']:.2e}/s wall"))
+    wp = _load("impact_work_precision")
+    if wp:
+        best = min(wp["solve_ivp"], key=lambda r: r["error"])
+        missed = max(r["missed"] for r in wp["solve_ivp"])
+        out.append((f"impact times, {wp['n']} pipes, t ≤ {wp['t_end']:g}",
+                    f"{wp['symhx']['seconds'] * 1e3:.2f} ms, error {wp['symhx']['error']:.0e},"
+                    f" {wp['symhx']['missed']} missed",
+                    f"solve_ivp DOP853 best: {best['seconds'] * 1e3:.0f} ms, error "
+                    f"{best['error']:.0e} (rtol {best['rtol']:g}); up to {missed} missed"))
+    spaces = _load("spaces")
+    if spaces:
+        for r in spaces["rows"]:
+            if r.get("space") == "eq41" and "naive_mpf_N100_s" in r:
+                out.append(("pmf of X, eq. (41) space, N = 100, dps 30",
+                            f"{r['pmf_N100_dps30_s'] * 1e3:.1f} ms",
+                            f"naive mpf sum over patterns: {r['naive_mpf_N100_s'] * 1e3:.0f} ms"))
+    return out
+
+
+def render() -> str:
+    lines = ["| task | symhx | naive way / target |", "|---|---|---|"]
+    lines += [f"| {a} | {b} | {c} |" for a, b, c in rows()]
+    return "\n".join(lines)
+
+
+def main(argv: list[str]) -> int:
+    table = render()
+    if "--readme" in argv:
+        readme = ROOT / "README.md"
+        text = readme.read_text()
+        i, j = text.index(START) + len(START), text.index(END)
+        readme.write_text(text[:i] + "\n" + table + "\n" + text[j:])
+    print(table)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
