@@ -93,6 +93,46 @@ class Distribution:
     def logpmf(self, k: int) -> mpmath.mpf:  # pragma: no cover - interface
         raise NotImplementedError
 
+    # Subclasses provide ``_exact_moments`` = (normaliser, sum k W(k), sum k**2 W(k)) as
+    # Fractions, and ``_mp_moments`` = (normaliser or its log, mean, variance) as mpf.
+    _exact_moments: tuple[Fraction, Fraction, Fraction]
+    _mp_moments: tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]
+
+    def _round(self, x: mpmath.mpf) -> mpmath.mpf:
+        with mpmath.workdps(self.dps):
+            return +x
+
+    @property
+    def support(self) -> range:
+        """Values X can take: ``1..N``."""
+        return range(1, self.N + 1)
+
+    @property
+    def mean(self) -> Any:
+        """``E[X]``: a Fraction when exact, else an mpf to ``dps`` digits."""
+        if self.exact:
+            g, m1, _ = self._exact_moments
+            return m1 / g
+        return self._round(self._mp_moments[1])
+
+    @property
+    def variance(self) -> Any:
+        """``Var[X]`` (the mpmath path sums ``(k - mean)**2 P(X=k)``: no cancellation)."""
+        if self.exact:
+            g, m1, m2 = self._exact_moments
+            mu = m1 / g
+            return m2 / g - mu * mu
+        return self._round(self._mp_moments[2])
+
+    @property
+    def modes(self) -> tuple[int, ...]:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    @property
+    def mode(self) -> int:
+        """The smallest maximiser."""
+        return self.modes[0]
+
     def __repr__(self) -> str:
         return (f"{type(self).__name__}(N={self.N}, p={self.p!r}, space={self.space!r}, "
                 f"dps={self.dps}, exact={self.exact})")
@@ -222,16 +262,7 @@ class SimpleDistribution(Distribution):
                 v = central(runs)
             return lmax + mpmath.log(s0), mu, v / s0
 
-    def _round(self, x: mpmath.mpf) -> mpmath.mpf:
-        with mpmath.workdps(self.dps):
-            return +x
-
     # ----------------------------------------------------------------- public
-    @property
-    def support(self) -> range:
-        """Values X can take: ``1..N``."""
-        return range(1, self.N + 1)
-
     def _check_k(self, k: int) -> int:
         if not isinstance(k, int) or isinstance(k, bool):
             raise TypeError(f"k must be an int, got {type(k).__name__}")
@@ -287,31 +318,9 @@ class SimpleDistribution(Distribution):
         return self._round(self._mp_moments[0])
 
     @property
-    def mean(self) -> Any:
-        """``E[X]``."""
-        if self.exact:
-            g, m1, _ = self._exact_moments
-            return m1 / g
-        return self._round(self._mp_moments[1])
-
-    @property
-    def variance(self) -> Any:
-        """``Var[X]`` (computed as ``sum (k - mean)**2 P(X=k)``: no cancellation)."""
-        if self.exact:
-            g, m1, m2 = self._exact_moments
-            mu = m1 / g
-            return m2 / g - mu * mu
-        return self._round(self._mp_moments[2])
-
-    @property
     def modes(self) -> tuple[int, ...]:
         """All maximisers of ``P(X = k)``, increasing (exact for rational ``p``)."""
         return _simple_modes(self.N, self.fr, self.p)
-
-    @property
-    def mode(self) -> int:
-        """The smallest maximiser."""
-        return self.modes[0]
 
     def table(self) -> list[tuple[int, Any]]:
         """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N).

@@ -312,16 +312,7 @@ class SpaceDistribution(Distribution):
             var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
             return s0, mu, var
 
-    def _round(self, x: mpmath.mpf) -> mpmath.mpf:
-        with mpmath.workdps(self.dps):
-            return +x
-
     # ----------------------------------------------------------------- public
-    @property
-    def support(self) -> range:
-        """Values X can take: ``1..N``."""
-        return range(1, self.N + 1)
-
     def pmf(self, k: int) -> Any:
         """``P(X = k)``: Fraction when exact, else mpf; 0 outside ``1..N``."""
         if not isinstance(k, int) or isinstance(k, bool):
@@ -373,31 +364,10 @@ class SpaceDistribution(Distribution):
             return self._round(mpmath.log(g))
 
     @property
-    def mean(self) -> Any:
-        """``E[X]``."""
-        if self.exact:
-            g, m1, _ = self._exact_moments
-            return m1 / g
-        return self._round(self._mp_moments[1])
-
-    @property
-    def variance(self) -> Any:
-        """``Var[X]`` (as ``sum (k - mean)**2 P(X = k)`` on the mpmath path)."""
-        if self.exact:
-            g, m1, m2 = self._exact_moments
-            mu = m1 / g
-            return m2 / g - mu * mu
-        return self._round(self._mp_moments[2])
-
-    @property
     def modes(self) -> tuple[int, ...]:
         """All maximisers of ``P(X = k)`` (exact for rational ``p``)."""
         return space_modes(self.sample_space, self.N, self.p, self.fr)
 
-    @property
-    def mode(self) -> int:
-        """The smallest maximiser."""
-        return self.modes[0]
 
     def table(self) -> list[tuple[int, Any]]:
         """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range)."""
