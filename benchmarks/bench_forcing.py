@@ -3,8 +3,9 @@
 Run:  python benchmarks/bench_forcing.py
 Writes benchmarks/results/forcing.json and benchmarks/results/forcing_work_precision.png.
 
-* float64 throughput on arrays of 1e6 sigma values (log-spaced in [0.01, 100]), one core.
-* mpmath time per value at 50 digits.
+* float64 throughput on arrays of 1e6 sigma values (log-spaced in [0.01, 100]), one core; also
+  with unequal scales (sigma1 = 2 sigma) and with the sigmas in random order.
+* mpmath time per value at 50 digits (also with sigma1 = 2 sigma).
 * Work-precision (x: max relative error of p against a 130-digit reference, y: time per value)
   for symhx float64, symhx mpmath at several dps, the paper's eq. (27) as
   ``1 - scipy.integrate.dblquad`` at several tolerances, and ``1 -`` mpmath 2-D ``quad``.
@@ -72,12 +73,24 @@ def throughput():
                F.log_no_impact_probability):
         t = best_time(lambda fn=fn: fn(s), repeat=7, min_time=0.0)
         out[fn.__name__] = {"seconds_per_1e6": t, "values_per_second": 1e6 / t}
+    # harder float64 inputs: unequal Rayleigh scales (sigma1 = 2 sigma: no piece shared between
+    # the two scales), and the same sigmas in random order (both 1 - p branches in every chunk)
+    shuffled = np.random.default_rng(0).permutation(s)
+    for label, arg, kw in (("unequal_scales", s, {"sigma1": 2 * s}), ("shuffled", shuffled, {})):
+        block = out.setdefault(f"{label} (sigma1=2 sigma)" if kw else label, {})
+        for fn in (F.impact_probability, F.no_impact_probability):
+            t = best_time(lambda fn=fn, arg=arg, kw=kw: fn(arg, **kw), repeat=7, min_time=0.0)
+            block[fn.__name__] = {"seconds_per_1e6": t, "values_per_second": 1e6 / t}
     # the paper's parameters as scalars broadcast against the array: same code path
     sig = [float(v) for v in np.logspace(-2, 2, 50)]
     mp50 = {}
     for fn in (F.impact_probability, F.no_impact_probability):
         t = best_time(lambda fn=fn: [fn(v, dps=50) for v in sig], repeat=5) / len(sig)
         mp50[fn.__name__] = {"microseconds_per_value": 1e6 * t}
+    block = mp50.setdefault("unequal_scales (sigma1=2 sigma)", {})
+    for fn in (F.impact_probability, F.no_impact_probability):
+        t = best_time(lambda fn=fn: [fn(v, sigma1=2 * v, dps=50) for v in sig], repeat=5) / len(sig)
+        block[fn.__name__] = {"microseconds_per_value": 1e6 * t}
     return out, mp50
 
 
@@ -147,6 +160,18 @@ def plot(rows, path: Path) -> None:
     fig.savefig(path, dpi=110, bbox_inches="tight")
 
 
+def _flat(results: dict) -> dict:
+    """``{name: timing}`` with the nested groups (unequal scales, shuffled) as "group / name"."""
+    out = {}
+    for k, v in results.items():
+        if any(isinstance(x, dict) and isinstance(next(iter(x.values())), dict)
+               for x in [v]):
+            out.update({f"{k} / {a}": b for a, b in v.items()})
+        else:
+            out[k] = v
+    return out
+
+
 def main() -> None:
     try:
         os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})  # one core
@@ -159,10 +184,10 @@ def main() -> None:
                "rerun": "python benchmarks/bench_forcing.py"}
     p = write("forcing", payload)
     plot(rows, RESULTS / "forcing_work_precision.png")
-    for k, v in thr.items():
-        print(f"{k:28s} {v['values_per_second'] / 1e6:7.2f} M values/s (1e6 array)")
-    for k, v in mp50.items():
-        print(f"{k:28s} {v['microseconds_per_value']:7.1f} us/value at 50 digits")
+    for k, v in _flat(thr).items():
+        print(f"{k:60s} {v['values_per_second'] / 1e6:7.2f} M values/s (1e6 array)")
+    for k, v in _flat(mp50).items():
+        print(f"{k:60s} {v['microseconds_per_value']:7.1f} us/value at 50 digits")
     for r in rows:
         print(f"{r['set']:10s} {r['method']:30s} {r['param']:10s} {r['time']:.2e} s "
               f"err {r['error']:.1e}")

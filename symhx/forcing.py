@@ -186,12 +186,14 @@ def _series_zmax(coeffs: list[float]) -> list[float]:
 
 _PHI1_ZMAX = _series_zmax(_PHI1_C)
 _PSI1_ZMAX = _series_zmax(_PSI1_C)
-# rows x, y (phi~, padded with a leading zero coefficient to 20 terms) and u^2, v^2 (psi~)
-_SERIES_COLS = [np.array([[c1], [c1], [c2], [c2]])
-                for c1, c2 in zip([*_PHI1_C, 0.0], _PSI1_C, strict=True)]
+#: Horner coefficient columns for ``h`` phi~ rows over ``h`` psi~ rows (phi~ padded with a
+#: zero leading coefficient to the 20 terms of psi~)
+_SERIES_COLS = {h: [np.array([[c1]] * h + [[c2]] * h)
+                    for c1, c2 in zip([*_PHI1_C, 0.0], _PSI1_C, strict=True)]
+                for h in (1, 2)}
 
 #: float64 work is done in chunks of this many values, so that the ~50 temporaries stay in cache
-_CHUNK = 8192
+_CHUNK = 16384
 
 
 def _n_terms(zmax: float, table: list[float]) -> int:
@@ -201,17 +203,36 @@ def _n_terms(zmax: float, table: list[float]) -> int:
     return k
 
 
+def _phi1t_big(z: np.ndarray) -> np.ndarray:
+    return -(np.expm1(-z) + z) / (z * z)
+
+
+def _psi1t_big(z: np.ndarray) -> np.ndarray:
+    sz = np.sqrt(z)
+    return ((0.5 * _SQRT_PI) * sc.erf(sz) / sz - 1.0) / z
+
+
+def _fix_rows(acc: np.ndarray, z: np.ndarray, big: np.ndarray, fn: Callable) -> None:
+    """``acc[big] = fn(z[big])`` for C-contiguous row blocks (index arrays: no branchy masks)."""
+    idx = np.flatnonzero(big)
+    if idx.size:
+        acc.reshape(-1).put(idx, fn(z.reshape(-1).take(idx)))
+
+
 def _series_rows(z: np.ndarray) -> np.ndarray:
-    """Rows ``phi~(x), phi~(y), psi~(u^2), psi~(v^2)`` for ``z`` = those 4 rows (shape (4, m)).
+    """``phi~`` of the first half of the rows of ``z`` and ``psi~`` of the second half.
 
     ``phi~(z) = ((1 - exp(-z))/z - 1)/z`` (-> -1/2) and ``psi~(z) = (sqrt(pi) erf(sqrt z)/
-    (2 sqrt z) - 1)/z`` (-> -1/3): Taylor series (Horner on all four rows at once, as many terms
-    as the largest ``z < 1`` of the rows needs) below 1, closed forms (no cancellation) above.
+    (2 sqrt z) - 1)/z`` (-> -1/3): Taylor series (Horner on all rows at once, as many terms as
+    the largest ``z < 1`` needs for the error of the full series at ``z = 1``) below 1, closed
+    forms (no cancellation) above.
     """
+    h = z.shape[0] // 2
     small = z < 1.0
     zs = np.max(z, axis=1, where=small, initial=0.0)
-    k = max(2, _n_terms(max(zs[0], zs[1]), _PHI1_ZMAX), _n_terms(max(zs[2], zs[3]), _PSI1_ZMAX))
-    cols = _SERIES_COLS
+    k = max(2, _n_terms(float(zs[:h].max()), _PHI1_ZMAX),
+            _n_terms(float(zs[h:].max()), _PSI1_ZMAX))
+    cols = _SERIES_COLS[h]
     acc = np.empty_like(z)
     acc[...] = cols[k - 1]
     for c in reversed(cols[: k - 1]):
@@ -219,15 +240,8 @@ def _series_rows(z: np.ndarray) -> np.ndarray:
         acc += c
     if not small.all():
         big = ~small
-        b = big[:2]
-        if b.any():
-            zl = z[:2][b]
-            acc[:2][b] = -(np.expm1(-zl) + zl) / (zl * zl)
-        b = big[2:]
-        if b.any():
-            zl = z[2:][b]
-            sz = np.sqrt(zl)
-            acc[2:][b] = ((0.5 * _SQRT_PI) * sc.erf(sz) / sz - 1.0) / zl
+        _fix_rows(acc[:h], z[:h], big[:h], _phi1t_big)
+        _fix_rows(acc[h:], z[h:], big[h:], _psi1t_big)
     return acc
 
 
@@ -341,12 +355,19 @@ def _q_small_float(uv: _UV) -> np.ndarray:
     emt /= e
     if not e.min() > 1e-300:
         emt[~(e > 1e-300)] = -1.0
-    z = np.empty((4, m))
-    z[0] = x
-    z[1] = y
-    np.multiply(u, u, out=z[2])
-    np.multiply(v, v, out=z[3])
-    t = _series_rows(z)
+    if np.array_equal(x, y) and np.array_equal(u, v):  # equal scales (the paper): 2 rows
+        z = np.empty((2, m))
+        z[0] = x
+        np.multiply(u, u, out=z[1])
+        t = np.repeat(_series_rows(z), 2, axis=0)
+        z = np.repeat(z, 2, axis=0)
+    else:
+        z = np.empty((4, m))
+        z[0] = x
+        z[1] = y
+        np.multiply(u, u, out=z[2])
+        np.multiply(v, v, out=z[3])
+        t = _series_rows(z)
     emt *= ab2[0]
     emt *= ab2[1]  # em~ a b
     chi = z[2:] * t[2:]
@@ -388,10 +409,12 @@ def _pq_kernel(uv: _UV, want: str) -> np.ndarray:
         return _q_comp(uv, want)
     if ncomp == 0:
         return _q_direct(uv, want)
+    # mixed chunk: gather/scatter by index arrays (boolean masks branch on every element)
     out = np.empty(comp.shape[0])
-    rest = ~comp
-    out[comp] = _q_comp(_UV(*(a[comp] for a in uv)), want)
-    out[rest] = _q_direct(_UV(*(a[rest] for a in uv)), want)
+    idx = np.flatnonzero(comp)
+    out.put(idx, _q_comp(_UV(*(a.take(idx) for a in uv)), want))
+    idx = np.flatnonzero(~comp)
+    out.put(idx, _q_direct(_UV(*(a.take(idx) for a in uv)), want))
     return out
 
 
@@ -553,7 +576,123 @@ def _guard_digits(e: float) -> int:
     return 12 + (int(math.log10(e)) + 1 if e > 1 else 0)
 
 
+# ---- scalar fast path on raw mpf tuples (mpmath.libmp): the same operations, roundings and
+# precisions as the mpf-object code below, without the per-operation object and context costs
+_lm = mpmath.libmp
+_RND = _lm.round_nearest
+_MP_FOUR = _lm.from_int(4)
+_LOG2E = 1.4426950408889634
+_SQRT_PI_CACHE: dict[int, tuple] = {}
+
+
+def _sqrt_pi_raw(prec: int) -> tuple:
+    """``sqrt(pi)`` rounded to ``prec`` bits (as ``mpmath.sqrt(mpmath.pi)``), cached."""
+    v = _SQRT_PI_CACHE.get(prec)
+    if v is None:
+        v = _SQRT_PI_CACHE[prec] = _lm.mpf_sqrt(_lm.mpf_pi(prec, _RND), prec, _RND)
+    return v
+
+
+def _erf_raw(u: tuple, prec: int) -> tuple:
+    """``erf(u)`` for ``u > 0`` to ``prec`` bits: mpmath's Taylor series where it is cheap, and
+    ``1 - erfc(u)`` (erfc at the few bits that survive, by its asymptotic series) or ``1`` where
+    that series is slow (``u`` of ~10 costs mpmath ~300 terms)."""
+    mag = u[2] + u[3]
+    if mag < 2:  # u < 2
+        return _lm.mpf_erf(u, prec, _RND)
+    if mag > 40:
+        return _lm.fone
+    uf = _lm.to_float(u)
+    u2 = uf * uf * _LOG2E  # erfc(u) < exp(-u**2) = 2**-u2 (u >= 1)
+    if u2 > prec + 3:  # 1 - erf(u) < 1/8 ulp of 1: erf rounds to 1
+        return _lm.fone
+    pc = max(prec - int(u2) + 30, 53)  # bits of erfc(u) that reach the result (+ 30 guard)
+    n = int(uf)
+    if n * n * 1.44 > pc + 20 + 2 * mag:  # mpmath's erfc uses its asymptotic series
+        return _lm.mpf_sub(_lm.fone, _lm.mpf_erfc(u, pc, _RND), prec, _RND)
+    return _lm.mpf_erf(u, prec, _RND)
+
+
+def _raw_in(value: Any) -> tuple | None:
+    """A finite positive float (or small int) as an exact raw mpf; None: use the general path."""
+    if isinstance(value, float):
+        return _lm.from_float(float(value)) if 0.0 < value < math.inf else None
+    if type(value) is int and 0 < value < 1 << 53:
+        return _lm.from_int(value)
+    return None
+
+
+def _raw_p_parts(x: tuple, y: tuple, prec: int) -> tuple[tuple, tuple, tuple]:
+    """``(-uv, B, r)`` of :func:`_mp_p_from_xy`, ``p = exp(-uv) B / r``."""
+    mul, add, div, exp, neg = _lm.mpf_mul, _lm.mpf_add, _lm.mpf_div, _lm.mpf_exp, _lm.mpf_neg
+    rnd = _RND
+    r = _lm.mpf_sqrt(add(x, y, prec, rnd), prec, rnd)
+    u = div(x, r, prec, rnd)
+    v = div(y, r, prec, rnd)
+    nu = neg(u)
+    eu = exp(mul(nu, u, prec, rnd), prec, rnd)
+    fu = _erf_raw(u, prec)
+    if u == v:  # e.g. sigma1 = sigma and |omega**2 - Omega**2| = 1 (the paper)
+        ev, fv = eu, fu
+    else:
+        ev = exp(mul(neg(v), v, prec, rnd), prec, rnd)
+        fv = _erf_raw(v, prec)
+    b = add(mul(v, eu, prec, rnd), mul(u, ev, prec, rnd), prec, rnd)
+    c = mul(mul(_sqrt_pi_raw(prec), u, prec, rnd), v, prec, rnd)
+    b = add(b, mul(c, add(fu, fv, prec, rnd), prec, rnd), prec, rnd)
+    return mul(nu, v, prec, rnd), b, r
+
+
+def _single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
+    """:func:`_single_mp` for float inputs on raw mpf tuples; None where it does not apply
+    (other input types, bad input, resonance, the adaptive ``1 - p`` loop)."""
+    s0 = _raw_in(sigma)
+    s1 = s0 if sigma1 is None else _raw_in(sigma1)
+    om = _raw_in(omega)
+    Om = _lm.ftwo if Omega is None else _raw_in(Omega)
+    dd = _raw_in(d)
+    if s0 is None or s1 is None or om is None or Om is None or dd is None:
+        return None
+    est = _estimate_float(sigma, sigma1, omega, Omega, d)
+    if est is None:
+        return None
+    e, xy, pest = est
+    guard = _guard_digits(e)
+    direct_q = want in ("q", "logq") and pest > 0.45
+    if direct_q:
+        guard += 8 + max(0, int(math.log10(7.0 / max(xy, 1e-300))) + 1) if xy < 7 else 10
+    prec = _lm.dps_to_prec(dps + guard)
+    mul, div, sub, rnd = _lm.mpf_mul, _lm.mpf_div, _lm.mpf_sub, _RND
+    om2 = Om if Omega is None else mul(Om, Om, prec, rnd)
+    delta = sub(mul(om, om, prec, rnd), om2, prec, rnd)
+    if not delta[1]:
+        return None  # resonance: the general path raises
+    x = div(mul(dd, dd, prec, rnd), mul(mul(_MP_FOUR, s0, prec, rnd), s0, prec, rnd), prec, rnd)
+    t = mul(dd, delta, prec, rnd)
+    y = div(mul(t, t, prec, rnd), mul(mul(_MP_FOUR, s1, prec, rnd), s1, prec, rnd), prec, rnd)
+    nuv, b, r = _raw_p_parts(x, y, prec)
+    make = mpmath.mp.make_mpf
+    if want == "logp":
+        lg = _lm.mpf_log(div(b, r, prec, rnd), prec, rnd)
+        return make(_lm.mpf_add(nuv, lg, prec, rnd))
+    p = div(mul(_lm.mpf_exp(nuv, prec, rnd), b, prec, rnd), r, prec, rnd)
+    if want == "p":
+        return make(p)
+    if not direct_q and _lm.mpf_gt(p, _MP_HALF):
+        return None  # 1 - p by the adaptive loop of the general path
+    q = sub(_lm.fone, p, prec, rnd)
+    if direct_q and not (q[0] == 0 and q[1] and -(q[2] + q[3]) <= 3.3 * (guard - 4)):
+        return None  # more digits cancelled than planned: the general path's loop
+    return make(q) if want == "q" else make(_lm.mpf_log(q, prec, rnd))
+
+
+_MP_HALF = _lm.from_man_exp(1, -1)
+
+
 def _single_mp(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> mpmath.mpf:
+    fast = _single_mp_fast(sigma, sigma1, omega, Omega, d, dps, want)
+    if fast is not None:
+        return fast
     est = _estimate_float(sigma, sigma1, omega, Omega, d)
     if est is None:
         with mpmath.workprec(64):
