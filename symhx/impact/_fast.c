@@ -31,6 +31,8 @@ typedef struct {
     size_t nup, cap_up;
     long long nevents, max_events;
     double *g;
+    double *gc, *bc;          /* per site: the searched polynomial and its bounds (c0, S, M1..M4),
+                               * valid until the site is next rescheduled from scratch */
     double *F2, *F3;          /* F_m^2, F_m^3 */
     double *tc;               /* trig cache: 2 slots of [cos(F_m t)..., sin(F_m t)...] */
     double tc_t[2], pin;      /* slot times; slot 0 holds the pinned (current event) time */
@@ -66,6 +68,54 @@ static inline void cos_sin(double x, double *c, double *s) {
     }
 }
 
+#if defined(__GNUC__) || defined(__clang__)
+#define HAVE_V2D 1
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2di __attribute__((vector_size(16)));
+
+static inline void quadrant(double fn, double cv, double sv, double *c, double *s) {
+    switch (((long long)fn) & 3) {
+    case 0: *c = cv; *s = sv; break;
+    case 1: *c = -sv; *s = cv; break;
+    case 2: *c = -cv; *s = -sv; break;
+    default: *c = sv; *s = -cv; break;
+    }
+}
+
+/* cos_sin of two arguments at once: the same IEEE operations as cos_sin in each lane (two-lane
+ * SIMD multiplies and adds round exactly like the scalar ones; no contraction, see setup.py), so
+ * bit-identical results at about half the cost. */
+static inline void cos_sin2(double x0, double x1, double *c0, double *s0, double *c1, double *s1) {
+    if (!(fabs(x0) < 823549.6 && fabs(x1) < 823549.6)) {
+        cos_sin(x0, c0, s0);
+        cos_sin(x1, c1, s1);
+        return;
+    }
+    v2d x = {x0, x1};
+    v2d u = x * 6.36619772367581382433e-01 + 0.5;
+    /* floor(u), exactly (|u| < 2^19): round to an integer by the 1.5 * 2^52 shift, minus one
+     * where that rounded up (the shifted sum is exact in [2^52, 2^53)); u is never -0 */
+    v2d fn = (u + 6755399441055744.0) - 6755399441055744.0;
+    fn = fn - (v2d)((fn > u) & (v2di){0x3ff0000000000000LL, 0x3ff0000000000000LL});
+    double f0 = fn[0], f1 = fn[1];
+    v2d y = x - fn * 1.57079632673412561417e+00;
+    y = y - fn * 6.07710050630396597660e-11;
+    y = y - fn * 2.02226624871116645580e-21;
+    v2d z = y * y;
+    v2d sr = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
+        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z *
+        1.58969099521155010221e-10)));
+    v2d sv = y + z * y * (-1.66666666666666324348e-01 + z * sr);
+    v2d cr = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
+        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
+        2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+    v2d hz = 0.5 * z, w = 1.0 - hz;
+    v2d cv = w + (((1.0 - w) - hz) + z * cr);
+    quadrant(f0, cv[0], sv[0], c0, s0);
+    quadrant(f1, cv[1], sv[1], c1, s1);
+}
+#endif
+
 /* cos(F_m t), sin(F_m t) for all m: the same libm values as a direct call, computed once per
  * distinct t (the event time is pinned: the impact, the kicks and every re-search start there). */
 static const double *trig(Eng *E, double t) {
@@ -74,7 +124,13 @@ static const double *trig(Eng *E, double t) {
     if (t == E->tc_t[1]) return E->tc + 2 * nf;
     int k = (t == E->pin) ? 0 : 1;
     double *c = E->tc + 2 * k * nf;
-    for (int m = 0; m < nf; m++) {
+    int m = 0;
+#ifdef HAVE_V2D
+    for (; m + 1 < nf; m += 2) {
+        cos_sin2(E->F[m] * t, E->F[m + 1] * t, c + m, c + nf + m, c + m + 1, c + nf + m + 1);
+    }
+#endif
+    for (; m < nf; m++) {
         cos_sin(E->F[m] * t, c + m, c + nf + m);
     }
     E->tc_t[k] = t;
@@ -111,11 +167,13 @@ static void bounds(Eng *E, const double *g, double *c0, double *S, double *M1, d
     *c0 = c00; *S = s; *M1 = m1; *M2 = m2; *M3 = m3; *M4 = m4;
 }
 
-/* scaleD = |c0| + S, M1: the bounds of g (as computed by search) */
-static double refine(Eng *E, const double *g, double lo, double hi, double scaleD, double M1) {
-    double D, V, A, J, x = lo;
+/* scaleD = |c0| + S, M1: the bounds of g (as computed by search); D0, V0, A0: g, g', g'' at lo
+ * (already evaluated by the caller: the same values derivs would return) */
+static double refine(Eng *E, const double *g, double lo, double hi, double scaleD, double M1,
+                     double D0, double V0, double A0) {
+    double D = D0, V = V0, A = A0, J, x = lo;
     for (int it = 0; it < 400; it++) {
-        derivs(E, g, x, &D, &V, &A, &J);
+        if (it) derivs(E, g, x, &D, &V, &A, &J);
         if (fabs(D) <= TOLF * EPS * (scaleD + M1 * fabs(x)) && V < 0) return x - D / V;
         if (D > 0) lo = x;
         else if (D < 0) hi = x;
@@ -132,27 +190,29 @@ static double refine(Eng *E, const double *g, double lo, double hi, double scale
     return x;
 }
 
+/* Dt, Vt, At: g, g', g'' at t (evaluated by search) */
 static int graze(Eng *E, const double *g, double t, double t0, double tolD, double scaleD,
-                 double M1, double *te) {
-    double tg = t, D, V, A, J;
+                 double M1, double Dt, double Vt, double At, double *te) {
+    double tg = t, D, V = Vt, A = At, J;
     for (int it = 0; it < 100; it++) {
-        derivs(E, g, tg, &D, &V, &A, &J);
+        if (it) derivs(E, g, tg, &D, &V, &A, &J);
         if (A <= 0) break;
         double step = V / A;
         tg -= step;
         if (fabs(step) <= 4 * EPS * (fabs(tg) + 1)) break;
     }
     if (tg < t0) tg = t;
-    derivs(E, g, tg, &D, &V, &A, &J);
-    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1); return S_ROOT; }
+    if (tg == t) D = Dt;
+    else derivs(E, g, tg, &D, &V, &A, &J);
+    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1, Dt, Vt, At); return S_ROOT; }
     *te = tg;
     return S_GRAZE;
 }
 
-static int search(Eng *E, const double *g, double t0, double thi, int is_gap, int graze_restart,
-                  double *te) {
-    double c0, S, M1, M2, M3, M4, D, V, A, J;
-    bounds(E, g, &c0, &S, &M1, &M2, &M3, &M4);
+/* b: the bounds of g (c0, S, M1, M2, M3, M4) */
+static int search(Eng *E, const double *g, const double *b, double t0, double thi, int is_gap,
+                  int graze_restart, double *te) {
+    double c0 = b[0], S = b[1], M1 = b[2], M2 = b[3], M3 = b[4], M4 = b[5], D, V, A, J;
     double scale0 = fabs(c0) + S;
     if (M2 == 0) {
         if (c0 > TOLF * EPS * fabs(c0)) { *te = INFINITY; return S_NONE; }
@@ -196,13 +256,13 @@ static int search(Eng *E, const double *g, double t0, double thi, int is_gap, in
                 *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
             }
             if (A < -tolA && V <= tolV) { *te = t; return S_NOW; }
-            return graze(E, g, t, t0, tolD, scale0, M1, te);
+            return graze(E, g, t, t0, tolD, scale0, M1, D, V, A, te);
         }
         double Dl = D - tolD;
         if (V < 0) {
             double Vm = -V - tolV, Dp = D + tolD;
             if (Vm > 0 && 2 * M2 * Dp < Vm * Vm) {
-                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1);
+                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1, D, V, A);
                 return S_ROOT;
             }
         }
@@ -346,36 +406,38 @@ static inline int hless(const Eng *E, int a, int b) {
     return ta < tb || (ta == tb && a < b);
 }
 
-static void hswap(Eng *E, int p, int q) {
-    int a = E->heap[p], b = E->heap[q];
-    E->heap[p] = b; E->heap[q] = a;
-    E->hpos[b] = p; E->hpos[a] = q;
-}
-
+/* move site i to its place after its key changed: sift up or down through a hole (the moved
+ * sites are written once each, the key of i is compared against theirs) */
 static void hfix(Eng *E, int i) {
-    int p = E->hpos[i], size = E->n + 1;
-    while (p > 0 && hless(E, i, E->heap[(p - 1) / 2])) { hswap(E, p, (p - 1) / 2); p = (p - 1) / 2; }
-    for (;;) {
-        int l = 2 * p + 1, r = l + 1, m = p;
-        if (l < size && hless(E, E->heap[l], E->heap[m])) m = l;
-        if (r < size && hless(E, E->heap[r], E->heap[m])) m = r;
-        if (m == p) break;
-        hswap(E, p, m);
-        p = m;
+    int p = E->hpos[i], size = E->n + 1, *heap = E->heap, *hpos = E->hpos;
+    while (p > 0) {
+        int q = (p - 1) / 2, h = heap[q];
+        if (!hless(E, i, h)) break;
+        heap[p] = h; hpos[h] = p;
+        p = q;
     }
+    for (;;) {
+        int l = 2 * p + 1;
+        if (l >= size) break;
+        int h = heap[l];
+        if (l + 1 < size && hless(E, heap[l + 1], h)) { l++; h = heap[l]; }
+        if (!hless(E, h, i)) break;
+        heap[p] = h; hpos[h] = p;
+        p = l;
+    }
+    heap[p] = i; hpos[i] = p;
 }
 
-static void schedule(Eng *E, int i, double t, int graze_restart, double *g) {
+static void schedule(Eng *E, int i, double t, int graze_restart, int reuse) {
     double thi = t + E->chunk, te;
     if (thi > E->tend) thi = E->tend;
-    int code;
-    if (E->stuck[i]) {
-        contact_force(E, i, g);
-        code = search(E, g, t, thi, 0, graze_restart, &te);
-    } else {
-        gap_poly(E, i, g);
-        code = search(E, g, t, thi, 1, graze_restart, &te);
+    double *g = E->gc + (size_t)i * E->L, *b = E->bc + (size_t)i * 6;
+    if (!reuse) {
+        if (E->stuck[i]) contact_force(E, i, g);
+        else gap_poly(E, i, g);
+        bounds(E, g, b, b + 1, b + 2, b + 3, b + 4, b + 5);
     }
+    int code = search(E, g, b, t, thi, !E->stuck[i], graze_restart, &te);
     if (code == S_CONT && te >= E->tend) { te = INFINITY; code = S_NONE; }
     E->nt[i] = te;
     E->nk[i] = code;
@@ -404,15 +466,14 @@ static void stick(Eng *E, int i, int lo, int hi, double t, double u, double A, i
     record_event(E, t, i, K_STICK, -u, 0.0, aux);
 }
 
-static void impact(Eng *E, int i, double t, int *plo, int *phi, double *g) {
+static void impact(Eng *E, int i, double t, int *plo, int *phi) {
     int lo, hi, tmp;
     body(E, i, &lo, &tmp);
     body(E, i + 1, &tmp, &hi);
     *plo = lo; *phi = hi;
-    gap_poly(E, i, g);
-    double D, u, A, J, c0, S, M1, M2, M3, M4;
+    const double *g = E->gc + (size_t)i * E->L, *b = E->bc + (size_t)i * 6;   /* = gap_poly, bounds */
+    double D, u, A, J, M2 = b[3], M3 = b[4];
     derivs(E, g, t, &D, &u, &A, &J);
-    bounds(E, g, &c0, &S, &M1, &M2, &M3, &M4);
     double tolA = TOLF * EPS * (M2 + M3 * fabs(t));
     int compressive = A < -tolA || (fabs(A) <= tolA && J < 0);
     int wallL = (lo == 0), wallR = (hi == E->n + 1);
@@ -438,13 +499,12 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi, double *g) {
 
 static void run(Eng *E) {
     int n = E->n;
-    double *g = malloc(E->L * sizeof(double));
     for (int i = 0; i <= n; i++) {
         E->nt[i] = -INFINITY;
         E->heap[i] = i;
         E->hpos[i] = i;
     }
-    for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, g);
+    for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, 0);
     double last_t = NAN;
     long same = 0;
     while (!E->err) {
@@ -462,7 +522,7 @@ static void run(Eng *E) {
         } else { same = 0; last_t = te; }
         double t = te;
         E->pin = t;
-        if (code == S_CONT) { schedule(E, i, t, 0, g); continue; }
+        if (code == S_CONT) { schedule(E, i, t, 0, 1); continue; }
         E->nevents++;
         if (E->max_events > 0 && E->nevents > E->max_events) {
             E->err = 3;
@@ -472,7 +532,7 @@ static void run(Eng *E) {
         }
         int lo, hi;
         if (E->stuck[i]) {
-            if (code == S_GRAZE) { schedule(E, i, t, 1, g); continue; }
+            if (code == S_GRAZE) { schedule(E, i, t, 1, 1); continue; }
             body(E, i, &lo, &hi);
             double X = 0, Vel = 0;
             if (lo != 0) pos_vel(E, lo, t, &X, &Vel);
@@ -482,18 +542,16 @@ static void run(Eng *E) {
             record_event(E, t, i, K_RELEASE, 0.0, 0.0, t);
         } else if (code == S_GRAZE) {
             double D, V, A, J;
-            gap_poly(E, i, g);
-            derivs(E, g, t, &D, &V, &A, &J);
+            derivs(E, E->gc + (size_t)i * E->L, t, &D, &V, &A, &J);   /* cached gap_poly */
             record_event(E, t, i, K_GRAZE, V, V, D);
-            schedule(E, i, t, 1, g);
+            schedule(E, i, t, 1, 1);
             continue;
         } else {
-            impact(E, i, t, &lo, &hi, g);
+            impact(E, i, t, &lo, &hi);
         }
         int a = lo - 1 > 0 ? lo - 1 : 0, b = hi < n ? hi : n;
-        for (int k = a; k <= b; k++) schedule(E, k, t, 0, g);
+        for (int k = a; k <= b; k++) schedule(E, k, t, 0, 0);
     }
-    free(g);
 }
 
 /* run(n, omega, d, r, v_stick, chunk, t_end, t_from, record, max_events,
@@ -528,6 +586,8 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
     E.hpos = malloc((n + 1) * sizeof(int));
     E.counts = calloc(n + 1, sizeof(long long));
     E.g = malloc(E.L * sizeof(double));
+    E.gc = malloc((size_t)(n + 1) * E.L * sizeof(double));
+    E.bc = malloc((size_t)(n + 1) * 6 * sizeof(double));
     E.F2 = malloc(E.nf * sizeof(double));
     E.F3 = malloc(E.nf * sizeof(double));
     E.tc = malloc(4 * E.nf * sizeof(double));
@@ -549,7 +609,7 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
                         E.nevents);
 done:
     free(E.coef); free(E.forced); free(E.raw); free(E.stuck); free(E.nt); free(E.nk); free(E.heap); free(E.hpos);
-    free(E.counts); free(E.g); free(E.F2); free(E.F3); free(E.tc); free(E.ev); free(E.up);
+    free(E.counts); free(E.g); free(E.gc); free(E.bc); free(E.F2); free(E.F3); free(E.tc); free(E.ev); free(E.up);
     PyBuffer_Release(&bF); PyBuffer_Release(&bc); PyBuffer_Release(&bf); PyBuffer_Release(&br);
     return res;
 }
