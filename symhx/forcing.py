@@ -49,6 +49,12 @@ int_0^d f_B(t) P(A > d - t) dt``; ``P(A + B <= d) = int_0^d f_B(t) P(A <= d - t)
 panels placed around the Gaussian saddle of the integrand, so both tails keep their relative
 accuracy. The error estimate is the difference between two rule orders.
 
+Extreme arguments (scales far from ``d`` or from each other, ratios up to the whole float
+range): float64 carries ``sqrt(x)``, ``sqrt(y)`` as mantissa and exponent and uses the limits
+``1 - p = x y G(y)`` (``x -> 0``) and ``p = e^{-uv} c (e^{-u^2} + sqrt(pi) u (1 + erf u))``
+(``y -> inf``), exact to far below an ulp there; values beyond the float range round to 0,
+1 or -inf, never NaN.
+
 Conventions: ``sigma1=None`` means ``sigma_1 = sigma`` (the paper's ``sigma = sigma_0 =
 sigma_1``); ``Omega=None`` means the paper's ``sqrt(2)``, used as ``Omega**2 = 2`` exactly at the
 working precision. ``dps=None`` selects the float64 path (vectorised, broadcasting over every
@@ -156,6 +162,8 @@ def _delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
     else:
         delta = (omega - Omega) * (omega + Omega)
     bad = delta == 0
+    if Omega is not None and np.any(bad):  # an underflowed product is no resonance
+        bad = bad & (omega == Omega)
     if np.any(bad):
         raise ValueError(
             "Omega: resonance Omega == omega (infinite forced amplitude)"
@@ -392,12 +400,8 @@ _Q_SWITCH = 2.0
 
 def _pq_kernel(uv: _UV, want: str) -> np.ndarray:
     """p, q=1-p, log p or log q (``want`` in {'p','q','logp','logq'}) on 1-D arrays of one
-    length (a chunk; error state handled by the caller)."""
-    if want == "logp":
-        b = _bracket_p(uv)
-        np.log(b, out=b)
-        b -= uv.e
-        return np.minimum(b, 0.0, out=b)
+    length (a chunk; error state handled by the caller). ``log p`` is ``log1p(-q)`` where the
+    complement form is used (``p`` near 1), else ``log(B/r) - uv``."""
     if want == "p":  # p < 1 exactly; rounding can give 1 + ulp when p -> 1
         b = _bracket_p(uv)
         b *= np.exp(-uv.e)
@@ -420,6 +424,11 @@ def _pq_kernel(uv: _UV, want: str) -> np.ndarray:
 
 def _q_comp(uv: _UV, want: str) -> np.ndarray:
     qs = _q_small_float(uv)
+    if want == "logp":  # p > 0.13 and often ~ 1: log1p(-(1 - p)) keeps the relative accuracy
+        qs *= uv.x
+        qs *= uv.y
+        np.negative(qs, out=qs)
+        return np.log1p(qs, out=qs)
     if want == "q":
         xy = uv.x * uv.y
         qs *= xy
@@ -431,6 +440,11 @@ def _q_comp(uv: _UV, want: str) -> np.ndarray:
 
 
 def _q_direct(uv: _UV, want: str) -> np.ndarray:
+    if want == "logp":
+        b = _bracket_p(uv)
+        np.log(b, out=b)
+        b -= uv.e
+        return np.minimum(b, 0.0, out=b)
     p = _bracket_p(uv)
     p *= np.exp(-uv.e)
     if want == "q":
@@ -461,21 +475,155 @@ def _single_float(sigma, sigma1, omega, Omega, d, want: str) -> Any:
     om = _float_arg("omega", omega)
     Om = None if Omega is None else _float_arg("Omega", Omega)
     dd = _float_arg("d", d)
-    delta = np.abs(_delta_float(om, Om))
-    arrs = [sig0, delta, dd] + ([] if sig1 is None else [sig1])
-    shape = np.broadcast_shapes(*(a.shape for a in arrs))
-    n = math.prod(shape)
-    # scalars stay scalars (np.float64: same IEEE semantics as the arrays), the rest is flat
-    flat = [a.reshape(-1)[0] if a.size == 1 and n > 1 else np.ravel(np.broadcast_to(a, shape))
-            for a in arrs]
-    out = np.empty(n)
-    with np.errstate(all="ignore"):
+    with np.errstate(all="ignore"):  # (|Delta| may under/overflow: then _pq_extreme)
+        delta = np.abs(_delta_float(om, Om))
+        arrs = [sig0, delta, dd] + ([] if sig1 is None else [sig1])
+        shape = np.broadcast_shapes(*(a.shape for a in arrs))
+        n = math.prod(shape)
+        # scalars stay scalars (np.float64: same IEEE semantics as the arrays), the rest is flat
+        flat = [a.reshape(-1)[0] if a.size == 1 and n > 1 else np.ravel(np.broadcast_to(a, shape))
+                for a in arrs]
+        # d and |Delta| in [1e-100, 1e100], and per chunk r < 1e75, uv > 1e-150 (so that
+        # 1e-75 < hx, hy < 1e75; NaN fails too) and d/(2r) >= 1e-145 (so sigma0, sigma1/Delta
+        # >= 1e-145): then no intermediate of the fast path under/overflows, else _pq_extreme
+        de, d_ = flat[1], flat[2]
+        lims = ((1e-100 <= de.item() <= 1e100) if de.size == 1
+                else (1e-100 <= de.min() and de.max() <= 1e100)) and (
+            (1e-100 <= d_.item() <= 1e100) if d_.size == 1
+            else (1e-100 <= d_.min() and d_.max() <= 1e100))
+        out = np.empty(n)
         for i in range(0, n, _CHUNK):
             j = min(i + _CHUNK, n)
             s0, de, d_, *s1 = (a if a.ndim == 0 else a[i:j] for a in flat)
-            uv = _uv_chunk(s0, s1[0] if s1 else s0, de, d_, j - i)
-            out[i:j] = _pq_kernel(uv, want)
+            s1 = s1[0] if s1 else s0
+            uv = _uv_chunk(s0, s1, de, d_, j - i)
+            r, e = uv.r, uv.e
+            rmax = r.max() if j - i > 1 else r.item()
+            if (lims and rmax < 1e75 and (e.min() if j - i > 1 else e.item()) > 1e-150
+                    and (d_.item() if d_.size == 1 else d_.min()) >= 2e-145 * rmax):
+                out[i:j] = _pq_kernel(uv, want)
+                continue
+            m = j - i
+            ok = (r < 1e75) & (e > 1e-150) & (d_ >= 2e-145 * r)
+            ok &= (d_ >= 1e-100) & (d_ <= 1e100) & (de >= 1e-100) & (de <= 1e100)
+            ok = np.broadcast_to(ok, (m,))
+            res = np.empty(m)
+            idx = np.flatnonzero(ok)
+            if idx.size:
+                res.put(idx, _pq_kernel(_UV(*(a.take(idx) for a in uv)), want))
+            idx = np.flatnonzero(~ok)
+            full = [None if a is None else np.ravel(np.broadcast_to(a, shape))[i:j]
+                    for a in (sig0, sig1 if sig1 is not None else sig0, om, Om, dd)]
+            res.put(idx, _pq_extreme(*(None if a is None else a.take(idx) for a in full), want))
+            out[i:j] = res
     return float(out[0]) if not shape else out.reshape(shape)
+
+
+# ---- float64 outside the fast path's range (ratios of scales up to the whole float range)
+_LN2 = math.log(2.0)
+#: Taylor coefficients of G(z) = phi~(z) - 2 psi~(z) (G(0) = 1/6): z G(z) = (1 - p)/x in the
+#: limit x -> 0 (one amplitude's scale infinitely larger than d)
+_G_C = [a - 2.0 * b for a, b in zip([*_PHI1_C, 0.0], _PSI1_C, strict=True)]
+
+
+def _frexp_div(num: list[np.ndarray], den: list[np.ndarray], shift: int):
+    """``prod(num)/prod(den) * 2**shift`` as a mantissa in [0.5, 1) and an int exponent."""
+    m = np.ones_like(num[0])
+    ex = np.full(num[0].shape, shift, dtype=np.int64)
+    for a in num:
+        fa, ea = np.frexp(a)
+        m = m * fa
+        ex += ea
+    for a in den:
+        fa, ea = np.frexp(a)
+        m = m / fa
+        ex -= ea
+    fm, em = np.frexp(m)
+    return fm, ex + em
+
+
+def _g_small_z(z: np.ndarray) -> np.ndarray:
+    """``G(z) = phi~(z) - 2 psi~(z)`` (> 0): Taylor series below 1, closed form above."""
+    out = np.full_like(z, _G_C[-1])
+    for c in reversed(_G_C[:-1]):
+        out *= z
+        out += c
+    big = z >= 1.0
+    if big.any():
+        zb = z[big]
+        sz = np.sqrt(zb)
+        out[big] = (1.0 - np.expm1(-zb) / zb - _SQRT_PI * sc.erf(sz) / sz) / zb
+    return out
+
+
+def _pq_extreme(s0, s1, om, Om, d, want: str) -> np.ndarray:
+    """p, 1 - p or their logs where the fast path's intermediates would under/overflow.
+
+    ``hx = sqrt(x)``, ``hy = sqrt(y)`` are carried as mantissa * 2**exponent. With ``s <= l``
+    the smaller and larger of them: if both lie in [1e-75, 1e75] the fast formulas are used on
+    ``hx, hy`` (``x, y`` in [1e-150, 1e150]); if ``l > 1e75`` (one scale negligible against
+    ``d``), ``e^{-v^2} = 0``, ``erf v = 1`` and ``p = e^{-uv} c (e^{-u^2} + sqrt(pi) u (1 +
+    erf u))`` with ``c = v/r = 1/(1 + (s/l)^2)``, ``1 - p = -expm1(-uv)`` where ``p > 1/2``
+    (relative error ``O(1/l)``); otherwise ``s < 1e-75`` and ``1 - p = s^2 l^2 G(l^2)`` with
+    relative error ``O(s^2)``.
+    """
+    with np.errstate(all="ignore"):
+        if Om is None:
+            small = om <= 1e100
+            dl = np.where(small, np.abs(_delta_float(np.where(small, om, 1.0), None)), 1.0)
+            dfac = [dl, np.where(small, 1.0, om), np.where(small, 1.0, om)]
+            shift = 0
+        else:
+            dfac = [np.abs(om - Om), 0.5 * om + 0.5 * Om]
+            shift = 1
+        mx, ex = _frexp_div([d], [s0], -1)
+        my, ey = _frexp_div([d, *dfac], [s1], shift - 1)
+        lx = np.log(mx) + ex * _LN2
+        ly = np.log(my) + ey * _LN2
+        sw = lx > ly
+        ms, es, ls = np.where(sw, my, mx), np.where(sw, ey, ex), np.where(sw, ly, lx)
+        ml, el, ll = np.where(sw, mx, my), np.where(sw, ex, ey), np.where(sw, lx, ly)
+        out = np.empty(mx.shape)
+        lo, hi = math.log(1e-75), math.log(1e75)
+        ra = (ll <= hi) & (ls >= lo)
+        rb = ll > hi
+        rc = ~(ra | rb)
+        if ra.any():
+            uv = _uv_from_h(np.ldexp(ms[ra], es[ra]), np.ldexp(ml[ra], el[ra]))
+            out[ra] = _pq_kernel(uv, want)
+        if rb.any():
+            msb, esb, lsb = ms[rb], es[rb], ls[rb]
+            rho = np.ldexp(msb / ml[rb], esb - el[rb])
+            c = 1.0 / (1.0 + rho * rho)
+            u = np.ldexp(msb * rho * np.sqrt(c), esb)
+            e = np.ldexp(msb * msb * c, 2 * esb)
+            fin = e < math.inf
+            f = np.exp(-u * u) + _SQRT_PI * u * (1.0 + sc.erf(u))
+            if want == "logp":
+                res = np.where(fin, np.log(c * f) - e, -math.inf)
+            else:
+                p = np.where(fin, np.exp(-e) * c * f, 0.0)
+                if want == "p":
+                    res = np.minimum(p, 1.0)
+                else:
+                    near1 = p > 0.5
+                    if want == "q":
+                        res = np.where(near1, -np.expm1(-e), 1.0 - p)
+                    else:
+                        lq = np.where(e >= 1e-300, np.log(-np.expm1(-e)), 2.0 * lsb)
+                        res = np.where(near1, lq, np.log1p(-p))
+            out[rb] = res
+        if rc.any():
+            msc, esc, mlc, elc = ms[rc], es[rc], ml[rc], el[rc]
+            g = _g_small_z(np.ldexp(mlc * mlc, 2 * elc))
+            if want == "logq":
+                res = 2.0 * (ls[rc] + ll[rc]) + np.log(g)
+            else:
+                q = np.ldexp((msc * msc) * (mlc * mlc) * g, 2 * (esc + elc))
+                # log p = log1p(-q) = -q: q < 1e-150
+                res = q if want == "q" else (1.0 - q if want == "p" else -q)
+            out[rc] = res
+    return out
 
 
 # =========================================================================== mpmath core
@@ -541,7 +689,10 @@ def _estimate(x: mpmath.mpf, y: mpmath.mpf) -> tuple[float, float, float]:
     e = math.exp(min(le, 700.0))
     if e > 50.0:
         return e, math.exp(min(lxy, 700.0)), 0.0
-    xf, yf = math.exp(min(lx, 700.0)), math.exp(min(ly, 700.0))
+    if abs(lx - ly) > 60.0 or not -600.0 < lx < 600.0 or not -600.0 < ly < 600.0:
+        # scales far apart (p ~ exp(-min(x, y))) or both far above d (p ~ 1)
+        return e, math.exp(min(lxy, 700.0)), math.exp(-e)
+    xf, yf = math.exp(lx), math.exp(ly)
     r = math.sqrt(xf + yf)
     u, v = xf / r, yf / r
     b = v * math.exp(-u * u) + u * math.exp(-v * v) + _SQRT_PI * u * v * (math.erf(u) + math.erf(v))
@@ -657,6 +808,8 @@ def _single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
     if est is None:
         return None
     e, xy, pest = est
+    if pest > 0.5 and want == "logp":
+        return None  # log1p(-(1 - p)) in the general path
     guard = _guard_digits(e)
     direct_q = want in ("q", "logq") and pest > 0.45
     if direct_q:
@@ -680,6 +833,8 @@ def _single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
         return make(p)
     if not direct_q and _lm.mpf_gt(p, _MP_HALF):
         return None  # 1 - p by the adaptive loop of the general path
+    if want == "logq" and not direct_q and p[2] + p[3] < -16:
+        return None  # log1p(-p) for small p in the general path
     q = sub(_lm.fone, p, prec, rnd)
     if direct_q and not (q[0] == 0 and q[1] and -(q[2] + q[3]) <= 3.3 * (guard - 4)):
         return None  # more digits cancelled than planned: the general path's loop
@@ -698,6 +853,10 @@ def _single_mp(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> mpmath.mp
         with mpmath.workprec(64):
             est = _estimate(*_mp_xy_forcing(sigma, sigma1, omega, Omega, d))
     e, xy, pest = est
+    if pest > 0.5 and want == "logp":  # log p = log1p(-q) keeps its relative accuracy
+        q = _single_mp(sigma, sigma1, omega, Omega, d, dps + 5, "q")
+        with mpmath.workdps(dps + 5):
+            return mpmath.log1p(-q)
     guard = _guard_digits(e)
     direct_q = want in ("q", "logq") and pest > 0.45
     if direct_q:  # 1 - p cancels ~log10(6/(x y)) digits for small x, y: add them up front
@@ -713,6 +872,9 @@ def _single_mp(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> mpmath.mp
             # a posteriori check of the digits lost; fall back to the adaptive loop if needed
             if not (q > 0 and -mpmath.mag(q) <= 3.3 * (guard - 4)):  # digits lost <= guard-4
                 q = _mp_q_from_xy(x, y)
+        elif want == "logq":
+            p = _mp_p_from_xy(x, y)
+            return mpmath.log1p(-p) if p <= 0.5 else mpmath.log(_mp_q_from_xy(x, y))
         else:
             q = _mp_q_from_xy(x, y)
         return q if want == "q" else mpmath.log(q)
