@@ -353,14 +353,19 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
                 k = kappa
                 q = mpmath.expm1(rel.h(kappa))
             else:
+                # c_k is unimodal in real k, so the integer argmin is floor(kappa) or the next
+                # integer; which one (and an exact tie -> the larger) is decided by the same
+                # certified sign of c_{k+1} - c_k as the exact solver uses (a value comparison
+                # at dps digits cannot resolve it: the two values agree to ~2 log10(k) digits).
+                from symhx.critical import _SignOracle
+
                 lo_k = max(2, int(mpmath.floor(kappa)))
-                cands = [kk for kk in (lo_k, lo_k + 1) if kk <= N]
-                vals = {kk: rel.h(mpmath.mpf(kk)) for kk in cands}
-                hmin = min(vals.values())
-                tol = mpmath.mpf(10) ** (-(dps + 5)) * abs(hmin)
-                kbest = max(kk for kk, v in vals.items() if v - hmin <= tol)
+                if lo_k + 1 <= N and _SignOracle(N).sign(lo_k) <= 0:
+                    kbest = lo_k + 1
+                else:
+                    kbest = lo_k
                 k = kbest
-                q = mpmath.expm1(vals[kbest])
+                q = mpmath.expm1(rel.h(mpmath.mpf(kbest)))
         p = (1 + q) / Nm
     with mpmath.workdps(dps):
         k_out = k if isinstance(k, int) else +k
