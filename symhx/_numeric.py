@@ -7,12 +7,8 @@ Nothing here changes the global mpmath precision: every routine works inside ``m
 
 from __future__ import annotations
 
-import math
-import numbers
-import operator
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
@@ -30,108 +26,19 @@ __all__ = [
     "iv_prec",
 ]
 
-#: largest dps accepted by the solvers (beyond this mpmath gets slow, not wrong)
-MAX_DPS = 5000
-
-
-def check_N(N: Any, name: str = "N", minimum: int = 2) -> int:
-    """Validate an integer number of vertices (``N >= minimum``)."""
-    if isinstance(N, bool):
-        raise TypeError(f"{name} must be an integer, got bool")
-    try:
-        v = operator.index(N)
-    except TypeError:
-        if isinstance(N, float) and N.is_integer():
-            raise TypeError(
-                f"{name} must be an int (got float {N!r}; floats above 2**53 are not exact, "
-                f"write e.g. 10**100)"
-            ) from None
-        raise TypeError(f"{name} must be an integer, got {type(N).__name__}") from None
-    if v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {v}")
-    return v
-
-
-def check_dps(dps: Any) -> int:
-    """Validate a requested number of significant decimal digits."""
-    try:
-        d = operator.index(dps)
-    except TypeError:
-        raise TypeError(f"dps must be an integer, got {type(dps).__name__}") from None
-    if not 1 <= d <= MAX_DPS:
-        raise ValueError(f"dps must be between 1 and {MAX_DPS}, got {d}")
-    return d
+from symhx.validation import (  # noqa: F401  (re-exported for the layers below the API)
+    MAX_DPS,
+    as_fraction,
+    check_dps,
+    check_N,
+    check_p,
+    is_exact_type,
+)
 
 
 def digits_of(N: int) -> int:
     """Decimal digits of the positive int ``N`` (cheap, no str() of huge ints)."""
     return max(1, int(N.bit_length() * 0.30103) + 1)
-
-
-def _sympy_number(x: Any) -> bool:
-    mod = type(x).__module__ or ""
-    return mod.startswith("sympy")
-
-
-def as_fraction(p: Any) -> Fraction | None:
-    """Exact rational value of ``p`` if it has one, else ``None``.
-
-    ints, Fractions, Decimals, floats (their exact binary value), mpmath mpf (exact binary value)
-    and sympy Rationals are rational; sympy irrationals (``sqrt(2)/50``) are not.
-    """
-    if isinstance(p, bool):
-        raise TypeError("p must be a number, got bool")
-    if isinstance(p, (int, Fraction)):
-        return Fraction(p)
-    if isinstance(p, float):
-        if not math.isfinite(p):
-            raise ValueError(f"p must be finite, got {p!r}")
-        return Fraction(p)
-    if isinstance(p, Decimal):
-        if not p.is_finite():
-            raise ValueError(f"p must be finite, got {p!r}")
-        return Fraction(p)
-    if isinstance(p, mpmath.mpf):
-        if not mpmath.isfinite(p):
-            raise ValueError(f"p must be finite, got {p!r}")
-        man, exp = p.man_exp  # exact: no re-rounding to the global precision
-        return Fraction(man) * Fraction(2) ** exp if man else Fraction(0)
-    if _sympy_number(p):
-        if getattr(p, "is_Rational", False):
-            return Fraction(int(p.p), int(p.q))
-        if getattr(p, "is_number", False) and p.is_real:
-            return None
-        raise TypeError(f"p must be a real number, got sympy object {p!r}")
-    if isinstance(p, numbers.Integral):  # numpy ints
-        return Fraction(int(p))
-    if isinstance(p, numbers.Real):  # numpy floats
-        return as_fraction(float(p))
-    raise TypeError(f"p must be a real number, got {type(p).__name__}")
-
-
-def is_exact_type(p: Any) -> bool:
-    """Inputs for which results are returned exactly (ints, Fractions, sympy Rationals)."""
-    if isinstance(p, bool):
-        return False
-    if isinstance(p, (int, Fraction)) or isinstance(p, numbers.Integral):
-        return True
-    return _sympy_number(p) and bool(getattr(p, "is_Rational", False))
-
-
-def check_p(p: Any) -> tuple[Fraction | None, Any]:
-    """Validate an impact probability ``p > 0``; return ``(exact value or None, original)``.
-
-    ``p > 1`` is accepted (the formulas are defined for any ``p > 0``) but is unphysical.
-    """
-    fr = as_fraction(p)
-    if fr is not None:
-        if fr <= 0:
-            raise ValueError(f"p must be > 0, got {p!r}")
-        return fr, p
-    val = p.evalf(30)
-    if not val > 0:
-        raise ValueError(f"p must be > 0, got {p!r}")
-    return None, p
 
 
 def mp_value(p: Any, fr: Fraction | None) -> mpmath.mpf:

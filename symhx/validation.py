@@ -1,0 +1,343 @@
+"""The one conversion and validation layer of symhx.
+
+Every public function and every CLI command converts its arguments here, so that one argument
+means the same thing everywhere (API and CLI) and bad input always raises a clear error:
+
+* :class:`ValueError` for a value of the right kind outside what is allowed, and
+  :class:`TypeError` for a wrong kind of object; every message names the argument, shows the
+  value and says what is allowed.  Arrays report the first bad index.
+* ``bool`` is never a number (``True`` is rejected wherever an int or a real is expected).
+
+Input conventions for real numbers (``p``, ``sigma``, ...)
+------------------------------------------------------------
+* ``int``, numpy integers, :class:`fractions.Fraction`, :class:`decimal.Decimal`, sympy
+  ``Rational`` and *decimal strings* (``"0.02"``, ``"2e-2"``, ``"1/50"``) are **exact
+  rationals**: ``"0.02"`` is exactly 1/50.
+* ``float``, numpy floats and ``mpmath.mpf`` are taken at their **exact binary value**: the float
+  ``0.02`` is ``0.0200000000000000004163...``, slightly above 1/50, so
+  ``symhx.modes(101, 0.02) == (51,)`` while ``symhx.modes(101, "0.02") == (50, 51)``.
+* sympy irrationals (``sympy.sqrt(2)/50``) are accepted where documented; they are evaluated to
+  the working precision.
+
+Precision
+---------
+``dps`` is the number of significant decimal digits wanted in an mpmath result:
+an int in ``[1, MAX_DPS]``.  ``dps=None`` means float64 for every numeric function that has a
+float64 path.  :data:`DEFAULT_DPS` is the one default of the API and the CLI.
+
+>>> to_rational("0.02")
+Fraction(1, 50)
+>>> to_rational("1/50") == to_rational("2e-2") == to_rational(Fraction(1, 50))
+True
+>>> check_dps(True, allow_none=True)
+Traceback (most recent call last):
+    ...
+TypeError: dps must be an int between 1 and 5000 (or None for float64), got bool True
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import operator
+import re
+from collections.abc import Iterable
+from decimal import Decimal, InvalidOperation
+from fractions import Fraction
+from typing import Any
+
+import mpmath
+import numpy as np
+
+__all__ = [
+    "DEFAULT_DPS",
+    "DEFAULT_SPACE",
+    "MAX_DECIMAL_EXPONENT",
+    "MAX_DPS",
+    "as_fraction",
+    "check_N",
+    "check_array",
+    "check_choice",
+    "check_dps",
+    "check_int",
+    "check_p",
+    "check_real",
+    "check_seed",
+    "is_exact_type",
+    "to_rational",
+]
+
+#: The one default precision (significant decimal digits) of the API and the CLI.
+DEFAULT_DPS = 50
+#: The largest ``dps`` accepted anywhere (a documented work limit: mpmath beyond this takes minutes
+#: to hours per call).  Raise it by editing this constant if you really need more digits.
+MAX_DPS = 5000
+#: The default sample space of every distribution function, ``critical_point`` and the CLI.
+DEFAULT_SPACE = "simple"
+#: Decimal strings such as ``"1e100000"`` are parsed exactly; the exponent is capped here so that a
+#: typo cannot ask for a number with billions of digits (10**100000 has 100001 digits).
+MAX_DECIMAL_EXPONENT = 100_000
+
+
+def _show(x: Any) -> str:
+    """A short description of a bad value for an error message."""
+    try:
+        r = repr(x)
+    except Exception:  # pragma: no cover - exotic objects
+        r = object.__repr__(x)
+    if len(r) > 60:
+        r = r[:57] + "..."
+    return f"{type(x).__name__} {r}"
+
+
+def _sympy_number(x: Any) -> bool:
+    return (type(x).__module__ or "").startswith("sympy")
+
+
+# --------------------------------------------------------------------------- strings
+_RATIO = re.compile(r"^\s*([+-]?\d+)\s*/\s*([+-]?\d+)\s*$")
+_POWER = re.compile(r"^\s*(\d+)\s*\*\*\s*(\d+)\s*$")
+_DECIMAL = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*$")
+
+
+def _parse_string(text: str, name: str) -> Fraction:
+    """Exact rational value of ``"0.02"``, ``"2e-2"``, ``"1/50"`` or ``"10**100"``."""
+    s = text.strip().replace("_", "")
+    m = _RATIO.match(s)
+    if m:
+        num, den = int(m.group(1)), int(m.group(2))
+        if den == 0:
+            raise ValueError(f"{name} must be a finite number, got {text!r} (division by zero)")
+        return Fraction(num, den)
+    m = _POWER.match(s)
+    if m:
+        base, exp = int(m.group(1)), int(m.group(2))
+        if exp * max(1.0, math.log10(max(base, 1))) > MAX_DECIMAL_EXPONENT:
+            raise ValueError(f"{name}={text!r} has more than {MAX_DECIMAL_EXPONENT} digits "
+                             f"(symhx.validation.MAX_DECIMAL_EXPONENT)")
+        return Fraction(base**exp)
+    if _DECIMAL.match(s):
+        try:
+            dec = Decimal(s)
+        except InvalidOperation:  # pragma: no cover - the regex admits only valid decimals
+            raise ValueError(f"{name} must be a number, got {text!r}") from None
+        if dec and abs(dec.adjusted()) > MAX_DECIMAL_EXPONENT:
+            raise ValueError(f"{name}={text!r}: decimal exponent beyond +-{MAX_DECIMAL_EXPONENT} "
+                             f"(symhx.validation.MAX_DECIMAL_EXPONENT)")
+        return Fraction(dec)
+    raise ValueError(f"{name} must be a number such as 0.02, 2e-2, 1/50 or 10**100, "
+                     f"got {text!r}")
+
+
+# --------------------------------------------------------------------------- exact numbers
+def to_rational(x: Any, name: str = "p") -> Fraction | None:
+    """The exact rational value of ``x``, or ``None`` for a real sympy irrational.
+
+    See the module docstring for the conventions.  Raises ``ValueError`` for NaN and infinities,
+    ``TypeError`` for bools, complex numbers and non-numbers.
+
+    >>> to_rational(0.5), to_rational("1e-3"), to_rational(3)
+    (Fraction(1, 2), Fraction(1, 1000), Fraction(3, 1))
+    """
+    if isinstance(x, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a real number, got {_show(x)}")
+    if isinstance(x, (int, Fraction)):
+        return Fraction(x)
+    if isinstance(x, str):
+        return _parse_string(x, name)
+    if isinstance(x, float):
+        if not math.isfinite(x):
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        return Fraction(x)
+    if isinstance(x, Decimal):
+        if not x.is_finite():
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        return Fraction(x)
+    if isinstance(x, mpmath.mpf):
+        if not mpmath.isfinite(x):
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        sign, man, exp, _ = x._mpf_  # exact: never re-rounded to the global precision
+        fr = Fraction(man) * Fraction(2) ** exp if man else Fraction(0)
+        return -fr if sign else fr
+    if _sympy_number(x):
+        if getattr(x, "is_Rational", False):
+            return Fraction(int(x.p), int(x.q))
+        if getattr(x, "is_number", False) and x.is_real and x.is_finite:
+            return None
+        raise TypeError(f"{name} must be a finite real number, got sympy object {x!r}")
+    if isinstance(x, numbers.Integral):  # numpy ints
+        return Fraction(int(x))
+    if isinstance(x, np.floating):
+        return to_rational(float(x), name)
+    if isinstance(x, np.ndarray) and x.ndim == 0:
+        return to_rational(x[()], name)
+    if isinstance(x, (numbers.Complex, mpmath.mpc)):
+        raise TypeError(f"{name} must be a real number, got {_show(x)}")
+    raise TypeError(f"{name} must be a real number, got {_show(x)}")
+
+
+def as_fraction(p: Any, name: str = "p") -> Fraction | None:
+    """Alias of :func:`to_rational` (the older name)."""
+    return to_rational(p, name)
+
+
+def is_exact_type(p: Any) -> bool:
+    """Inputs whose results are returned exactly: ints, Fractions, sympy Rationals and decimal
+    strings (floats and mpf are rational too, but results for them are mpf at ``dps``)."""
+    if isinstance(p, (bool, np.bool_)):
+        return False
+    if isinstance(p, (int, Fraction, str, numbers.Integral)):
+        return True
+    return _sympy_number(p) and bool(getattr(p, "is_Rational", False))
+
+
+def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
+    """Validate an impact probability ``p > 0``; return ``(exact value or None, original)``.
+
+    ``p > 1`` is accepted (the formulas are defined for any ``p > 0``) but is unphysical.
+    A sympy irrational returns ``None`` as its exact value.
+    """
+    fr = to_rational(p, name)
+    if fr is not None:
+        if fr <= 0:
+            raise ValueError(f"{name} must be > 0, got {p!r}")
+        return fr, p
+    val = p.evalf(30)
+    if not val > 0:
+        raise ValueError(f"{name} must be > 0, got {p!r}")
+    return None, p
+
+
+def check_real(x: Any, name: str, *, low: float | None = None, high: float | None = None,
+               low_open: bool = False, high_open: bool = False) -> Fraction:
+    """A finite real scalar as an exact ``Fraction`` within ``[low, high]`` (bounds optional,
+    ``low_open``/``high_open`` exclude them).  sympy irrationals are refused here."""
+    fr = to_rational(x, name)
+    if fr is None:
+        raise TypeError(f"{name} must be a rational or float number, got {_show(x)}")
+    if low is not None and (fr < Fraction(low) or (low_open and fr == Fraction(low))):
+        rel = ">" if low_open else ">="
+        raise ValueError(f"{name} must be {rel} {low}, got {x!r}")
+    if high is not None and (fr > Fraction(high) or (high_open and fr == Fraction(high))):
+        rel = "<" if high_open else "<="
+        raise ValueError(f"{name} must be {rel} {high}, got {x!r}")
+    return fr
+
+
+# --------------------------------------------------------------------------- integers
+def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | None = None) -> int:
+    """An exact integer: ints, numpy ints, integral Fractions / sympy Integers and integer strings
+    (``"101"``, ``"1e100"``, ``"10**100"``).  Floats are refused (above 2**53 they are not exact);
+    bools are refused."""
+    if isinstance(x, (bool, np.bool_)):
+        raise TypeError(f"{name} must be an integer, got {_show(x)}")
+    if isinstance(x, str):
+        fr = _parse_string(x, name)
+        if fr.denominator != 1:
+            raise ValueError(f"{name} must be an integer, got {x!r}")
+        v = fr.numerator
+    elif isinstance(x, Fraction) or (_sympy_number(x) and getattr(x, "is_Integer", False)):
+        if isinstance(x, Fraction) and x.denominator != 1:
+            raise ValueError(f"{name} must be an integer, got {x!r}")
+        v = int(x)
+    else:
+        try:
+            v = operator.index(x)
+        except TypeError:
+            if isinstance(x, (float, np.floating)):
+                raise TypeError(
+                    f"{name} must be an int, got float {x!r} (floats above 2**53 are not exact: "
+                    f"write e.g. 10**100 or the string '1e100')") from None
+            raise TypeError(f"{name} must be an integer, got {_show(x)}") from None
+    if minimum is not None and v < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {v}")
+    if maximum is not None and v > maximum:
+        raise ValueError(f"{name} must be <= {maximum}, got {v}")
+    return v
+
+
+def check_N(N: Any, name: str = "N", minimum: int = 2) -> int:
+    """Validate a number of vertices (possible impacts) ``N >= minimum`` (any size)."""
+    return check_int(N, name, minimum=minimum)
+
+
+def check_dps(dps: Any, *, allow_none: bool = False, name: str = "dps") -> int | None:
+    """Validate a precision: an int in ``[1, MAX_DPS]`` (``None`` too when ``allow_none``,
+    meaning float64)."""
+    if dps is None and allow_none:
+        return None
+    allowed = f"an int between 1 and {MAX_DPS}" + (" (or None for float64)" if allow_none else "")
+    if isinstance(dps, (bool, np.bool_)):
+        raise TypeError(f"{name} must be {allowed}, got {_show(dps)}")
+    try:
+        d = operator.index(dps)
+    except TypeError:
+        raise TypeError(f"{name} must be {allowed}, got {_show(dps)}") from None
+    if not 1 <= d <= MAX_DPS:
+        raise ValueError(f"{name} must be {allowed}, got {d} "
+                         f"(the cap is symhx.validation.MAX_DPS)")
+    return d
+
+
+def check_seed(seed: Any, name: str = "seed") -> int | None:
+    """A random seed: ``None`` or a non-negative int (not a bool, not a float)."""
+    if seed is None:
+        return None
+    return check_int(seed, name, minimum=0)
+
+
+def check_choice(x: Any, name: str, allowed: Iterable[Any]) -> Any:
+    """``x`` if it is one of ``allowed`` (compared with ``==``), else ValueError listing them."""
+    options = list(allowed)
+    if isinstance(x, (bool, np.bool_)) and not any(isinstance(o, bool) for o in options):
+        raise TypeError(f"{name} must be one of {options}, got {_show(x)}")
+    for o in options:
+        try:
+            if x == o:
+                return o
+        except Exception:  # pragma: no cover - objects whose == raises
+            continue
+    raise ValueError(f"{name} must be one of {options}, got {x!r}")
+
+
+# --------------------------------------------------------------------------- float arrays
+def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool = False,
+                finite: bool = True, allow_empty: bool = False) -> np.ndarray:
+    """A float64 array from numbers, lists or arrays; errors name the first bad index.
+
+    Bools and non-numeric entries raise TypeError; NaN, infinities (when ``finite``) and values
+    out of range raise ValueError.
+    """
+    if isinstance(x, (bool, np.bool_, str, bytes)):
+        raise TypeError(f"{name} must be a real number or an array of them, got {_show(x)}")
+    try:
+        arr = np.asarray(x)
+    except Exception as exc:  # ragged lists and the like
+        raise TypeError(f"{name} must be a real number or an array of them ({exc})") from None
+    if arr.dtype == bool or arr.dtype.kind not in "iuf":
+        if arr.dtype.kind == "O":
+            try:
+                arr = np.array([float(to_rational(v, name)) for v in arr.ravel()],  # type: ignore[arg-type]
+                               dtype=float).reshape(arr.shape)
+            except (TypeError, ValueError) as exc:
+                raise type(exc)(f"{exc}") from None
+        else:
+            raise TypeError(f"{name} must hold real numbers, got an array of dtype {arr.dtype}")
+    arr = arr.astype(float, copy=False)
+    if arr.size == 0 and not allow_empty:
+        raise ValueError(f"{name} is empty: give at least one value")
+
+    def first_bad(mask: np.ndarray) -> str:
+        idx = np.argwhere(mask)[0]
+        where = f" at index {tuple(int(i) for i in idx)}" if arr.ndim else ""
+        return f"{arr[tuple(idx)]!r}{where}"
+
+    if finite and not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {first_bad(~np.isfinite(arr))}")
+    if np.any(np.isnan(arr)):
+        raise ValueError(f"{name} must not be NaN, got {first_bad(np.isnan(arr))}")
+    if positive and not np.all(arr > 0):
+        raise ValueError(f"{name} must be > 0, got {first_bad(~(arr > 0))}")
+    if nonnegative and not np.all(arr >= 0):
+        raise ValueError(f"{name} must be >= 0, got {first_bad(~(arr >= 0))}")
+    return arr
