@@ -1,10 +1,20 @@
-"""The ``symhx`` command line.
+"""The ``symhx`` command line (also ``python -m symhx``).
 
 Sub-commands live in :mod:`symhx.commands`: every module there defines
 ``register(subparsers)`` and, optionally, ``paper(out: Path, full: bool) -> list[str]``, which
-contributes its part of ``symhx paper`` (the
-main job: recompute the paper's numbers and figures into a folder). Modules run in the order of
-their ``ORDER`` attribute.
+contributes its part of ``symhx paper`` (the main job: recompute the paper's numbers and figures
+into a folder). Modules run in the order of their ``ORDER`` attribute.
+
+Errors: :func:`main` is the one top-level handler. Every error is one line on stderr,
+``symhx CMD: error: ...``, never a traceback:
+
+* exit code **2** for bad input: argparse errors, ``ValueError``, ``TypeError`` and
+  ``OverflowError`` raised by the validation of the arguments, and ``OSError`` (e.g. an
+  unwritable ``--out`` or ``--csv``);
+* exit code **1** for an internal error (anything else), with a request to report it;
+* exit code 130 on Ctrl-C.
+
+Help: every option shows its default (``symhx CMD --help``).
 """
 
 from __future__ import annotations
@@ -15,8 +25,36 @@ import pkgutil
 import sys
 from collections.abc import Sequence
 from types import ModuleType
+from typing import Any, NoReturn
 
 from symhx import __version__
+
+#: where internal errors should be reported
+REPORT_HINT = "this is a bug in symhx; please report it with the command line you ran"
+
+
+class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """argparse's defaults formatter that also shows the default of options without help text,
+    and never ``(default: None)`` or ``(default: False)`` (flags and optional values)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        help_text = action.help or ""
+        if "%(default)" in help_text or action.default in (None, False, argparse.SUPPRESS):
+            return help_text
+        if action.option_strings or action.nargs in (argparse.OPTIONAL, argparse.ZERO_OR_MORE):
+            return (help_text + " " if help_text else "") + "(default: %(default)s)"
+        return help_text
+
+
+class Parser(argparse.ArgumentParser):
+    """ArgumentParser with :class:`HelpFormatter` and one-line errors (exit code 2)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
 
 
 def command_modules() -> list[ModuleType]:
@@ -32,10 +70,13 @@ def command_modules() -> list[ModuleType]:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    """The full ``symhx`` parser (sub-parsers inherit :class:`Parser`)."""
+    parser = Parser(
         prog="symhx",
         description="Exact and asymptotic analysis of the graph-theory model of impacts in heat "
-        "exchangers. 'symhx paper' recomputes the paper's numbers and figures.",
+        "exchangers. 'symhx paper' recomputes the paper's numbers and figures. "
+        "Conventions: the positional N is the number of vertices (possible impacts, "
+        "N = pipes + 1); numbers such as 0.02, 2e-2 or 1/50 are exact rationals.",
     )
     parser.add_argument("--version", action="version", version=f"symhx {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -45,14 +86,48 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(exc: BaseException) -> str:
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    return text if len(text) <= 2000 else text[:1997] + "..."
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit code (see the module docstring)."""
     parser = build_parser()
-    args = parser.parse_args(argv)
     try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a usage error already printed (one line)
+        return exc.code if isinstance(exc.code, int) else 2
+    prog = f"symhx {args.command}"
+    old_limit = sys.get_int_max_str_digits() if hasattr(sys, "get_int_max_str_digits") else None
+    try:
+        if old_limit is not None:  # exact huge integers print in full, never raise mid-output
+            sys.set_int_max_str_digits(0)
         rc = args.func(args)
-    except ValueError as exc:  # bad input: one clear line, exit code 2
-        print(f"symhx {args.command}: error: {exc}", file=sys.stderr)
+    except KeyboardInterrupt:
+        print(f"{prog}: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # e.g. `symhx ... | head`: the reader left, nothing to report
+        try:
+            sys.stdout = open("/dev/null", "w")
+        except OSError:  # pragma: no cover
+            pass
+        return 0
+    except (ValueError, TypeError, OverflowError) as exc:  # bad input
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
+    except OSError as exc:  # unwritable --out / --csv, missing file, ...
+        msg = (f"{exc.strerror}: {exc.filename}" if exc.filename and exc.strerror
+               else _one_line(exc))
+        print(f"{prog}: error: {msg}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # internal error: one line and a request to report it
+        print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} ({REPORT_HINT})",
+              file=sys.stderr)
+        return 1
+    finally:
+        if old_limit is not None:
+            sys.set_int_max_str_digits(old_limit)
     return int(rc or 0)
 
 

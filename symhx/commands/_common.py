@@ -1,30 +1,95 @@
-"""Helpers shared by the CLI sub-commands: JSON output of exact and mpmath values."""
+"""Helpers shared by the CLI sub-commands: argument types (through :mod:`symhx.validation`),
+strict JSON output, and the display of exact and mpmath values.
+
+* Every numeric CLI argument is parsed by the same functions as the API (:mod:`symhx.validation`),
+  so ``"0.02"`` means exactly 1/50 on the command line too; a bad value becomes argparse's one-line
+  ``symhx CMD: error: argument ...`` message (exit code 2).
+* JSON is strict (``allow_nan=False``): exact integers beyond 2**53 and mpf values are decimal
+  strings (no digit lost), Fractions are ``"a/b"``, a float NaN is ``null`` and float infinities
+  are the strings ``"inf"`` / ``"-inf"``.
+* CSV cells hold floats with 17 significant digits (enough to round-trip a float64); the full
+  precision goes to a JSON file next to each CSV.
+"""
 
 from __future__ import annotations
 
+import argparse
 import json
+import math
+from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
 import mpmath
 
+from symhx import validation as V
 
+#: integers with more digits than this are shown as ``d.ddd...e+NN (D digits)`` in text output
+MAX_INT_DIGITS_SHOWN = 60
+
+
+# --------------------------------------------------------------------------- argument types
+def _arg_type(fn: Callable[[str], Any], what: str) -> Callable[[str], Any]:
+    def convert(text: str) -> Any:
+        try:
+            return fn(text)
+        except (ValueError, TypeError, OverflowError) as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+    convert.__name__ = what  # argparse names the type in some messages
+    return convert
+
+
+def int_arg(name: str, minimum: int | None = None, maximum: int | None = None
+            ) -> Callable[[str], int]:
+    """argparse ``type=``: an exact integer such as ``101``, ``1e100`` or ``10**100``
+    (:func:`symhx.validation.check_int`)."""
+    return _arg_type(lambda t: V.check_int(t, name, minimum=minimum, maximum=maximum), name)
+
+
+def rational_arg(name: str, positive: bool = True) -> Callable[[str], Fraction]:
+    """argparse ``type=``: an exact rational such as ``0.02``, ``2e-2`` or ``1/50``
+    (:func:`symhx.validation.to_rational`); ``> 0`` when ``positive``."""
+    def conv(text: str) -> Fraction:
+        fr = V.to_rational(text, name)
+        assert fr is not None  # strings are always rational
+        if positive and fr <= 0:
+            raise ValueError(f"{name} must be > 0, got {text!r}")
+        return fr
+
+    return _arg_type(conv, name)
+
+
+def dps_arg(text: str) -> int:
+    """argparse ``type=`` for ``--dps`` (:func:`symhx.validation.check_dps`)."""
+    try:
+        return V.check_dps(V.check_int(text, "dps"))  # type: ignore[return-value]
+    except (ValueError, TypeError) as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+# --------------------------------------------------------------------------- JSON
 def jsonable(obj: Any) -> Any:
-    """Convert ints, Fractions, mpf and containers into JSON-friendly values.
+    """Convert ints, Fractions, mpf and containers into strict-JSON values (see module doc).
 
-    Big ints and mpf become decimal strings (so no digit is lost); Fractions become "a/b".
+    >>> jsonable({"a": Fraction(1, 3), "b": 2**60, "c": float("nan"), "d": float("-inf")})
+    {'a': '1/3', 'b': '1152921504606846976', 'c': None, 'd': '-inf'}
     """
     if isinstance(obj, bool) or obj is None:
         return obj
     if isinstance(obj, int):
-        return obj if abs(obj) < 2**53 else str(obj)
+        return obj if abs(obj) < 2**53 else int_str(obj)
     if isinstance(obj, Fraction):
         if obj.denominator == 1:
             return jsonable(obj.numerator)
-        return f"{obj.numerator}/{obj.denominator}"
+        return f"{int_str(obj.numerator)}/{int_str(obj.denominator)}"
     if isinstance(obj, mpmath.mpf):
+        if not mpmath.isfinite(obj):
+            return None if mpmath.isnan(obj) else ("inf" if obj > 0 else "-inf")
         return mpmath.nstr(obj, mpf_digits(obj), strip_zeros=False)
     if isinstance(obj, float):
+        if not math.isfinite(obj):
+            return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
         return obj
     if isinstance(obj, dict):
         return {str(k): jsonable(v) for k, v in obj.items()}
@@ -32,35 +97,106 @@ def jsonable(obj: Any) -> Any:
         return [jsonable(v) for v in obj]
     if hasattr(obj, "as_dict"):
         return jsonable(obj.as_dict())
+    if hasattr(obj, "item") and callable(obj.item):  # numpy scalars
+        return jsonable(obj.item())
     return str(obj)
 
 
 def mpf_digits(x: mpmath.mpf) -> int:
-    """Decimal digits carried by the mantissa of ``x`` (at least 17)."""
+    """Decimal digits carried by the mantissa of ``x`` (at least 15)."""
     bits = x._mpf_[3] if x._mpf_[1] else 53
     return max(15, mpmath.libmp.prec_to_dps(max(bits, 53)))
 
 
 def dump_json(obj: Any) -> str:
-    return json.dumps(jsonable(obj), indent=2)
+    """Strict JSON text of ``obj`` (never ``NaN`` or ``Infinity``)."""
+    return json.dumps(jsonable(obj), indent=2, allow_nan=False)
+
+
+# --------------------------------------------------------------------------- text and CSV
+def int_str(n: int) -> str:
+    """All digits of an int of any size (Python's 4300-digit ``str`` limit does not apply)."""
+    if abs(n) < 10**4000:
+        return str(n)
+    chunks = []  # exact digits, 1000 at a time
+    sign, n = ("-", -n) if n < 0 else ("", n)
+    base = 10**1000
+    while n:
+        n, r = divmod(n, base)
+        chunks.append(r)
+    return sign + str(chunks[-1]) + "".join(f"{c:01000d}" for c in reversed(chunks[:-1]))
+
+
+def int_show(n: int) -> str:
+    """An int for text output: in full up to :data:`MAX_INT_DIGITS_SHOWN` digits, else as
+    ``10**e`` (exact powers of ten) or ``d.dddd...e+NN (exact integer, D digits)``.
+
+    >>> int_show(101), int_show(10**100), int_show(3 * 10**80 + 1)
+    ('101', '10**100', '3.0000000000000000e+80 (exact integer, 81 digits)')
+    """
+    a = abs(n)
+    if a < 10**MAX_INT_DIGITS_SHOWN:
+        return str(n)
+    digits = len(int_str(a))
+    if a == 10 ** (digits - 1):
+        return ("-" if n < 0 else "") + f"10**{digits - 1}"
+    with mpmath.workdps(20):
+        lead = mpmath.nstr(mpmath.mpf(n), 17, strip_zeros=False)
+    return f"{lead} (exact integer, {digits} digits)"
 
 
 def mpstr(x: Any, digits: int) -> str:
     """Decimal string of ``x`` with ``digits`` significant digits.
 
     mpf values are printed from their own mantissa (never re-rounded to the global precision);
-    Fractions are printed as decimals with a trailing ``(exact a/b)`` when short enough.
+    Fractions are printed as decimals followed by ``(exact a/b)`` (or ``(exact)`` when ``a/b`` is
+    long); ints are exact.
+
+    >>> mpstr(Fraction(1, 3), 5), mpstr(Fraction(1, 4), 5)
+    ('0.33333  (exact 1/3)', '0.25  (exact 1/4)')
     """
-    if isinstance(x, int):
+    if isinstance(x, bool):
         return str(x)
+    if isinstance(x, int):
+        return int_show(x)
     if isinstance(x, Fraction):
         if x.denominator == 1:
-            return str(x.numerator)
+            return int_show(x.numerator)
         with mpmath.workdps(digits + 10):
             dec = mpmath.nstr(mpmath.mpf(x.numerator) / x.denominator, digits)
-        exact = f"{x.numerator}/{x.denominator}"
-        return f"{dec}  (exact {exact})" if len(exact) <= 60 else f"{dec}  (exact rational)"
+        if x.numerator.bit_length() + x.denominator.bit_length() < 190:
+            return f"{dec}  (exact {x.numerator}/{x.denominator})"
+        return f"{dec}  (rounded; the exact value is a long rational)"
     if isinstance(x, mpmath.mpf):
         digits = min(digits, mpf_digits(x))
         return mpmath.nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12)
+    if isinstance(x, float):
+        return repr(x)
     return str(x)
+
+
+def csv_num(x: Any) -> Any:
+    """A CSV cell: ints up to 17 digits as they are, every other number as a float with 17
+    significant digits (the full precision is in the JSON file written alongside).
+
+    >>> csv_num(Fraction(1, 3)), csv_num(10**100), csv_num(7)
+    ('0.33333333333333331', '1.0000000000000000e+100', 7)
+    """
+    if x is None or isinstance(x, (bool, str)):
+        return x
+    if isinstance(x, int) and abs(x) < 10**17:
+        return x
+    if isinstance(x, (int, Fraction)):
+        with mpmath.workdps(30):
+            v = mpmath.mpf(x.numerator) / x.denominator if isinstance(x, Fraction) \
+                else mpmath.mpf(x)
+            if abs(v) < 1e300 and (v == 0 or abs(v) > 1e-300):
+                return f"{float(v):.17g}"
+            return mpmath.nstr(v, 17, strip_zeros=False)
+    if isinstance(x, mpmath.mpf):
+        if not mpmath.isfinite(x) or (x != 0 and not 1e-300 < abs(x) < 1e300):
+            return mpmath.nstr(x, 17, strip_zeros=False)
+        return f"{float(x):.17g}"
+    if isinstance(x, float):
+        return f"{x:.17g}"
+    return x

@@ -7,21 +7,14 @@ sympy is imported only inside the handlers, never when the CLI starts.
 from __future__ import annotations
 
 import argparse
-import csv
 import json
-import time
 from pathlib import Path
 from typing import Any
 
-from symhx.commands._common import dump_json, jsonable, mpstr
+from symhx.commands._common import dump_json, int_arg, mpstr
+from symhx.commands.core import add_dps, add_json, write_csv
 
 ORDER = 30
-
-
-def _parse_int(text: str) -> int:
-    from symhx.commands.core import parse_int
-
-    return parse_int(text)
 
 
 def register(sub: Any) -> None:
@@ -33,20 +26,20 @@ def register(sub: Any) -> None:
     d.add_argument("--latex", action="store_true", help="print LaTeX instead of sympy text")
     d.add_argument("--verify", action="store_true", help="run the checks and show the outcome")
     d.add_argument("--steps", action="store_true", help="also print the derivation steps")
-    d.add_argument("--json", action="store_true", help="JSON output")
+    add_json(d)
     d.set_defaults(func=cmd_derive)
 
     a = sub.add_parser("asymptotics", help="large-N approximations of p_c and k_jump")
-    a.add_argument("N", nargs="?", type=_parse_int, default=None,
+    a.add_argument("N", nargs="?", type=int_arg("N", minimum=2), default=None,
                    help="number of vertices (e.g. 1e10, 10**100); omit with --table")
     a.add_argument("--order", default="all",
-                   help="leading, next, lambert, corrected, relaxed, best or all (default)")
-    a.add_argument("--dps", type=int, default=30, help="significant digits (default 30)")
+                   help="leading, next, lambert, corrected, relaxed, best or all")
+    add_dps(a)
     a.add_argument("--exact", action="store_true",
                    help="also run the exact solver and show relative errors")
     a.add_argument("--table", action="store_true",
                    help="the error table at N = 1e3, 1e6, 1e10, 1e30, 1e100")
-    a.add_argument("--json", action="store_true", help="JSON output")
+    add_json(a)
     a.set_defaults(func=cmd_asymptotics)
 
 
@@ -71,7 +64,7 @@ def cmd_derive(args: argparse.Namespace) -> int:
 
     if args.json:
         out = [reg[lab].as_dict(verify=args.verify) for lab in chosen]
-        print(json.dumps(out, indent=2))
+        print(dump_json(out))
         return 0 if not args.verify or all(o["verified"] for o in out) else 1
 
     import sympy as sp
@@ -156,20 +149,16 @@ def paper(out: Path, full: bool) -> list[str]:
     from symhx.asymptotics import error_table
     from symhx.symbolic import derivations
 
-    t0 = time.perf_counter()
     reg = derivations()
     rows = [d.as_dict(verify=True) for d in reg.values()]
     (out / "derivations.json").write_text(json.dumps(rows, indent=2) + "\n")
     n_ok = sum(r["verified"] for r in rows)
     table = error_table(dps=120)
     (out / "asymptotic_errors.json").write_text(dump_json(table) + "\n")
-    with open(out / "asymptotic_errors.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["N", "formula", "quantity", "rel_error", "k", "k_exact", "decay"])
-        for r in table:
-            w.writerow([jsonable(r["N"]), r["formula"], r["quantity"],
-                        jsonable(r["rel_error"]), jsonable(r["k"]), jsonable(r["k_exact"]),
-                        r["decay"]])
+    write_csv(out / "asymptotic_errors.csv",
+              ["N", "formula", "quantity", "rel_error", "k", "k_exact", "decay"],
+              [[r["N"], r["formula"], r["quantity"], r["rel_error"], r["k"], r["k_exact"],
+                r["decay"]] for r in table])
     if full:
         from symhx.plots.asymptotics import plot_asymptotic_errors
 
@@ -186,5 +175,4 @@ def paper(out: Path, full: bool) -> list[str]:
         f"({sum('symbolic' in r['kinds'] for r in rows)} with a symbolic check)",
         "asymptotics: best-order rel. error of N p_c - 1 at N = 1e10: "
         f"{mpmath.nstr(best.get(10**10, 0), 2)}, at 1e100: {mpmath.nstr(best.get(10**100, 0), 2)}",
-        f"symbolic/asymptotic section: {time.perf_counter() - t0:.1f} s",
     ]

@@ -5,13 +5,11 @@
 from __future__ import annotations
 
 import argparse
-import csv
-import time
 from pathlib import Path
 from typing import Any
 
-from symhx.commands._common import dump_json, jsonable, mpstr
-from symhx.commands.core import parse_int, parse_p
+from symhx.commands._common import dump_json, int_arg, int_show, mpstr, rational_arg
+from symhx.commands.core import DPS_HELP, N_HELP, P_HELP, add_dps, add_json, write_csv
 
 ORDER = 60
 
@@ -21,27 +19,31 @@ PAPER_N = 101
 
 def register(sub: Any) -> None:
     s = sub.add_parser("spaces", help="higher-order sample spaces (section 8): jump, E[X], "
-                       "modes, class probabilities")
-    s.add_argument("N", type=parse_int, help="number of vertices N = pipes + 1")
-    s.add_argument("p", type=parse_p, nargs="?", default=None,
-                   help="impact probability (exact, e.g. 0.01 or 1/100); omit for the jump only")
+                       "modes, class probabilities",
+                       description="The distribution of X over a sample space with "
+                       "higher-order circuits (section 8): the jump of the mode and, given p, "
+                       "E[X], Var[X], the modes and the class probabilities.")
+    s.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
+    s.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
+                   help=P_HELP + "; omit for the jump only")
     s.add_argument("--space", default="eq41",
-                   help="simple | eq41 | eq41-printed | excess<=m, optional ;distinct "
-                        "(default eq41)")
-    s.add_argument("--dps", type=int, default=30)
+                   help="simple | eq41 | eq41-printed | excess<=m, optionally with ;distinct")
+    add_dps(s)
     s.add_argument("--float", action="store_true", help="mpmath at --dps instead of exact")
     s.add_argument("--classes", action="store_true", help="probability of each class")
-    s.add_argument("--json", action="store_true")
+    add_json(s)
     s.set_defaults(func=cmd_spaces)
 
     c = sub.add_parser("convergence", help="E[X] and the jump p_c for excess<=m, m = 0..M, "
                        "against eq. (41)")
-    c.add_argument("N", type=parse_int, nargs="?", default=100)
-    c.add_argument("--max-m", type=int, default=6)
-    c.add_argument("--p", action="append", default=None,
-                   help="p values (repeatable; default the paper's figure values)")
-    c.add_argument("--dps", type=int, default=20)
-    c.add_argument("--json", action="store_true")
+    c.add_argument("N", type=int_arg("N", minimum=2), nargs="?", default=100, help=N_HELP)
+    c.add_argument("--max-m", type=int_arg("--max-m", minimum=0), default=6,
+                   help="largest excess m of the truncated spaces")
+    c.add_argument("--p", action="append", default=None, type=str,
+                   help="a p value (exact decimal; repeatable; default: the paper's figure "
+                   "values)")
+    add_dps(c, default=20, help_text=DPS_HELP)
+    add_json(c)
     c.set_defaults(func=cmd_convergence)
 
 
@@ -64,13 +66,17 @@ def cmd_spaces(args: argparse.Namespace) -> int:
     if args.json:
         print(dump_json(out))
         return 0
-    print(f"space {args.space}, N = {args.N}: mode jumps 1 -> {cp.k_after} at "
-          f"p_c = {mpstr(cp.p, args.dps)}")
+    print(f"space {args.space}, N = {int_show(args.N)}: mode jumps 1 -> "
+          f"{int_show(cp.k_after)} at p_c = {mpstr(cp.p, args.dps)}")
     if args.p is not None:
-        print(f"p = {args.p}: E[X] = {mpstr(out['mean'], args.dps)}, "
-              f"Var[X] = {mpstr(out['variance'], args.dps)}, modes {tuple(out['modes'])}")
-        for lab, v in out.get("classes", {}).items():
-            print(f"  P({lab}) = {mpstr(v, 12)}")
+        print(f"p = {mpstr(args.p, args.dps)}:")
+        print(f"  E[X]   = {mpstr(out['mean'], args.dps)}")
+        print(f"  Var[X] = {mpstr(out['variance'], args.dps)}")
+        print(f"  modes  = {', '.join(int_show(m) for m in out['modes'])}")
+        if out.get("classes"):
+            print(f"  {'class':<24s} probability")
+            for lab, v in out["classes"].items():
+                print(f"  {lab:<24s} {mpstr(v, args.dps)}")
     return 0
 
 
@@ -82,6 +88,10 @@ def _convergence_rows(N: int, max_m: int, ps: list[str] | None, dps: int) -> lis
 
 
 def cmd_convergence(args: argparse.Namespace) -> int:
+    from symhx.validation import check_p
+
+    for p in args.p or []:
+        check_p(p, "--p")
     rows = _convergence_rows(args.N, args.max_m, args.p, args.dps)
     if args.json:
         print(dump_json({"N": args.N, "rows": rows}))
@@ -109,18 +119,17 @@ def paper(out: Path, full: bool) -> list[str]:
     )
     from symhx.spaces import boundary_table, class_decomposition, critical_point
 
-    t0 = time.perf_counter()
     N = PAPER_N
     for p in ("0.005", "0.01", "0.05"):
         from fractions import Fraction
 
         for space in ("eq41", "eq41-printed"):
             cd = class_decomposition(N, float(Fraction(p)), space=space, dps=20)
-            with open(out / f"fig11_classes_{space}_p{p}.csv", "w", newline="") as fh:
-                w = csv.writer(fh)
-                w.writerow(["k", *[cd.labels[s] for s in cd.shapes]])
-                for k in range(1, N + 1):
-                    w.writerow([k, *[jsonable(cd.joint[s][k - 1]) for s in cd.shapes]])
+            header = ["k", *[cd.labels[s] for s in cd.shapes]]
+            table = [[k, *[cd.joint[s][k - 1] for s in cd.shapes]] for k in range(1, N + 1)]
+            write_csv(out / f"fig11_classes_{space}_p{p}.csv", header, table)
+            (out / f"fig11_classes_{space}_p{p}.json").write_text(
+                dump_json({"columns": header, "rows": table}) + "\n")
         plot_class_decomposition(N, float(Fraction(p)), kmax=None if p == "0.05" else 40
                                  ).savefig(out / f"fig11_p{p}.png", dpi=110, bbox_inches="tight")
     for p in (0.015, 0.04):
@@ -143,5 +152,4 @@ def paper(out: Path, full: bool) -> list[str]:
             f"{mpstr(r0['excess<=6']['p_c'], 8)} (jump to {r0['excess<=6']['k_after']})")
     cp = critical_point(10**6, space="eq41", dps=20)
     lines.append(f"eq41, N = 10^6: p_c = {mpstr(cp.p, 15)}, jump 1 -> {cp.k_after}")
-    lines.append(f"section 8: {time.perf_counter() - t0:.1f} s")
     return lines
