@@ -121,3 +121,100 @@ def test_plot_modules_do_not_choose_a_backend():
 
     for src in Path(symhx.plots.__file__).parent.glob("*.py"):
         assert "matplotlib.use(" not in src.read_text(), src.name
+
+
+# --------------------------------------------------------------------------- figures 4-6, 11, 13
+def _pmf_brute(N, p):
+    """P(X = k) from phi_N(k) = N!/((N-k)! k) (eq. 7) with exact rationals (independent of the
+    package's distribution code)."""
+    p = Fraction(p)
+    w = [Fraction(math.perm(N, k), k) * p**k for k in range(1, N + 1)]
+    z = sum(w)
+    return [x / z for x in w]
+
+
+import math  # noqa: E402
+
+
+def test_figure4_panels_a_to_d_hold_the_pmf():
+    ps = (0.01, 0.02, 0.05, 0.1)
+    fig = plots.plot_distributions(31, ps)
+    assert len(fig.axes) == 4
+    for letter, ax, p in zip("abcd", fig.axes, ps, strict=True):
+        assert ax.get_title().startswith(f"({letter})") and f"{p:g}" in ax.get_title()
+        assert ax.get_legend() is not None
+        ks, ys = ax.lines[0].get_data()
+        ref = _pmf_brute(31, p)
+        assert list(ks) == list(range(1, 32))
+        for y, r in zip(ys, ref, strict=True):
+            assert abs(y - float(r)) <= 1e-13 * float(r) + 1e-300
+
+
+def test_figure5_has_a_blow_up_and_the_right_steps():
+    N = 21
+    fig = plots.plot_mode_path(N, p_max=0.5)
+    a, b = fig.axes
+    assert a.get_title().startswith("(a)") and b.get_title().startswith("(b)")
+    assert b.get_xlim()[1] < a.get_xlim()[1] / 2  # a real blow-up
+    for ax in (a, b):
+        assert ax.get_legend() is not None
+        xs, ys = ax.lines[0].get_data()
+        # between consecutive breakpoints the mode is the brute-force argmax of the pmf
+        for x0, x1, y in zip(xs[:-1], xs[1:], ys[:-1], strict=True):
+            if x1 - x0 > 1e-9:
+                mid = Fraction((x0 + x1) / 2)
+                pmf = _pmf_brute(N, mid)
+                assert y == 1 + max(range(N), key=lambda i: pmf[i]), (x0, x1, y)
+
+
+def test_figure6_same_colour_for_same_p_and_a_legend_on_each_panel():
+    fig = plots.plot_f_and_phi(101)
+    top, bottom = fig.axes
+    assert top.get_legend() is not None and bottom.get_legend() is not None
+    top_colour = {ln.get_label(): ln.get_color() for ln in top.lines if not
+                  ln.get_label().startswith("_")}
+    legend_labels = [t.get_text() for t in bottom.get_legend().get_texts()]
+    assert len(legend_labels) == len(top_colour) == 4
+    for ln in bottom.lines:
+        lab = ln.get_label()
+        if lab.startswith("_"):
+            continue
+        key = next(k for k in top_colour if lab.startswith(k))
+        assert ln.get_color() == top_colour[key], lab
+    # the message of the figure: below p_c, Phi(k) < Phi(1) for every k >= 2; above, not
+    cp = symhx.critical_point(101, dps=30)
+    for ln in bottom.lines:
+        x, y = ln.get_data()
+        if len(x) == 0 or ln.get_label().startswith("_"):
+            continue
+        p = float(ln.get_label().rsplit("=", 1)[1].strip(" $"))
+        assert (max(y[1:]) > 0) == (p > float(cp.p)), ln.get_label()
+
+
+def test_figure11_log_axis_and_no_line_to_zero():
+    from symhx.plots.higher_order import plot_class_decomposition
+
+    fig = plot_class_decomposition(30, 0.005, kmax=15)
+    ax = fig.axes[0]
+    assert ax.get_yscale() == "log"
+    lo, _hi = ax.get_ylim()
+    for ln in ax.lines:
+        y = np.asarray(ln.get_data()[1], dtype=float)
+        finite = y[np.isfinite(y)]
+        assert (finite > 0).all()
+        # every class is visible somewhere above the bottom of the axis
+        assert finite.max() > lo, ln.get_label()
+
+
+def test_figure13_eq41_not_hidden_under_eq41_printed():
+    from symhx.plots.higher_order import plot_mean_vs_p_spaces
+
+    fig = plot_mean_vs_p_spaces(30, spaces=("simple", "eq41", "eq41-printed"), points=4)
+    lines = {ln.get_label(): ln for ln in fig.axes[0].lines}
+    a, b = lines["eq41"], lines["eq41-printed"]
+    assert a.get_linestyle() != b.get_linestyle() and a.get_color() != b.get_color()
+    assert a.get_linewidth() > b.get_linewidth()  # the wide line below stays visible
+    assert lines["simple"].get_linestyle() == ":"  # as in the paper: simple circuits dotted
+
+
+import numpy as np  # noqa: E402

@@ -28,9 +28,14 @@ def _axes(ax, size=(6.0, 3.8)):
 
 
 def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq41",
-                             kmax: int | None = None, ax=None):
+                             kmax: int | None = None, logy: bool = True, floor: float = 1e-12,
+                             ax=None):
     """Figure 11: ``P(X = k)`` (solid) and ``P(X = k, class)`` per class, with ``P(class)`` in
     the legend.
+
+    On a linear axis the higher-order classes sit flat on 0 for small ``p`` (at ``p = 0.005``
+    they are 3-4 orders of magnitude below the simple circuits), so the default is a logarithmic
+    probability axis down to ``floor`` times the largest probability shown.
 
     Parameters
     ----------
@@ -42,6 +47,10 @@ def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq4
         A space of :mod:`symhx.spaces` (default the corrected eq. 41).
     kmax : int, optional
         Largest k shown (default N).
+    logy : bool
+        Logarithmic probability axis (default) or linear.
+    floor : float
+        With ``logy``, the bottom of the axis relative to the largest probability.
     ax : matplotlib Axes, optional
 
     Returns
@@ -56,10 +65,17 @@ def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq4
     ax.plot(ks[:top], total[:top], color="black", lw=1.6, label=r"$P(X=k)$")
     for s in cd.shapes:
         lab = cd.labels[s].replace("phi", r"\phi")
-        ax.plot(ks[:top], [float(v) for v in cd.joint[s][:top]], lw=0.9, ls="--",
+        ys = np.array([float(v) for v in cd.joint[s][:top]])
+        if logy:
+            ys[ys <= 0] = np.nan  # impossible k for this class: no line down to log(0)
+        ax.plot(ks[:top], ys, lw=0.9, ls="--",
                 label=rf"${lab}$: {float(cd.totals[s]):.3g}")
+    if logy:
+        ax.set_yscale("log")
+        peak = float(total[:top].max())
+        ax.set_ylim(peak * floor, peak * 3)
     ax.set_xlabel(r"number of distinct impacts $k$")
-    ax.set_ylabel(r"probability")
+    ax.set_ylabel(r"probability" + (" (log scale)" if logy else ""))
     ax.set_title(rf"classes of circuits, $N={N}$, $p={p}$, space {space}")
     ax.legend(fontsize=7)
     return fig
@@ -86,6 +102,20 @@ def plot_simple_vs_higher(N: int = 100, p: float = 0.015, *, spaces: Sequence[st
     return fig
 
 
+def _space_style(space: str, i: int) -> dict:
+    """Line style of a space in figure 13: the paper draws simple circuits dotted and higher-order
+    ones solid; the printed eq. (41) is dashed with markers and drawn on top, so that it never
+    hides the corrected eq. (41) it almost coincides with."""
+    if space == "simple":
+        return {"color": "C0", "ls": ":", "lw": 1.8, "zorder": 2}
+    if space == "eq41":
+        return {"color": "C1", "ls": "-", "lw": 2.6, "zorder": 2, "alpha": 0.8}
+    if space == "eq41-printed":
+        return {"color": "C3", "ls": "--", "lw": 1.2, "marker": "o", "ms": 3, "mfc": "none",
+                "zorder": 3}
+    return {"color": f"C{(i + 4) % 10}", "ls": "-.", "lw": 1.2, "zorder": 2}
+
+
 def plot_mean_vs_p_spaces(N: int = 100, *, spaces: Sequence[str] = ("simple", "eq41",
                                                                     "excess<=6"),
                           p_range: tuple[float, float] = (1e-3, 0.1), points: int = 60,
@@ -100,10 +130,10 @@ def plot_mean_vs_p_spaces(N: int = 100, *, spaces: Sequence[str] = ("simple", "e
     """
     fig, ax = _axes(ax)
     ps = np.geomspace(p_range[0], p_range[1], points)
-    for sp in spaces:
+    for i, sp in enumerate(spaces):
         with mpmath.workdps(20):
             mu = [float(distribution(N, float(p), space=sp, dps=15).mean) for p in ps]
-        ax.plot(ps, mu, lw=1.2, label=sp)
+        ax.plot(ps, mu, label=sp, **_space_style(sp, i))
     if simulation is not None:
         ax.plot(simulation[0], simulation[1], "x", color="black", label="simulation")
     ax.set_xscale("log")
