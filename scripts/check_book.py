@@ -12,8 +12,18 @@ fails (exit status 1, one line per problem) unless, for every page:
 
 * **math is typeset**: a page whose HTML holds math (elements of class ``math``) has at least as
   many ``<mjx-container>`` elements after MathJax ran, no MathJax error (``mjx-merror``), and no
-  raw TeX left in the visible text (``$$``, ``\\(``, ``\\)``, ``\\[``, ``\\]``, ``\\begin{`` or a
-  ``$...$`` pair outside code);
+  raw TeX left in the visible text (``$$``, ``\\(``, ``\\)``, ``\\[``, ``\\]``, ``\\begin{``,
+  a TeX control word such as ``\\frac`` or ``\\tilde``, a ``$...$`` pair outside code, or
+  pseudo-LaTeX typed as text: ``Phi_{N,p}``, ``k_- <= k_+``);
+* **nothing is clipped** (measured in the laid-out page: headless Chromium driven by Selenium and
+  Debian's ``chromedriver``, windows 1280 and 800 px wide): no display equation or table is
+  wider than the article's column (``scrollWidth > clientWidth``, or sticking out of the column)
+  unless it sits in a horizontal scroll container (``overflow-x: auto|scroll``), no display
+  equation starts left of its box (a centred equation wider than its box loses its left side),
+  and at the desktop width (1280 px) nothing needs horizontal scrolling at all (a reader does
+  not see that the right end of an equation is hidden behind a scroll bar);
+* **images load in the browser**: every ``<img>`` has a non-zero ``naturalWidth``, and no
+  ``<figure>`` renders an image area less than 20 px high;
 * **figures have images**: every ``<figure>`` of the built page holds an ``<img>`` or ``<svg>``
   (a figure cell whose plot was not captured leaves an empty figure with its caption);
 * **images load**: every ``<img src>`` (after scripts ran) is a local file of the build, non-empty
@@ -26,7 +36,8 @@ fails (exit status 1, one line per problem) unless, for every page:
   no http(s) request initiated by the page (requests Chromium makes for itself, with initiator
   ``"not an origin"``, are ignored).
 
-Exit status 2 means the check could not run (no build directory, no Chromium).
+Exit status 2 means the check could not run (no build directory, no Chromium, no chromedriver or
+selenium for the layout pass; ``--no-layout`` skips that pass explicitly).
 """
 
 from __future__ import annotations
@@ -43,6 +54,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import Any
 from urllib.parse import unquote, urlsplit
 
 CHROMIUM_FLAGS = [
@@ -79,6 +91,11 @@ RAW_TEX = [
     (re.compile(r"\\\["), r"\["),
     (re.compile(r"\\\]"), r"\]"),
     (re.compile(r"\\begin\{"), r"\begin{"),
+    (re.compile(r"\\[a-zA-Z]{2,}(?![a-zA-Z])"), r"\command"),
+    # pseudo-LaTeX typed as text instead of maths: Phi_{N,p}, k_- <= k_+
+    (re.compile(r"[A-Za-z)]_\{"), "x_{...} (pseudo-LaTeX)"),
+    # (the names of the sample spaces "excess<=m" are identifiers, not maths)
+    (re.compile(r"\w(?<!excess)\s*(<=|>=)\s*\w"), "<= or >= (pseudo-LaTeX)"),
     (re.compile(r"(?<![\w$])\$[^$\s][^$\n]{0,80}?(?<=\S)\$(?![\w$])"), "$...$"),
 ]
 CSS_URL = re.compile(r"""url\(\s*['"]?([^'")]+)['"]?\s*\)|@import\s+['"]([^'"]+)['"]""", re.I)
@@ -326,6 +343,110 @@ def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list
     return problems, stats
 
 
+# --------------------------------------------------------------------------- layout (Selenium)
+#: (width, height, strict): at desktop width every equation and table must fit its column without
+#: horizontal scrolling; on a narrow window a horizontal scroll container is acceptable
+WINDOW_SIZES = ((1280, 900, True), (800, 900, False))
+CHROMEDRIVER = os.environ.get("CHROMEDRIVER", "/usr/bin/chromedriver")
+
+#: JavaScript run in the laid-out page (after MathJax and the images): a list of problems.
+LAYOUT_JS = r"""
+const strict = arguments[0];  // true: everything must fit without scrolling
+const done = arguments[arguments.length - 1];
+const ready = (window.MathJax && MathJax.startup && MathJax.startup.promise)
+    ? MathJax.startup.promise : Promise.resolve();
+const imgs = Array.from(document.images).map(img => img.complete ? Promise.resolve()
+    : new Promise(r => { img.onload = img.onerror = r; setTimeout(r, 5000); }));
+Promise.all([ready, ...imgs]).then(() => {
+  const problems = [];
+  // the article's column (the first selector that matches, in this order of preference)
+  const column = ['article.bd-article', 'main article', 'article', '[role=main]', 'main', 'body']
+      .map(sel => document.querySelector(sel)).find(el => el);
+  if (!column) { done([]); return; }  // e.g. a redirect page that is being replaced
+  const colRect = column.getBoundingClientRect();
+  const describe = el => {
+    const t = (el.innerText || el.textContent || '').replace(/\s+/g, ' ').trim();
+    const sec = el.closest('section[id]');
+    return (sec ? '#' + sec.id + ': ' : '') + JSON.stringify(t.slice(0, 60));
+  };
+  const scroller = (el) => {
+    for (let a = el; a && a !== column; a = a.parentElement) {
+      const ox = getComputedStyle(a).overflowX;
+      if ((ox === 'auto' || ox === 'scroll') && a.clientWidth > 0) return a;
+    }
+    return null;
+  };
+  // A display equation or table is fine when its visible box (its horizontal scroll container,
+  // else itself) lies inside the column, and its content fits that box (a scroll container may
+  // be overflowed to the right, never to the left: that part cannot be scrolled to).
+  const check = (el, inner, what) => {
+    const sc = scroller(el);
+    const box = (sc || el).getBoundingClientRect();
+    const ir = inner.getBoundingClientRect();
+    if (box.left < colRect.left - 1 || box.right > colRect.right + 1) {
+      problems.push(what + ' wider than its column, not in a scroll container: ' + describe(el));
+    } else if (ir.left < box.left - 1) {
+      problems.push(what + ' loses its left side (content starts left of its box): '
+                    + describe(el));
+    } else if (!sc && (ir.right > box.right + 1 || el.scrollWidth > el.clientWidth + 1)) {
+      problems.push(what + ' clipped on the right, not in a scroll container: ' + describe(el));
+    } else if (strict && (ir.right > colRect.right + 1 || ir.width > box.width + 1)) {
+      problems.push(what + ' needs horizontal scrolling on a ' + window.innerWidth
+                    + ' px wide window (right end hidden): ' + describe(el));
+    }
+  };
+  for (const el of document.querySelectorAll('mjx-container[display="true"]')) {
+    if (el.offsetParent === null) continue;
+    check(el, el.querySelector('mjx-math') || el, 'display equation');
+  }
+  for (const el of document.querySelectorAll('table')) {
+    if (el.offsetParent === null) continue;
+    check(el, el, 'table');
+  }
+  for (const img of document.images) {
+    if (!img.naturalWidth) problems.push('image did not load: ' + img.getAttribute('src'));
+  }
+  for (const fig of document.querySelectorAll('figure')) {
+    const media = fig.querySelector('img, svg, object, embed');
+    if (!media || media.getBoundingClientRect().height < 20) {
+      problems.push('empty figure (no visible image): ' + (fig.id || describe(fig)));
+    }
+  }
+  done(problems);
+}).catch(err => done(['layout check failed in the page: ' + err]));
+"""
+
+
+def make_driver(chromium: str, chromedriver: str) -> Any:
+    """A headless Chromium driven by Selenium (Debian's ``chromedriver``)."""
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = chromium
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                 "--disable-background-networking", "--no-first-run", "--hide-scrollbars",
+                 "--disable-component-update", "--disable-sync"):
+        opts.add_argument(flag)
+    driver = webdriver.Chrome(service=Service(chromedriver), options=opts)
+    driver.set_script_timeout(60)
+    driver.set_page_load_timeout(60)
+    return driver
+
+
+def layout_problems(driver: Any, page: Path, root: Path) -> list[str]:
+    """Clipped maths and tables, images that did not load and empty figures, measured in the
+    laid-out page at every size of :data:`WINDOW_SIZES` (each problem reported once)."""
+    rel = page.relative_to(root).as_posix()
+    found: dict[str, int] = {}
+    for width, height, strict in WINDOW_SIZES:
+        driver.set_window_size(width, height)
+        driver.get(page.resolve().as_uri())
+        for msg in driver.execute_async_script(LAYOUT_JS, strict):
+            found.setdefault(f"{rel}: {msg}", width)
+    return [f"{msg} [window {width}px wide]" for msg, width in found.items()]
+
+
 def pages_of(root: Path) -> list[Path]:
     pages = []
     for path in sorted(root.rglob("*.html")):
@@ -340,6 +461,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("html_dir", nargs="?", default="book/_build/html")
     ap.add_argument("--chromium", default=os.environ.get("CHROMIUM", "/usr/bin/chromium"))
     ap.add_argument("--jobs", type=int, default=2, help="pages checked in parallel")
+    ap.add_argument("--chromedriver", default=CHROMEDRIVER,
+                    help="chromedriver for the layout pass (Debian: apt-get install "
+                    "chromium-driver)")
+    ap.add_argument("--no-layout", action="store_true",
+                    help="skip the Selenium layout pass (clipped maths/tables, images)")
     args = ap.parse_args(argv)
 
     root = Path(args.html_dir)
@@ -353,12 +479,33 @@ def main(argv: list[str] | None = None) -> int:
               "(apt-get install -y chromium)", file=sys.stderr)
         return 2
 
+    driver = None
+    if not args.no_layout:
+        chromedriver = (args.chromedriver if Path(args.chromedriver).is_file()
+                        else shutil.which(args.chromedriver))
+        if not chromedriver:
+            print(f"check_book: chromedriver not found at {args.chromedriver} "
+                  "(apt-get install -y chromium-driver), or pass --no-layout", file=sys.stderr)
+            return 2
+        try:
+            driver = make_driver(chromium, chromedriver)
+        except Exception as exc:  # selenium missing or the driver does not start
+            print(f"check_book: cannot start Selenium with {chromedriver}: "
+                  f"{type(exc).__name__}: {exc}", file=sys.stderr)
+            return 2
+
     pages = pages_of(root)
     css_cache: dict[Path, list[str]] = {}
-    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        results = list(pool.map(lambda p: check_page(p, root, chromium, css_cache), pages))
+    try:
+        with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            results = list(pool.map(lambda p: check_page(p, root, chromium, css_cache), pages))
+        layout = [layout_problems(driver, p, root) for p in pages] if driver else []
+    finally:
+        if driver is not None:
+            driver.quit()
 
     problems = [msg for page_problems, _ in results for msg in page_problems]
+    problems += [msg for page_problems in layout for msg in page_problems]
     for _, stats in results:
         if stats:
             print(f"  {stats['page']:<28} math elements {stats['math']:4d}   "
@@ -371,7 +518,8 @@ def main(argv: list[str] | None = None) -> int:
             print("  - " + msg, file=sys.stderr)
         return 1
     print(f"check_book: OK, {len(pages)} pages: math typeset, images local and loaded, "
-          "nothing requested from the internet")
+          "nothing requested from the internet"
+          + ("" if args.no_layout else ", no clipped maths or tables"))
     return 0
 
 
