@@ -95,7 +95,7 @@ RAW_TEX = [
     # pseudo-LaTeX typed as text instead of maths: Phi_{N,p}, k_- <= k_+
     (re.compile(r"[A-Za-z)]_\{"), "x_{...} (pseudo-LaTeX)"),
     # (the names of the sample spaces "excess<=m" are identifiers, not maths)
-    (re.compile(r"\w(?<!excess)\s*(<=|>=)\s*\w"), "<= or >= (pseudo-LaTeX)"),
+    (re.compile(r"[\w)+-](?<!excess)\s*(<=|>=)\s*[\w(+-]"), "<= or >= (pseudo-LaTeX)"),
     (re.compile(r"(?<![\w$])\$[^$\s][^$\n]{0,80}?(?<=\S)\$(?![\w$])"), "$...$"),
 ]
 CSS_URL = re.compile(r"""url\(\s*['"]?([^'")]+)['"]?\s*\)|@import\s+['"]([^'"]+)['"]""", re.I)

@@ -85,7 +85,10 @@ def test_browser_check_reports_every_problem(tmp_path, capsys):
     assert "no <mjx-container>" in err
     assert "raw TeX '$$'" in err
     assert "example.org/next.html" not in err
-    assert "fig-empty" in err and "fig-ok" not in err
+    assert "<figure id='fig-empty'> has no image" in err
+    assert "<figure id='fig-ok'>" not in err  # it has an <img> in the HTML ...
+    assert "empty figure (no visible image): fig-ok" in err  # ... which does not load
+    assert "image did not load: missing.png" in err
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="needs Chromium (apt-get install chromium)")
@@ -99,3 +102,73 @@ def test_browser_check_passes_a_clean_page(tmp_path, capsys):
         '<a href="https://example.org/">link</a></body></html>')
     assert check_book.main([str(tmp_path), "--chromium", CHROMIUM]) == 0
     assert "check_book: OK" in capsys.readouterr().out
+
+
+# --------------------------------------------------------------------------- what a reader sees
+CHROMEDRIVER = shutil.which("chromedriver") or (
+    "/usr/bin/chromedriver" if Path("/usr/bin/chromedriver").is_file() else None)
+needs_driver = pytest.mark.skipif(CHROMIUM is None or CHROMEDRIVER is None,
+                                  reason="needs chromium and chromium-driver (apt-get)")
+
+# A page laid out like the book's theme: a 600 px article column; an equation wider than it
+# centred in a box that hides overflow (loses its left side), one in a scroll container that a
+# desktop reader must scroll, a table sticking out, a broken image, an empty figure, raw TeX and
+# pseudo-LaTeX left in the text.
+LAYOUT_BAD = """<!DOCTYPE html><html><head><style>
+body { margin: 0 } article { width: 600px; margin-left: 100px }
+.math { overflow: hidden; text-align: center } .scroll { overflow-x: auto }
+.wide { display: inline-block; width: 900px; flex-shrink: 0; background: #eee }
+mjx-container[display="true"] { display: flex; justify-content: center }
+</style></head><body><article class="bd-article">
+<section id="eq-left"><div class="math"><mjx-container display="true">
+  <mjx-math class="wide">LEFT-CUT</mjx-math></mjx-container></div></section>
+<section id="eq-scroll"><div class="scroll"><mjx-container display="true" style="display:block">
+  <mjx-math class="wide">SCROLLS</mjx-math></mjx-container></div></section>
+<section id="tab"><table style="width: 900px"><tr><th>N</th><th>jump</th></tr></table></section>
+<p>The correction is $\\tilde\\chi_u = \\tfrac{a}{b}$ and Phi_{N,p} with k_- <= k_+.</p>
+<p>The space excess<=6 is a name, not maths.</p>
+<img src="broken.png">
+<figure id="fig-blank"><img src="data:image/gif;base64,R0lGODlhAQABAAAAACw=" style="height:0"></figure>
+</article></body></html>
+"""
+
+LAYOUT_GOOD = """<!DOCTYPE html><html><head><style>
+body { margin: 0 } article { width: 600px; margin-left: 100px }
+.scroll { overflow-x: auto } .narrow { display: inline-block; width: 300px }
+</style></head><body><article class="bd-article">
+<div class="math"><mjx-container display="true" style="display:block; text-align:center">
+  <mjx-math class="narrow">FITS</mjx-math></mjx-container></div>
+<div class="scroll"><table style="width: 500px"><tr><th>N</th><th>jump</th></tr></table></div>
+<p>Plain text with a price of 5 dollars, and the space excess<=6.</p>
+</article></body></html>
+"""
+
+
+@needs_driver
+def test_layout_pass_catches_what_a_reader_sees(tmp_path):
+    page = tmp_path / "bad.html"
+    page.write_text(LAYOUT_BAD)
+    driver = check_book.make_driver(CHROMIUM, CHROMEDRIVER)
+    try:
+        problems = check_book.layout_problems(driver, page, tmp_path)
+        (tmp_path / "good.html").write_text(LAYOUT_GOOD)
+        clean = check_book.layout_problems(driver, tmp_path / "good.html", tmp_path)
+    finally:
+        driver.quit()
+    text = "\n".join(problems)
+    assert "#eq-left" in text and "display equation" in text
+    assert "needs horizontal scrolling on a 1280 px" in text and "SCROLLS" in text
+    assert "table wider than its column" in text
+    assert "image did not load: broken.png" in text
+    assert "empty figure (no visible image): fig-blank" in text
+    assert clean == []
+
+
+def test_raw_tex_and_pseudo_latex_patterns():
+    def hits(text):
+        return [name for pattern, name in check_book.RAW_TEX if pattern.search(text)]
+
+    assert r"\command" in hits(r"is $\tilde\chi_u = \tfrac{a}{b}")  # book/forcing.md defect
+    assert "x_{...} (pseudo-LaTeX)" in hits("neighbouring Phi_{N,p}: positive")
+    assert "<= or >= (pseudo-LaTeX)" in hits("check k_- <= k_+ here")
+    assert hits("the space excess<=6 and a path C:/x") == []
