@@ -128,7 +128,8 @@ mjx-container[display="true"] { display: flex; justify-content: center }
 <p>The correction is $\\tilde\\chi_u = \\tfrac{a}{b}$ and Phi_{N,p} with k_- <= k_+.</p>
 <p>The space excess<=6 is a name, not maths.</p>
 <img src="broken.png">
-<figure id="fig-blank"><img src="data:image/gif;base64,R0lGODlhAQABAAAAACw=" style="height:0"></figure>
+<figure id="fig-blank">
+  <img src="data:image/gif;base64,R0lGODlhAQABAAAAACw=" style="height:0"></figure>
 </article></body></html>
 """
 
