@@ -3,15 +3,16 @@
 #
 # Assumes the book extra is installed (pip install ".[book]"). Run from anywhere:
 #     bash scripts/ci_book.sh
-# Installs Debian's chromium with apt-get if /usr/bin/chromium is missing (needs root).
+# Installs Debian's chromium and chromium-driver with apt-get when missing (needs root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if [ ! -x /usr/bin/chromium ]; then
-    echo "ci_book: installing chromium (apt-get)"
+# the browser check needs Chromium and its WebDriver (Debian's packages)
+if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then
+    echo "ci_book: installing chromium and chromium-driver (apt-get)"
     export DEBIAN_FRONTEND=noninteractive
     apt-get update -qq >/dev/null
-    apt-get install -y -qq --no-install-recommends chromium >/dev/null
+    apt-get install -y -qq --no-install-recommends chromium chromium-driver >/dev/null
 fi
 
 # Notebooks draw their figures with matplotlib's inline backend, which ipykernel selects only if
