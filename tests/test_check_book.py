@@ -157,7 +157,8 @@ def test_layout_pass_catches_what_a_reader_sees(tmp_path):
     finally:
         driver.quit()
     text = "\n".join(problems)
-    assert "#eq-left" in text and "display equation" in text
+    assert "display equation loses its left side (content starts left of its box): #eq-left" \
+        in text
     assert "needs horizontal scrolling on a 1280 px" in text and "SCROLLS" in text
     assert "table wider than its column" in text
     assert "image did not load: broken.png" in text

@@ -76,6 +76,7 @@ def test_console_script_runs():
 
 # --------------------------------------------------------------------------- issue 12 / 14
 import argparse  # noqa: E402
+import math  # noqa: E402
 from fractions import Fraction  # noqa: E402
 
 import mpmath  # noqa: E402
@@ -235,6 +236,21 @@ def test_json_only_with_the_flag(capsys):
     assert "89" in out.splitlines()[-1]  # total 5 + 10 + 20 + 30 + 24 (brute-force sum)
     rc, out = run(capsys, "circuits", "5", "--json")
     assert json.loads(out)["total"] == 89
+    # the text table: a header, then "k phi_N(k)" rows equal to N!/((N-k)! k) (eq. 5)
+    rc, out = run(capsys, "circuits", "9")
+    lines = out.splitlines()
+    assert lines[1].split() == ["k", "phi_N(k)"]
+    body = [line.split() for line in lines[2:-1]]
+    assert [(int(k), int(v)) for k, v in body] == [
+        (k, math.perm(9, k) // k) for k in range(1, 10)]
+
+
+def test_dps_is_read_like_the_api(capsys):
+    # "1e1" is the exact integer 10 for check_int, as for every other integer argument
+    rc, out = run(capsys, "critical", "101", "--dps", "1e1")
+    assert rc == 0
+    pc = next(line for line in out.splitlines() if line.startswith("p_c"))
+    assert pc.split("=")[1].strip() == "0.01288911533"
 
 
 def test_text_tables_have_headers(capsys):
