@@ -44,7 +44,15 @@ def int_arg(name: str, minimum: int | None = None, maximum: int | None = None
             ) -> Callable[[str], int]:
     """argparse ``type=``: an exact integer such as ``101``, ``1e100`` or ``10**100``
     (:func:`symhx.validation.check_int`)."""
-    return _arg_type(lambda t: V.check_int(t, name, minimum=minimum, maximum=maximum), name)
+    def conv(text: str) -> int:
+        v = V.check_int(text, name)
+        if minimum is not None and v < minimum:
+            raise ValueError(f"{name} must be >= {int_show(minimum)}, got {int_show(v)}")
+        if maximum is not None and v > maximum:
+            raise ValueError(f"{name} must be <= {int_show(maximum)}, got {int_show(v)}")
+        return v
+
+    return _arg_type(conv, name)
 
 
 def rational_arg(name: str, positive: bool = True) -> Callable[[str], Fraction]:

@@ -15,6 +15,9 @@ ORDER = 60
 
 #: the paper's row for figures 11-13: 100 pipes -> N = 101
 PAPER_N = 101
+#: The section-8 spaces sum over every k <= N: N = 10**6 takes ~7 s, 10**7 minutes, and beyond
+#: ~10**19 the sums fail; the CLI refuses N above this (a documented work limit).
+MAX_SPACES_N = 10**6
 
 
 def register(sub: Any) -> None:
@@ -23,7 +26,8 @@ def register(sub: Any) -> None:
                        description="The distribution of X over a sample space with "
                        "higher-order circuits (section 8): the jump of the mode and, given p, "
                        "E[X], Var[X], the modes and the class probabilities.")
-    s.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
+    s.add_argument("N", type=int_arg("N", minimum=2, maximum=MAX_SPACES_N),
+                   help=N_HELP + f"; at most {MAX_SPACES_N:.0e} (work limit)")
     s.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
                    help=P_HELP + "; omit for the jump only")
     s.add_argument("--space", default="eq41",
@@ -36,7 +40,8 @@ def register(sub: Any) -> None:
 
     c = sub.add_parser("convergence", help="E[X] and the jump p_c for excess<=m, m = 0..M, "
                        "against eq. (41)")
-    c.add_argument("N", type=int_arg("N", minimum=2), nargs="?", default=100, help=N_HELP)
+    c.add_argument("N", type=int_arg("N", minimum=2, maximum=MAX_SPACES_N), nargs="?",
+                   default=100, help=N_HELP + f"; at most {MAX_SPACES_N:.0e} (work limit)")
     c.add_argument("--max-m", type=int_arg("--max-m", minimum=0), default=6,
                    help="largest excess m of the truncated spaces")
     c.add_argument("--p", action="append", default=None, type=str,
