@@ -7,7 +7,9 @@ from symhx.cli import main
 
 def test_symhx_paper_writes_every_section(tmp_path, capsys):
     rc = main(["paper", "--out", str(tmp_path)])
-    out = capsys.readouterr().out
+    captured = capsys.readouterr()
+    out = captured.out
+    assert "\r" not in captured.err  # no progress frames when stderr is not a terminal
     assert rc == 0, out
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert set(summary) >= {"core", "derive", "forcing", "impact", "spaces"}

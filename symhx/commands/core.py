@@ -42,6 +42,17 @@ P_HELP = "impact probability p > 0, exact: 0.02, 2e-2 and 1/50 are all exactly 1
 DPS_HELP = "significant decimal digits of the results"
 
 
+def parse_int(text: str) -> int:
+    """An exact integer argument (``101``, ``1e100``, ``10**100``) through
+    :func:`symhx.validation.check_int` (for other command modules; prefer :func:`int_arg`)."""
+    return int_arg("N")(text)
+
+
+def parse_p(text: str) -> Fraction:
+    """An exact positive rational argument through :func:`symhx.validation.to_rational`."""
+    return rational_arg("p")(text)
+
+
 def add_dps(parser: Any, default: int | None = DEFAULT_DPS, help_text: str = DPS_HELP) -> None:
     """The ``--dps`` option (validated by :func:`symhx.validation.check_dps`)."""
     parser.add_argument("--dps", type=dps_arg, default=default, metavar="DPS", help=help_text)
