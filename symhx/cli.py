@@ -33,14 +33,21 @@ from symhx import __version__
 REPORT_HINT = "this is a bug in symhx; please report it with the command line you ran"
 
 
+def _no_default(action: argparse.Action) -> bool:
+    """True for flags and options whose default is None (nothing worth showing); by identity,
+    so that a default of 0 is still shown."""
+    return any(action.default is x for x in (None, False, argparse.SUPPRESS))
+
+
 class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
     """argparse's defaults formatter that also shows the default of options without help text,
     and never ``(default: None)`` or ``(default: False)`` (flags and optional values)."""
 
     def _get_help_string(self, action: argparse.Action) -> str:
         help_text = action.help or ""
-        if "%(default)" in help_text or action.default in (None, False, argparse.SUPPRESS):
-            return help_text
+        if ("%(default)" in help_text or "default" in help_text.lower()
+                or _no_default(action)):
+            return help_text  # no default, or the text already states it
         if action.option_strings or action.nargs in (argparse.OPTIONAL, argparse.ZERO_OR_MORE):
             return (help_text + " " if help_text else "") + "(default: %(default)s)"
         return help_text
@@ -52,6 +59,13 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
+
+    def add_argument(self, *args: Any, **kwargs: Any) -> argparse.Action:
+        """As argparse's; an option without help text still shows its default."""
+        action = super().add_argument(*args, **kwargs)
+        if not action.help and action.option_strings and not _no_default(action):
+            action.help = "(default: %(default)s)"
+        return action
 
     def error(self, message: str) -> NoReturn:
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")

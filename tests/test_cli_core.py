@@ -288,3 +288,14 @@ def test_csv_num_round_trips_float64():
         with mpmath.workdps(40):
             v = mpmath.mpf(x.numerator) / x.denominator if isinstance(x, (int, Fraction)) else x
             assert float(cell) == float(v)
+
+
+def test_options_without_help_text_still_show_their_default():
+    # commands of other modules too: every option with a default shows it in --help
+    for name, sub in _subparsers().items():
+        text = " ".join(sub.format_help().split())
+        for action in sub._actions:
+            if action.option_strings and not any(action.default is x for x in
+                                                 (None, False, argparse.SUPPRESS)):
+                assert f"default: {action.default}" in text or "default" in (
+                    action.help or "").lower(), (name, action.dest)
