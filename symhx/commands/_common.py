@@ -174,7 +174,7 @@ def mpstr(x: Any, digits: int) -> str:
             dec = mpmath.nstr(mpmath.mpf(x.numerator) / x.denominator, digits)
         if x.numerator.bit_length() + x.denominator.bit_length() < 190:
             return f"{dec}  (exact {x.numerator}/{x.denominator})"
-        return f"{dec}  (rounded; the exact value is a long rational)"
+        return f"{dec}  (rounded from an exact rational)"
     if isinstance(x, mpmath.mpf):
         digits = min(digits, mpf_digits(x))
         return mpmath.nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12)
