@@ -157,8 +157,8 @@ def mpstr(x: Any, digits: int) -> str:
     """Decimal string of ``x`` with ``digits`` significant digits.
 
     mpf values are printed from their own mantissa (never re-rounded to the global precision);
-    Fractions are printed as decimals followed by ``(exact a/b)`` (or ``(exact)`` when ``a/b`` is
-    long); ints are exact.
+    Fractions are printed as decimals followed by ``(exact a/b)`` (or ``(rounded from an exact
+    rational)`` when ``a/b`` is long); ints are exact (:func:`int_show`).
 
     >>> mpstr(Fraction(1, 3), 5), mpstr(Fraction(1, 4), 5)
     ('0.33333  (exact 1/3)', '0.25  (exact 1/4)')
@@ -188,7 +188,7 @@ def csv_num(x: Any) -> Any:
     significant digits (the full precision is in the JSON file written alongside).
 
     >>> csv_num(Fraction(1, 3)), csv_num(10**100), csv_num(7)
-    ('0.33333333333333331', '1.0000000000000000e+100', 7)
+    ('0.33333333333333331', '1e+100', 7)
     """
     if x is None or isinstance(x, (bool, str)):
         return x
