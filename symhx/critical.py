@@ -75,6 +75,7 @@ __all__ = [
     "CriticalPoint",
     "ModePath",
     "argmin_certificate",
+    "certified_argmin",
     "critical_point",
     "discriminant_root",
     "discriminant_root_q",
@@ -230,14 +231,14 @@ def _seed(N: int) -> int:
     return max(2, min(N - 1, k0))
 
 
-def _argmin_c(N: int) -> tuple[int, bool, int]:
+def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
     """(first integer argmin k* of c_k over 2..N, whether c_{k*+1} ties, sign evaluations)."""
     if N == 2:
         return 2, False, 0
     oracle = _SignOracle(N)
-    k = _seed(N)
+    k = _seed(N) if seed is None else max(2, min(N, seed))
     # secant steps on the midpoints of E (seeding only): E is smooth and slowly varying.
-    if N >= 25:
+    if seed is None and N >= 25:
         for _ in range(4):
             e0, e1 = oracle.value(k), oracle.value(k + 1)
             if e1 == e0:
@@ -279,6 +280,21 @@ def _argmin_c(N: int) -> tuple[int, bool, int]:
     kstar = lo
     tie = kstar < N and oracle.sign(kstar) == 0
     return kstar, tie, oracle.evaluations
+
+
+def certified_argmin(N: int, seed: int | None = None) -> tuple[int, ...]:
+    """Every integer argmin of ``c_k`` over ``2 <= k <= N`` (two only at an exact tie), proved
+    by Arb balls (exact integers on a tie), starting the verification at ``seed`` (a guess of
+    the first argmin; a wrong guess only costs a few more certified signs).
+
+    >>> certified_argmin(101, seed=25), certified_argmin(5)
+    ((20,), (2, 3))
+    """
+    N = check_N(N)
+    if seed is not None:
+        seed = check_int(seed, "seed", minimum=2)
+    kstar, tie, _ = _argmin_c(N, seed)
+    return (kstar, kstar + 1) if tie else (kstar,)
 
 
 def argmin_certificate(N: int, k: int) -> bool:
