@@ -295,7 +295,9 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     N = _check_N(N)
     order = check_choice(order, "order", ORDERS)
     dps = _dps(dps)
-    with mpmath.workdps(dps + 15):
+    # the relaxation resolves k ~ sqrt(N ln N) to well below one unit: it needs log10(N) digits
+    wdps = dps + 15 + (digits_of(N) if order in ("relaxed", "best") else 0)
+    with mpmath.workdps(wdps):
         Nm = mpmath.mpf(N)
         L = mpmath.log(Nm)
         if order == "leading":

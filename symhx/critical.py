@@ -387,9 +387,12 @@ class CriticalPoint:
 
     def __repr__(self) -> str:
         lo, hi = self.p_bounds
+        args = ", ".join(_fmt_int(k) for k in self.argmins)
         return (f"CriticalPoint(N={_fmt_int(self.N)}, p_c={self._s(self.p)}, "
                 f"q=N*p_c-1={self._s(self.q)}, k_before={self.k_before}, "
-                f"k_after={self.k_after}, argmins={self.argmins}, p_d={self._s(self.p_d)}, "
+                f"k_after={_fmt_int(self.k_after)}, "
+                f"argmins=({args}{',' if len(self.argmins) == 1 else ''}), "
+                f"p_d={self._s(self.p_d)}, "
                 f"q_d=N*p_d-1={self._s(self.q_d)}, p_exact={self.p_exact}, "
                 f"p_bounds=({self._s(lo)}, {self._s(hi)}), dps={self.dps})")
 
@@ -402,7 +405,8 @@ class CriticalPoint:
                  f"  p_c in        [{self._s(lo)}, {self._s(hi)}]  (Arb ball)",
                  f"  p_d         = {self._s(self.p_d)}",
                  f"  N p_d - 1   = {self._s(self.q_d)}",
-                 f"  mode jumps  {self.k_before} -> {self.k_after}  (argmins {self.argmins})"]
+                 f"  mode jumps  {self.k_before} -> {_fmt_int(self.k_after)}"
+                 f"  (argmins {', '.join(_fmt_int(k) for k in self.argmins)})"]
         return "\n".join(lines)
 
     def as_dict(self) -> dict[str, Any]:
