@@ -107,12 +107,17 @@ def discriminant_root(N: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     >>> mpmath.nstr(discriminant_root(100, dps=15), 15)
     '0.0122099751242242'
     """
-    N = check_N(N)
-    dps = _dps(dps)
-    with mpmath.workdps(dps + 10):
-        val = ((1 + mpmath.sqrt(N + 1)) / N) ** 2
+    return _pd_qd(check_N(N), _dps(dps))[0]
+
+
+def _pd_qd(N: int, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """``(p_d, N p_d - 1)`` to ``dps`` digits: ``q_d = 2 (1 + sqrt(N+1)) / N`` (no cancellation)
+    and ``p_d = (1 + q_d) / N``, as Arb balls rounded to nearest."""
+    with arb_prec(int(dps * 3.33) + 40):
+        q = 2 * (1 + to_arb(N + 1).sqrt()) / to_arb(N)
+        p = (1 + q) / to_arb(N)
     with mpmath.workdps(dps):
-        return +val
+        return _mid_mpf(p), _mid_mpf(q)
 
 
 def discriminant_root_q(N: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
@@ -122,12 +127,7 @@ def discriminant_root_q(N: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     >>> mpmath.nstr(discriminant_root_q(10**100, dps=10), 10)
     '2.0e-50'
     """
-    N = check_N(N)
-    dps = _dps(dps)
-    with mpmath.workdps(dps + 10):
-        val = 2 * (1 + mpmath.sqrt(N + 1)) / N
-    with mpmath.workdps(dps):
-        return +val
+    return _pd_qd(check_N(N), _dps(dps))[1]
 
 
 def _s_arb(N: int, k: int) -> arb:
@@ -180,6 +180,7 @@ class _SignOracle:
         self.N = N
         self.evaluations = 0
         self.cache: dict[int, int] = {}
+        self.values: dict[int, mpmath.mpf] = {}
 
     def bits(self, k: int) -> int:
         return bits_for(self.N, 2 * k.bit_length() + 40)
@@ -203,16 +204,16 @@ class _SignOracle:
         if k not in self.cache:
             self.evaluations += 1
             start = self.bits(k)
-            self.cache[k] = certified_sign(lambda: _E_arb(self.N, k), start_bits=start,
-                                           max_bits=16 * start, exact_fn=lambda: self._exact(k))
-        return self.cache[k]
 
-    def value(self, k: int) -> mpmath.mpf:
-        """Approximate ``E(k)`` (the midpoint of its ball, for seeding only)."""
-        with arb_prec(self.bits(k)):
-            x = _E_arb(self.N, k)
-        with mpmath.workprec(64):
-            return _mid_mpf(x)
+            def ball() -> arb:
+                x = _E_arb(self.N, k)
+                with mpmath.workprec(64):
+                    self.values[k] = _mid_mpf(x)
+                return x
+
+            self.cache[k] = certified_sign(ball, start_bits=start, max_bits=16 * start,
+                                           exact_fn=lambda: self._exact(k))
+        return self.cache[k]
 
 
 def _perm(n: int, r: int) -> fmpz:
@@ -221,14 +222,22 @@ def _perm(n: int, r: int) -> fmpz:
 
 
 def _seed(N: int) -> int:
-    """Approximate real zero of ``E`` from the Lambert-W asymptotics (``k ~ sqrt(N v)``)."""
+    """Approximate first argmin from the Lambert-W asymptotics: ``k ~ sqrt(N v) - (ln N)/3``
+    with ``v = -W_{-1}(-e**2/N)`` (the ``-(ln N)/3`` shift was fitted on N = 10**2 .. 10**30;
+    it only saves verification steps)."""
     if N < 25:
         return 2
-    with arb_prec(N.bit_length() // 2 + 64):
-        v = -(-arb.const_e() ** 2 / to_arb(N)).lambertw(branch=-1)
-        k = (to_arb(N) * v).sqrt() - 1
-        k0 = int(k.mid().floor().unique_fmpz())
-    return max(2, min(N - 1, k0))
+    L = math.log(N)  # exact-enough for an int of any size (no float(N))
+    if N.bit_length() <= 60:  # v in float64 is enough to place k ~ 2**32 within < 1
+        v = L
+        for _ in range(40):
+            v = L - 2 + math.log(v)
+        k0 = math.isqrt(N * int(v * 2**40)) >> 20
+    else:
+        with arb_prec(N.bit_length() // 2 + 64):
+            v = -(-arb.const_e() ** 2 / to_arb(N)).lambertw(branch=-1)
+            k0 = int((to_arb(N) * v).sqrt().mid().floor().unique_fmpz())
+    return max(2, min(N, k0 - int(L / 3)))
 
 
 def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
@@ -237,21 +246,21 @@ def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
         return 2, False, 0
     oracle = _SignOracle(N)
     k = _seed(N) if seed is None else max(2, min(N, seed))
-    # secant steps on the midpoints of E (seeding only): E is smooth and slowly varying.
-    if seed is None and N >= 25:
-        for _ in range(4):
-            e0, e1 = oracle.value(k), oracle.value(k + 1)
-            if e1 == e0:
-                break
-            with mpmath.workprec(64 + k.bit_length()):
-                kappa = k - e0 / (e1 - e0)
-                new = max(2, min(N - 1, int(mpmath.ceil(kappa)) - 1))
-            if new == k:
-                break
-            k = new
-        k += 1
-    k = max(2, min(N, k))
-    # verify: E(k-1) < 0 <= E(k); otherwise gallop in the direction shown, then bisect
+    # verify E(k-1) < 0 <= E(k); a failed check moves k by a secant step on the ball midpoints
+    for _ in range(6):
+        below = -1 if k == 2 else oracle.sign(k - 1)
+        at = oracle.sign(k)
+        if below < 0 <= at:
+            return k, at == 0, oracle.evaluations
+        if k == 2 or k >= N - 1:
+            break
+        e0, e1 = oracle.values[k - 1], oracle.values[k]
+        with mpmath.workprec(64 + k.bit_length()):
+            new = int(mpmath.ceil(k - 1 - e0 / (e1 - e0))) if e1 != e0 else k
+        if new == k:
+            new = k + 1 if at < 0 else k - 1
+        k = max(2, min(N - 1, new))
+    # fall back: gallop from k in the direction shown, then bisect (certified signs only)
     lo, hi = 2, N  # invariant: the answer lies in [lo, hi]
     if k > 2 and oracle.sign(k - 1) >= 0:  # the answer is below k
         hi, step = k - 1, 1
@@ -493,6 +502,7 @@ def critical_point(N: int, *, dps: int = DEFAULT_DPS) -> CriticalPoint:
     dps = _dps(dps)
     kstar, tie, evals = _argmin_c(N)
     argmins = (kstar, kstar + 1) if tie else (kstar,)
+    p_d, q_d = _pd_qd(N, dps)
     a = None
     if kstar == 2 or kstar * N.bit_length() < 20_000:
         a = _exact_root(Fraction(kstar, int(_perm(N - 1, kstar - 1))), kstar - 1)
@@ -503,8 +513,8 @@ def critical_point(N: int, *, dps: int = DEFAULT_DPS) -> CriticalPoint:
         p, q, pb, qb = enclose_from_s(N, lambda: _s_arb(N, kstar), dps, start)
     return CriticalPoint(
         N=N, p=p, q=q, k_before=1, k_after=argmins[-1], argmins=argmins,
-        p_d=discriminant_root(N, dps=dps), p_exact=a, dps=dps, p_bounds=pb, q_bounds=qb,
-        q_d=discriminant_root_q(N, dps=dps), sign_evaluations=evals,
+        p_d=p_d, p_exact=a, dps=dps, p_bounds=pb, q_bounds=qb, q_d=q_d,
+        sign_evaluations=evals,
     )
 
 
