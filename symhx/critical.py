@@ -180,7 +180,7 @@ class _SignOracle:
         self.N = N
         self.evaluations = 0
         self.cache: dict[int, int] = {}
-        self.values: dict[int, mpmath.mpf] = {}
+        self.values: dict[int, arb] = {}  # the last ball of E(k) (seeding only)
 
     def bits(self, k: int) -> int:
         return bits_for(self.N, 2 * k.bit_length() + 40)
@@ -206,9 +206,7 @@ class _SignOracle:
             start = self.bits(k)
 
             def ball() -> arb:
-                x = _E_arb(self.N, k)
-                with mpmath.workprec(64):
-                    self.values[k] = _mid_mpf(x)
+                x = self.values[k] = _E_arb(self.N, k)
                 return x
 
             self.cache[k] = certified_sign(ball, start_bits=start, max_bits=16 * start,
@@ -230,8 +228,10 @@ def _seed(N: int) -> int:
     L = math.log(N)  # exact-enough for an int of any size (no float(N))
     if N.bit_length() <= 60:  # v in float64 is enough to place k ~ 2**32 within < 1
         v = L
-        for _ in range(40):
-            v = L - 2 + math.log(v)
+        for _ in range(60):
+            w, v = v, L - 2 + math.log(v)
+            if abs(v - w) < 1e-12:
+                break
         k0 = math.isqrt(N * int(v * 2**40)) >> 20
     else:
         with arb_prec(N.bit_length() // 2 + 64):
@@ -254,9 +254,10 @@ def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
             return k, at == 0, oracle.evaluations
         if k == 2 or k >= N - 1:
             break
-        e0, e1 = oracle.values[k - 1], oracle.values[k]
-        with mpmath.workprec(64 + k.bit_length()):
-            new = int(mpmath.ceil(k - 1 - e0 / (e1 - e0))) if e1 != e0 else k
+        e0, e1 = oracle.values[k - 1].mid(), oracle.values[k].mid()
+        with arb_prec(64 + 2 * k.bit_length()):
+            new = k if e1 == e0 else int(
+                (to_arb(k - 1) - e0 / (e1 - e0)).mid().ceil().unique_fmpz())
         if new == k:
             new = k + 1 if at < 0 else k - 1
         k = max(2, min(N - 1, new))
@@ -318,6 +319,29 @@ def argmin_certificate(N: int, k: int) -> bool:
     k = check_int(k, "k", minimum=2, maximum=N)
     oracle = _SignOracle(N)
     return (k == 2 or oracle.sign(k - 1) < 0) and oracle.sign(k) >= 0
+
+
+def _vp_factorial(n: int, p: int) -> int:
+    """The exponent of the prime ``p`` in ``n!`` (Legendre: ``(n - digit sum_p(n)) / (p-1)``)."""
+    total, m = 0, n
+    while m:
+        m //= p
+        total += m
+    return total
+
+
+def _root_possible(N: int, k: int) -> bool:
+    """Necessary condition for ``c_k = (k / perm(N-1, k-1))**(1/(k-1))`` to be rational: the
+    exponents of 2, 3, 5 and 7 in ``k / perm(N-1, k-1)`` are multiples of ``k - 1``."""
+    for p in (2, 3, 5, 7):
+        vk, m = 0, k
+        while m % p == 0:
+            m //= p
+            vk += 1
+        vperm = _vp_factorial(N - 1, p) - _vp_factorial(N - k, p)
+        if (vk - vperm) % (k - 1):
+            return False
+    return True
 
 
 def _exact_root(a: Fraction, n: int) -> Fraction | None:
@@ -504,7 +528,7 @@ def critical_point(N: int, *, dps: int = DEFAULT_DPS) -> CriticalPoint:
     argmins = (kstar, kstar + 1) if tie else (kstar,)
     p_d, q_d = _pd_qd(N, dps)
     a = None
-    if kstar == 2 or kstar * N.bit_length() < 20_000:
+    if kstar == 2 or (kstar * N.bit_length() < 20_000 and _root_possible(N, kstar)):
         a = _exact_root(Fraction(kstar, int(_perm(N - 1, kstar - 1))), kstar - 1)
     if a is not None:
         p, q, pb, qb = exact_enclosure(N, a, dps)

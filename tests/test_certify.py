@@ -280,3 +280,16 @@ def test_repr_shows_dps_digits():
     assert d["p_c_lo"] <= d["p_c"] <= d["p_c_hi"]
     assert set(d) >= {"N", "p_c", "N_p_c_minus_1", "k_after", "argmins", "p_d", "p_c_exact"}
     assert math.isclose(float(d["p_c"]), 0.012889115326530578, rel_tol=1e-15)
+
+
+def test_rational_root_prefilter_is_only_necessary():
+    # p_exact: the cheap p-adic prefilter never rejects a c_k that is rational (exhaustive)
+    from symhx.critical import _exact_root, _root_possible
+
+    found = 0
+    for N in range(3, 300):
+        for k in range(2, min(N, 30) + 1):
+            if _exact_root(Fraction(k, math.perm(N - 1, k - 1)), k - 1) is not None:
+                found += 1
+                assert _root_possible(N, k), (N, k)
+    assert found >= 297  # every k = 2 at least (c_2 = 2/(N-1))
