@@ -293,3 +293,39 @@ def test_rational_root_prefilter_is_only_necessary():
                 found += 1
                 assert _root_possible(N, k), (N, k)
     assert found >= 297  # every k = 2 at least (c_2 = 2/(N-1))
+
+
+@pytest.mark.parametrize("N,k", [(101, 20), (10**6, 3802), (10**40, None)])
+def test_enclosure_loop_from_low_start_precision(N, k):
+    # the width loop itself (not the generous default start) must deliver 10**-dps
+    from symhx.critical import _s_arb, enclose_from_s
+
+    k = k or critical_point(N, dps=10).k_after
+    for dps in (20, 60):
+        _, _, (lo, hi), (qlo, qhi) = enclose_from_s(N, lambda: _s_arb(N, k), dps, 64)
+        ref = _pc_reference(N, k, dps)
+        with mpmath.workdps(3 * dps + 2 * len(str(N)) + 40):
+            assert lo <= ref <= hi and (hi - lo) <= mpmath.mpf(10) ** -dps * ref
+            assert qlo <= N * ref - 1 <= qhi
+            assert (qhi - qlo) <= mpmath.mpf(10) ** -dps * (N * ref - 1)
+
+
+@pytest.mark.parametrize("N", [7, 101, 1000, 10**30])
+def test_mode_at_inside_the_enclosure(N):
+    # rationals inside p_bounds, 1e-45 from p_c on either side: only the Arb comparison
+    # (not the enclosure) can decide them; checked against exact brute force for small N
+    cp = critical_point(N, dps=30)
+    k = cp.k_after  # p_max: the first breakpoint after the jump
+    path = mode_path(N, p_max=Fraction(k + 1, k * (N - k)), dps=30)
+    if cp.p_exact is not None:
+        pytest.skip("rational p_c")
+    ref = _pc_reference(N, cp.argmins[0], 30)
+    with mpmath.workdps(200):
+        for sgn in (-1, 1):
+            fr = symhx.validation.as_fraction(ref * (1 + sgn * mpmath.mpf(10) ** -45))
+            assert symhx.validation.as_fraction(cp.p_bounds[0]) < fr
+            assert fr < symhx.validation.as_fraction(cp.p_bounds[1])
+            got = path.mode_at(fr)
+            assert got == (cp.k_after if sgn > 0 else 1)
+            if N <= 101:
+                assert brute_modes(N, fr)[0] == got

@@ -190,3 +190,42 @@ def test_exclusion_stop_bound_against_exhaustive():
                 wk = sp.Qstar(k, p) * p**k * Fraction(math.perm(N, k), k)
                 if wk >= w1 and k != cp.k_after:
                     assert k in listed, (space, N, p, k)
+
+
+def test_wrong_seed_is_corrected(monkeypatch):
+    """The float64 seed decides nothing: a seed whose argmin is wrong still gives the
+    certified answer (the exclusion step finds the smaller root and restarts)."""
+    import numpy as np
+
+    import symhx.spaces._critical as crit
+
+    for space, N in (("eq41", 101), ("excess<=3", 60)):
+        right = critical_point(N, space=space, dps=25)
+        real = crit.root_estimates
+
+        def fake(sp, n, real=real, k=right.k_after):
+            s = np.array(real(sp, n))
+            s[k + 3 - 2] = s.min() - 1e-3  # pretend c_{k+3} is the smallest
+            return s
+
+        monkeypatch.setattr(crit, "root_estimates", fake)
+        got = crit.critical_point(N, space=space, dps=25)
+        monkeypatch.setattr(crit, "root_estimates", real)
+        assert got.argmins == right.argmins and got.p_bounds == right.p_bounds
+
+
+def test_exclusion_with_any_best_over_a_p_grid():
+    """_unexcluded with best=2 over a fine p grid: everything it skips is below W(1)."""
+    from symhx.spaces._classes import parse_space
+    from symhx.spaces._critical import _unexcluded
+
+    for space, N in (("eq41", 40), ("excess<=4", 25)):
+        sp = parse_space(space)
+        for i in range(10, 80):
+            p = Fraction(i, 20 * N)
+            listed = set(_unexcluded(sp, N, p, 2))
+            w1 = sp.Qstar(1, p) * p * N
+            for k in range(3, N + 1):
+                wk = sp.Qstar(k, p) * p**k * Fraction(math.perm(N, k), k)
+                if wk >= w1:
+                    assert k in listed, (space, N, p, k)
