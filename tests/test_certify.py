@@ -329,3 +329,15 @@ def test_mode_at_inside_the_enclosure(N):
             assert got == (cp.k_after if sgn > 0 else 1)
             if N <= 101:
                 assert brute_modes(N, fr)[0] == got
+
+
+def test_rel_width_ok_threshold():
+    from symhx.certify import rel_width_ok
+
+    with flint.ctx.workprec(200):
+        for dps in (5, 30):
+            mid = flint.arb(3)
+            ok = flint.arb(mid, mid * flint.arb(10) ** -dps / 5)   # width 2 r / mid = 0.4e-dps
+            bad = flint.arb(mid, mid * flint.arb(10) ** -dps / 3)  # 2 r / mid = 0.67e-dps > 1/4
+            assert rel_width_ok(ok, dps) and not rel_width_ok(bad, dps)
+            assert rel_width_ok(flint.arb(7), dps) and not rel_width_ok(flint.arb(0, 1), dps)
