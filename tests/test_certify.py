@@ -302,12 +302,14 @@ def test_enclosure_loop_from_low_start_precision(N, k):
 
     k = k or critical_point(N, dps=10).k_after
     for dps in (20, 60):
-        _, _, (lo, hi), (qlo, qhi) = enclose_from_s(N, lambda: _s_arb(N, k), dps, 64)
         ref = _pc_reference(N, k, dps)
-        with mpmath.workdps(3 * dps + 2 * len(str(N)) + 40):
-            assert lo <= ref <= hi and (hi - lo) <= mpmath.mpf(10) ** -dps * ref
-            assert qlo <= N * ref - 1 <= qhi
-            assert (qhi - qlo) <= mpmath.mpf(10) ** -dps * (N * ref - 1)
+        # every start precision, so that some land just above/below the needed one
+        for start in range(64, 64 + 8 * (dps + 3 * len(str(N))), 3):
+            _, _, (lo, hi), (qlo, qhi) = enclose_from_s(N, lambda: _s_arb(N, k), dps, start)
+            with mpmath.workdps(3 * dps + 2 * len(str(N)) + 40):
+                assert lo <= ref <= hi and (hi - lo) <= mpmath.mpf(10) ** -dps * ref
+                assert qlo <= N * ref - 1 <= qhi
+                assert (qhi - qlo) <= mpmath.mpf(10) ** -dps * (N * ref - 1)
 
 
 @pytest.mark.parametrize("N", [7, 101, 1000, 10**30])
