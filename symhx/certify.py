@@ -33,6 +33,7 @@ __all__ = [
     "certified_sign",
     "mpf_bounds",
     "rel_width_ok",
+    "space_candidates",
     "to_arb",
 ]
 
@@ -137,3 +138,43 @@ def rel_width_ok(x: arb, dps: int) -> bool:
     if x.contains(0):
         return False
     return bool(x.rad() * 4 * arb(10) ** dps < abs(x.mid()))
+
+
+def space_candidates(space: Any, N: int, fr: Any, top: int) -> list[int]:
+    """Every ``k`` that may maximise ``W(k) = Phi_{N,p}(k) Q*(k)`` at the rational ``p = fr``
+    over a sample space (``space.Qnum``, ``.max_parts``, ``.max_excess`` as in
+    :class:`symhx.spaces.Space`), given a guess ``top`` (e.g. a float64 argmax): ``top`` plus
+    each ``k`` that an Arb ball cannot prove to have ``W(k) < W(top)``.
+
+    ``W(k)/W(1)`` is a running product of the exact ratios
+    ``W(k+1)/W(k) = p (N-k) k/(k+1) Q*(k+1)/Q*(k)``; it stops at the first ``k > max(top, r)``
+    with ``W(k) < W(top)`` and ``rho(k) = p (N-k) (k+m)/(k+1-r) < 1`` (``r = max_parts``,
+    ``m = max_excess``): ``rho`` is non-increasing and bounds every later ratio (mediant
+    inequality on the non-negative polynomial coefficients of ``Q*``), so W decreases after it.
+    """
+    a, b = fr.numerator, fr.denominator
+    m, R = space.max_excess, space.max_parts
+    bits = 96 + 2 * N.bit_length() + a.bit_length() + b.bit_length()
+    with arb_prec(bits):
+        pa = to_arb(fr)
+        q1 = to_arb(space.Qnum(1, a, b))
+        ratios = [to_arb(1)]  # ratios[k - 1] = W(k) / W(1)
+        qprev = q1
+        for k in range(1, top):
+            qk1 = to_arb(space.Qnum(k + 1, a, b))
+            ratios.append(ratios[-1] * pa * ((N - k) * k) / (k + 1) * qk1 / qprev)
+            qprev = qk1
+        wtop = ratios[top - 1]
+        out = [k for k in range(1, top) if not ratios[k - 1] < wtop]
+        ratio = wtop
+        for k in range(top, N):
+            qk1 = to_arb(space.Qnum(k + 1, a, b))
+            ratio = ratio * pa * ((N - k) * k) / (k + 1) * qk1 / qprev
+            qprev = qk1
+            kk = k + 1
+            below = ratio < wtop
+            if not below:
+                out.append(kk)
+            elif kk > R and fr * (N - kk) * (kk + m) < kk + 1 - R:
+                break
+    return sorted({top, *out})

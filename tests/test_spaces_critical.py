@@ -229,3 +229,31 @@ def test_exclusion_with_any_best_over_a_p_grid():
                 wk = sp.Qstar(k, p) * p**k * Fraction(math.perm(N, k), k)
                 if wk >= w1:
                     assert k in listed, (space, N, p, k)
+
+
+def test_space_modes_certified_against_exact_weights(monkeypatch):
+    """modes over a space equal the exact argmax of W (Burnside counts, Fractions) on a p grid
+    that includes ties at c_k and p > 1, also when the float64 seed is deliberately wrong."""
+    import numpy as np
+
+    import symhx.spaces._dist as dist
+
+    for space, shapes, printed in (("eq41", EQ41_SHAPES, False),
+                                   ("excess<=3", shapes_up_to(3), False)):
+        N = 23
+        cp = critical_point(N, space=space, dps=20)
+        grid = [Fraction(i, 40) for i in range(1, 60)]
+        if cp.p_exact is not None:
+            grid.append(cp.p_exact)
+        for p in grid:
+            w = [_exact_W(N, k, p, shapes, "length", printed) for k in range(1, N + 1)]
+            top = max(w)
+            exact = tuple(k for k, x in enumerate(w, 1) if x == top)
+            assert modes(N, p, space=space) == exact, (space, p)
+    real = dist.log_W_float
+    monkeypatch.setattr(dist, "log_W_float",
+                        lambda sp, n, lp: -np.abs(np.arange(n) - 2.0))  # argmax at k = 3
+    for p in (Fraction(1, 3), Fraction(1, 1000), Fraction(3, 2)):
+        w = [_exact_W(23, k, p, EQ41_SHAPES, "length", False) for k in range(1, 24)]
+        assert modes(23, p, space="eq41") == (w.index(max(w)) + 1,), p
+    monkeypatch.setattr(dist, "log_W_float", real)

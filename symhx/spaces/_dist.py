@@ -37,7 +37,7 @@ from symhx._numeric import (
     is_exact_type,
     mp_value,
 )
-from symhx.certify import UndecidedError, bits_for, certified_sign, to_arb
+from symhx.certify import UndecidedError, bits_for, certified_sign, space_candidates, to_arb
 from symhx.distribution import EXACT_N_LIMIT, Distribution, _binary_split
 from symhx.spaces._classes import Space, paper_label, parse_space, shape_excess
 
@@ -171,9 +171,8 @@ def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tup
     frx = _rational(p, fr)
     if N == 1:
         return (1,)
-    lw = log_W_float(space, N, _logp_float(frx))
-    top = float(lw.max())
-    cand = [int(c) + 1 for c in np.nonzero(lw >= top - screen_margin(N))[0]]
+    lw = log_W_float(space, N, _logp_float(frx))  # float64 seed: decides nothing
+    cand = space_candidates(space, N, frx, int(np.argmax(lw)) + 1)  # Arb-certified superset
     best = [cand[0]]
     for k in cand[1:]:
         s = compare_weights(space, N, frx, best[0], k)
