@@ -257,3 +257,20 @@ def test_space_modes_certified_against_exact_weights(monkeypatch):
         w = [_exact_W(23, k, p, EQ41_SHAPES, "length", False) for k in range(1, 24)]
         assert modes(23, p, space="eq41") == (w.index(max(w)) + 1,), p
     monkeypatch.setattr(dist, "log_W_float", real)
+
+
+def test_space_candidates_superset_for_any_guess():
+    """space_candidates(top=guess) contains every k with W(k) >= W(guess), for bad guesses
+    over a fine p grid (exact Fractions over all k)."""
+    from symhx.certify import space_candidates
+    from symhx.spaces._classes import parse_space
+
+    for space, N in (("eq41", 40), ("excess<=4", 25)):
+        sp = parse_space(space)
+        for i in range(5, 90, 2):
+            p = Fraction(i, 20 * N)
+            w = [sp.Qstar(k, p) * p**k * Fraction(math.perm(N, k), k) for k in range(1, N + 1)]
+            for guess in (1, 2, 3):
+                got = set(space_candidates(sp, N, p, guess))
+                need = {k for k in range(1, N + 1) if w[k - 1] >= w[guess - 1]}
+                assert need <= got, (space, p, guess, need - got)
