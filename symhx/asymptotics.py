@@ -37,8 +37,10 @@ Orders of :func:`asymptotic_critical_point` (relative error of ``q``, measured b
 ``"best"`` (default)
     the relaxation evaluated at the two integers around its real minimiser, the smaller kept
     (``c_k`` is unimodal in ``k``, so this is the integer minimum): the error is limited only by
-    the working precision. ``k`` is then an ``int``. Unlike :func:`symhx.critical_point` it is
-    not certified and does not detect exact ties (which need rational arithmetic).
+    the working precision. ``k`` is then an ``int``, *proved* to be the integer argmin (the
+    relaxation only seeds :func:`symhx.critical.certified_argmin`: Arb-certified signs of
+    ``c_{k+1} - c_k``, the larger k on an exact tie); ``q`` is not an enclosure (use
+    :func:`symhx.critical_point` for ``p_bounds``).
 
 ``p_d`` (eq. 16) has the convergent series in ``eps = N**(-1/2)``
 ``p_d = eps**2 + 2 eps**3 + 2 eps**4 + 2 sum_{j>=1} binom(1/2, j) eps**(3+2j)``; :func:`pd_series`
@@ -273,7 +275,8 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     Parameters
     ----------
     N : int
-        Number of vertices, ``N >= 21`` (any size: 10**100 and beyond).
+        Number of vertices, ``N >= 21`` (any size: tested to 10**1000; ``"relaxed"`` and
+        ``"best"`` work at ``dps + log10(N)`` digits, so their cost grows with the digits of N).
     order : str
         One of ``"leading"``, ``"next"``, ``"lambert"``, ``"corrected"``, ``"relaxed"``,
         ``"best"`` (see the module docstring for the formulas and their errors).
