@@ -235,9 +235,23 @@ def _seed(N: int) -> int:
         k0 = math.isqrt(N * int(v * 2**40)) >> 20
     else:
         with arb_prec(N.bit_length() // 2 + 64):
-            v = -(-arb.const_e() ** 2 / to_arb(N)).lambertw(branch=-1)
-            k0 = int((to_arb(N) * v).sqrt().mid().floor().unique_fmpz())
+            vb = -(-arb.const_e() ** 2 / to_arb(N)).lambertw(branch=-1)
+            k0 = _exact_int((to_arb(N) * vb).sqrt().mid().floor())
     return max(2, min(N, k0 - int(L / 3)))
+
+
+def _exact_int(x: arb) -> int:
+    """The integer value of an exact integer ball (a floor/ceil of a midpoint)."""
+    z = x.unique_fmpz()
+    assert z is not None
+    return int(z)
+
+
+def _frac(x: Any) -> Fraction:
+    """An mpf / float as its exact binary Fraction."""
+    fr = as_fraction(x)
+    assert fr is not None
+    return fr
 
 
 def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
@@ -256,8 +270,7 @@ def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
             break
         e0, e1 = oracle.values[k - 1].mid(), oracle.values[k].mid()
         with arb_prec(64 + 2 * k.bit_length()):
-            new = k if e1 == e0 else int(
-                (to_arb(k - 1) - e0 / (e1 - e0)).mid().ceil().unique_fmpz())
+            new = k if e1 == e0 else _exact_int((to_arb(k - 1) - e0 / (e1 - e0)).mid().ceil())
         if new == k:
             new = k + 1 if at < 0 else k - 1
         k = max(2, min(N - 1, new))
@@ -548,9 +561,9 @@ def compare_with_critical(cp: CriticalPoint, fr: Fraction) -> int:
     if cp.p_exact is not None:
         return (fr > cp.p_exact) - (fr < cp.p_exact)
     lo, hi = cp.p_bounds
-    if fr < as_fraction(lo):
+    if fr < _frac(lo):
         return -1
-    if fr > as_fraction(hi):
+    if fr > _frac(hi):
         return 1
     N, k = cp.N, cp.argmins[0]
 
@@ -682,7 +695,7 @@ def mode_path(N: int, *, p_max: Any = 1, dps: int = DEFAULT_DPS) -> ModePath:
             f"mode_path(N={_fmt_int(N)}, p_max={p_max!r}) would list {count} breakpoints "
             f"(more than MAX_BREAKPOINTS = {MAX_BREAKPOINTS}); choose a smaller p_max")
     bps: list[tuple[Any, int, int]] = [(pc, 1, cp.k_after)]
-    prev = cp.p_exact if cp.p_exact is not None else as_fraction(cp.p_bounds[0])
+    prev = cp.p_exact if cp.p_exact is not None else _frac(cp.p_bounds[0])
     for k in range(cp.k_after, last + 1):
         pk = Fraction(k + 1, k * (N - k))
         if pk <= prev:
