@@ -5,9 +5,14 @@
 x = achieved relative error against a reference at far higher precision, y = run time (minimum
 of repeats), both log scale. Compared methods:
 
-* critical point p_c: ``symhx.critical_point`` (certified binary search, O(log N) evaluations)
-  against the naive exhaustive scan of c_k over all k with mpmath at the same dps, and the
-  float64 scan with ``scipy.special.gammaln`` (what a user would write first).
+* critical point p_c: ``symhx.critical_point`` (Lambert/secant seed, then two Arb-certified
+  signs and an Arb enclosure) against the naive exhaustive scan of c_k over all k with mpmath at
+  the same dps, and the float64 scan with ``scipy.special.gammaln`` (what a user would write
+  first).
+* speed table (issue 11), all in one run: ``critical_point(N, dps=50)`` for N = 10^2 ... 10^1000
+  and ``symhx.spaces.critical_point(N, space="eq41", dps=50)`` at N = 101 and 10^4, with the
+  ratios "exhaustive mpmath scan / symhx" at N = 10^4 (target >= 1000) and
+  "N = 10^100 / N = 10^4" (target <= 3).
 * mean of X: ``symhx.mean`` (log space, significant terms only) against the naive mpmath sum of
   every term with factorials, and the float64 ``gammaln`` + log-sum-exp route.
 """
@@ -69,6 +74,29 @@ def bench_critical() -> list[dict]:
     return rows
 
 
+def bench_speed() -> dict:
+    """Timings of the issue-11 table and the two ratios, measured in this one run."""
+    from symhx.spaces import critical_point as space_cp
+
+    rows = []
+    for e in (2, 4, 6, 100, 1000):
+        N = 10**e
+        cp = symhx.critical_point(N, dps=50)
+        t = best_time(lambda N=N: symhx.critical_point(N, dps=50), repeat=5)
+        rows.append({"call": f"critical_point(10**{e}, dps=50)", "N": f"1e{e}", "time": t,
+                     "sign_evaluations": cp.sign_evaluations})
+    for N in (101, 10**4):
+        t = best_time(lambda N=N: space_cp(N, space="eq41", dps=50), repeat=3)
+        rows.append({"call": f"spaces.critical_point({N}, space='eq41', dps=50)", "N": str(N),
+                     "time": t, "sign_evaluations": None})
+    t_scan = best_time(lambda: naive_scan_mp(10**4, 50), repeat=1, min_time=0)
+    rows.append({"call": "exhaustive mpmath scan, N=10**4, dps=50", "N": "1e4", "time": t_scan,
+                 "sign_evaluations": None})
+    t4 = next(r["time"] for r in rows if r["call"].startswith("critical_point(10**4,"))
+    t100 = next(r["time"] for r in rows if r["call"].startswith("critical_point(10**100,"))
+    return {"rows": rows, "scan_over_symhx_N1e4": t_scan / t4, "N1e100_over_N1e4": t100 / t4}
+
+
 def naive_mean_mp(N: int, p: Fraction, dps: int) -> mpmath.mpf:
     with mpmath.workdps(dps):
         pm = mpmath.mpf(p.numerator) / p.denominator
@@ -128,8 +156,13 @@ def plot(rows: list[dict]) -> None:
 
 
 def main() -> int:
+    speed = bench_speed()
+    for r in speed["rows"]:
+        print(f"{r['call']:55s} {r['time'] * 1e3:10.3f} ms")
+    print(f"scan / symhx at N=1e4: {speed['scan_over_symhx_N1e4']:.0f}x (target >= 1000); "
+          f"N=1e100 / N=1e4: {speed['N1e100_over_N1e4']:.2f} (target <= 3)")
     rows = bench_critical() + bench_mean()
-    write("core", {"rows": rows})
+    write("core", {"rows": rows, "speed": speed})
     plot(rows)
     for r in rows:
         print(f"{r['task']:8s} N={r['N']:<8} {r['method']:30s} dps={r['dps']!s:5s} "

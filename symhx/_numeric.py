@@ -1,31 +1,36 @@
-"""Internal numeric helpers: input conversion, guard digits, interval-certified signs, and the
-cancellation-free log-falling-factorial ``G(N, K)`` shared by the distribution and critical modules.
+"""Internal numeric helpers: guard digits, Stirling's series, and the cancellation-free
+log-falling-factorial ``G(N, K)`` shared by the distribution, critical and asymptotics modules.
+
+Certified (ball-arithmetic) signs live in :mod:`symhx.certify` (python-flint Arb); the names
+``certified_sign``, ``bits_for`` and ``UndecidedError`` are re-exported here for the layers that
+import them from this module.
 
 Nothing here changes the global mpmath precision: every routine works inside ``mpmath.workdps``
-(or :func:`iv_prec` for the interval context) and restores it.
+and restores it.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
 from fractions import Fraction
 from typing import Any
 
 import mpmath
 
 __all__ = [
-    "G_iv",
     "G_mp",
+    "UndecidedError",
     "as_fraction",
+    "bits_for",
     "certified_sign",
     "check_N",
     "check_dps",
     "check_p",
     "digits_of",
-    "iv_prec",
+    "log1m_series",
+    "stirling_series",
 ]
 
+from symhx.certify import UndecidedError, bits_for, certified_sign
 from symhx.validation import (  # noqa: F401  (re-exported for the layers below the API)
     MAX_DPS,
     as_fraction,
@@ -48,56 +53,6 @@ def mp_value(p: Any, fr: Fraction | None) -> mpmath.mpf:
     return mpmath.mpf(str(p.evalf(mpmath.mp.dps + 10)))
 
 
-# --------------------------------------------------------------------------- interval signs
-@contextmanager
-def iv_prec(bits: int) -> Iterator[Any]:
-    """Temporarily set the precision of mpmath's interval context (restored on exit)."""
-    iv = mpmath.iv
-    old = iv.prec
-    iv.prec = bits
-    try:
-        yield iv
-    finally:
-        iv.prec = old
-
-
-class UndecidedError(ArithmeticError):
-    """A sign could not be certified within the precision budget (an exact tie is likely)."""
-
-
-def certified_sign(
-    interval_fn: Callable[[Any], Any],
-    *,
-    start_bits: int,
-    max_bits: int,
-    exact_fn: Callable[[], int] | None = None,
-) -> int:
-    """Sign (-1, 0, +1) of a real quantity, certified by interval arithmetic.
-
-    ``interval_fn(iv)`` evaluates the quantity with mpmath's interval context ``iv`` at the
-    precision in force. Precision doubles from ``start_bits`` until the interval excludes 0.
-    If it still contains 0 at ``max_bits``, ``exact_fn()`` (exact integer arithmetic, which
-    also detects exact ties and returns 0) decides; without one, :class:`UndecidedError`.
-    """
-    bits = max(64, start_bits)
-    while True:
-        with iv_prec(bits) as iv:
-            x = interval_fn(iv)
-        if x.a > 0:
-            return 1
-        if x.b < 0:
-            return -1
-        if bits >= max_bits:
-            break
-        bits = min(2 * bits, max_bits)
-    if exact_fn is not None:
-        return exact_fn()
-    raise UndecidedError(
-        f"sign not certified at {bits} bits (interval {x}); an exact tie is likely and the "
-        f"integers involved are too large to compare exactly"
-    )
-
-
 # --------------------------------------------------------------------------- G(N, K)
 # G(N, K) = lgamma(N) - lgamma(N - K) - K log N = sum_{j=1}^{K} log(1 - j/N)   (0 <= K < N).
 # It is O(K^2/N) while the lgamma terms are O(N log N): evaluating the definition cancels about
@@ -109,22 +64,29 @@ def certified_sign(
 # the working precision; otherwise it uses loggamma with guard digits.
 
 
-def _stirling_tail(x: mpmath.mpf, eps: mpmath.mpf) -> mpmath.mpf:
+def stirling_series(x: mpmath.mpf, eps: mpmath.mpf | None = None, *,
+                    derivative: bool = False) -> mpmath.mpf:
+    """``S(x) = sum_{r>=1} B_2r / (2r (2r-1) x**(2r-1))`` (``lgamma(x) - (x - 1/2) log x + x -
+    log(2 pi)/2``), or its x-derivative ``-sum B_2r / (2r x**(2r))``, summed until a term is below
+    ``eps`` (default: the working eps) relative to the sum (at most 400 terms; the series is
+    asymptotic, so callers use it only for ``x`` well above the working digits)."""
+    eps = mpmath.eps if eps is None else eps
     total = mpmath.mpf(0)
     xinv2 = 1 / (x * x)
-    power = 1 / x
-    m = 1
-    while True:
-        term = mpmath.bernoulli(2 * m) / (2 * m * (2 * m - 1)) * power
+    power = xinv2 if derivative else 1 / x
+    for m in range(1, 401):
+        b = mpmath.bernoulli(2 * m)
+        term = (-b / (2 * m)) * power if derivative else b / (2 * m * (2 * m - 1)) * power
         total += term
-        if abs(term) < eps * abs(total) or m > 400:
-            return total
+        if abs(term) <= eps * abs(total):
+            break
         power *= xinv2
-        m += 1
+    return total
 
 
-def _B(u: mpmath.mpf) -> mpmath.mpf:
-    """-(1-u) log1p(-u) - u, without cancellation for small u."""
+def log1m_series(u: mpmath.mpf) -> mpmath.mpf:
+    """``B(u) = -(1-u) log1p(-u) - u = -sum_{m>=2} u**m / (m (m-1))`` without cancellation for
+    small ``u`` (``0 <= u < 1``)."""
     if u < mpmath.mpf("0.01"):
         eps = mpmath.eps
         total = mpmath.mpf(0)
@@ -133,7 +95,7 @@ def _B(u: mpmath.mpf) -> mpmath.mpf:
         while True:
             term = power / (m * (m - 1))
             total += term
-            if term < eps * total:
+            if term <= eps * total:
                 return -total
             power *= u
             m += 1
@@ -155,9 +117,9 @@ def G_mp(N: int, K: int) -> mpmath.mpf:
         with mpmath.extradps(10):
             u = mpmath.mpf(K) / N
             eps = mpmath.eps
-            S = _stirling_tail(mpmath.mpf(N), eps * mpmath.mpf(10) ** -5) - _stirling_tail(
+            S = stirling_series(mpmath.mpf(N), eps * mpmath.mpf(10) ** -5) - stirling_series(
                 mpmath.mpf(N - K), eps * mpmath.mpf(10) ** -5)
-            val = N * _B(u) + mpmath.log1p(-u) / 2 + S
+            val = N * log1m_series(u) + mpmath.log1p(-u) / 2 + S
         return +val
     # direct: loggamma cancels ~log10(N) digits; G >= log((N-1)/N)*... is not tiny here
     # (N - K small or N small), but guard generously for K << N with small N.
@@ -172,16 +134,3 @@ def G_direct(N: int, K: int) -> mpmath.mpf:
     with mpmath.extradps(2 * digits_of(N) + 10):
         val = mpmath.loggamma(N) - mpmath.loggamma(N - K) - K * mpmath.log(N)
     return +val
-
-
-def G_iv(iv: Any, N: int, K: int) -> Any:
-    """Interval enclosure of ``G(N, K)`` (mpmath's rigorous interval loggamma)."""
-    if K == 0:
-        return iv.mpf(0)
-    Niv = iv.mpf(N)
-    return iv.loggamma(Niv) - iv.loggamma(iv.mpf(N - K)) - K * iv.log(Niv)
-
-
-def iv_bits_for(N: int, extra_digits: int) -> int:
-    """Starting interval precision: enough bits to absorb the lgamma cancellation."""
-    return int((2 * digits_of(N) + extra_digits + 10) * 3.33) + 16

@@ -37,8 +37,10 @@ Orders of :func:`asymptotic_critical_point` (relative error of ``q``, measured b
 ``"best"`` (default)
     the relaxation evaluated at the two integers around its real minimiser, the smaller kept
     (``c_k`` is unimodal in ``k``, so this is the integer minimum): the error is limited only by
-    the working precision. ``k`` is then an ``int``. Unlike :func:`symhx.critical_point` it is
-    not certified and does not detect exact ties (which need rational arithmetic).
+    the working precision. ``k`` is then an ``int``, *proved* to be the integer argmin (the
+    relaxation only seeds :func:`symhx.critical.certified_argmin`: Arb-certified signs of
+    ``c_{k+1} - c_k``, the larger k on an exact tie); ``q`` is not an enclosure (use
+    :func:`symhx.critical_point` for ``p_bounds``).
 
 ``p_d`` (eq. 16) has the convergent series in ``eps = N**(-1/2)``
 ``p_d = eps**2 + 2 eps**3 + 2 eps**4 + 2 sum_{j>=1} binom(1/2, j) eps**(3+2j)``; :func:`pd_series`
@@ -59,7 +61,11 @@ from typing import Any
 
 import mpmath
 
+from symhx._numeric import digits_of, log1m_series, stirling_series
+from symhx.validation import check_choice, check_dps, check_int, check_N
+
 __all__ = [
+    "MAX_PD_TERMS",
     "ORDERS",
     "AsymptoticCriticalPoint",
     "PdSeries",
@@ -89,18 +95,21 @@ DECAY: dict[str, str] = {
 
 
 def _check_N(N: Any) -> int:
-    if isinstance(N, bool) or not isinstance(N, int):
-        if isinstance(N, float) and N.is_integer():
-            raise TypeError(f"N must be an int (got float {N!r}); write e.g. 10**100")
-        raise TypeError(f"N must be an int, got {type(N).__name__}")
+    N = check_int(N, "N", minimum=2)
     if N < MIN_N:
-        raise ValueError(f"the asymptotic formulas need N >= {MIN_N}, got {N}; "
+        raise ValueError(f"the asymptotic formulas need N >= {MIN_N}, got N={N}; "
                          "use symhx.critical_point for small N")
     return N
 
 
-def _digits(N: int) -> int:
-    return int(N.bit_length() * 0.30103) + 1
+def _dps(dps: Any) -> int:
+    d = check_dps(dps)
+    assert d is not None
+    return d
+
+
+#: largest number of terms :func:`pd_series` accepts (the coefficients are exact Fractions)
+MAX_PD_TERMS = 10_000
 
 
 # ----------------------------------------------------------------------------- p_d series
@@ -112,8 +121,7 @@ def pd_series_coefficients(n_terms: int = 5) -> tuple[tuple[int, Fraction], ...]
     >>> [(pw, str(c)) for pw, c in pd_series_coefficients(6)]
     [(2, '1'), (3, '2'), (4, '2'), (5, '1'), (7, '-1/4'), (9, '1/8')]
     """
-    if n_terms < 1:
-        raise ValueError("n_terms must be >= 1")
+    n_terms = check_int(n_terms, "n_terms", minimum=1, maximum=MAX_PD_TERMS)
     out: list[tuple[int, Fraction]] = [(2, Fraction(1)), (3, Fraction(2)), (4, Fraction(2))]
     j = 1
     while len(out) < n_terms:
@@ -150,11 +158,12 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
     Parameters
     ----------
     N : int
-        Number of vertices, ``N >= 1``.
+        Number of vertices, ``N >= 2`` (any size).
     n_terms : int
-        Number of non-zero terms (5 gives error ``<= N**(-9/2)/8``).
+        Number of non-zero terms, ``1 <= n_terms <= MAX_PD_TERMS`` (5 gives error
+        ``<= N**(-9/2)/8``).
     dps : int
-        Working digits.
+        Working digits (``1 <= dps <= MAX_DPS``).
 
     Returns
     -------
@@ -165,8 +174,9 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
     >>> mpmath.nstr(s.bound, 3), abs(s.value - discriminant_root(10**6)) <= s.bound
     ('1.25e-28', True)
     """
-    if not isinstance(N, int) or N < 1:
-        raise ValueError(f"N must be an int >= 1, got {N!r}")
+    N = check_N(N)
+    n_terms = check_int(n_terms, "n_terms", minimum=1, maximum=MAX_PD_TERMS)
+    dps = _dps(dps)
     coeffs = pd_series_coefficients(n_terms + 3)
     used, omitted = coeffs[:n_terms], coeffs[n_terms:]
     with mpmath.workdps(dps + 10):
@@ -182,34 +192,6 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
 
 
 # ------------------------------------------------------------------- the relaxation of h
-def _B(u: mpmath.mpf) -> mpmath.mpf:
-    """``-(1-u) log1p(-u) - u = -sum_{m>=2} u**m / (m (m-1))``, no cancellation for small u."""
-    if u < mpmath.mpf("0.1"):
-        total, power, m = mpmath.mpf(0), u * u, 2
-        while True:
-            term = power / (m * (m - 1))
-            total += term
-            if term < mpmath.eps * total:
-                return -total
-            power *= u
-            m += 1
-    return -(1 - u) * mpmath.log1p(-u) - u
-
-
-def _stirling(x: mpmath.mpf, derivative: bool = False) -> mpmath.mpf:
-    """``sum_r B_2r/(2r(2r-1) x**(2r-1))`` (or its x-derivative), summed to the working eps."""
-    total, r = mpmath.mpf(0), 1
-    while r < 200:
-        b = mpmath.bernoulli(2 * r)
-        term = (-b / (2 * r) / x ** (2 * r)) if derivative else b / (2 * r * (2 * r - 1)) / x ** (
-            2 * r - 1)
-        total += term
-        if abs(term) < mpmath.eps * max(abs(total), mpmath.eps):
-            break
-        r += 1
-    return total
-
-
 class _Relaxation:
     """``h(kappa) = (log kappa - G(kappa - 1)) / (kappa - 1)`` for real ``kappa`` and its
     derivative, with ``G`` rewritten as ``N B(K/N) + log1p(-K/N)/2 + Stirling`` for large ``N``
@@ -223,17 +205,17 @@ class _Relaxation:
         N = self.N
         if self.large:
             u = K / N
-            return (N * _B(u) + mpmath.log1p(-u) / 2 + _stirling(mpmath.mpf(N))
-                    - _stirling(N - K))
-        with mpmath.extradps(_digits(N) + 10):
+            return (N * log1m_series(u) + mpmath.log1p(-u) / 2
+                    + stirling_series(mpmath.mpf(N)) - stirling_series(N - K))
+        with mpmath.extradps(digits_of(N) + 10):
             return mpmath.loggamma(N) - mpmath.loggamma(N - K) - K * mpmath.log(N)
 
     def dG(self, K: mpmath.mpf) -> mpmath.mpf:
         N = self.N
         if self.large:  # psi(N-K) - log N with psi's asymptotic series
             x = N - K
-            return mpmath.log1p(-K / N) - 1 / (2 * x) + _stirling(x, derivative=True)
-        with mpmath.extradps(_digits(N) + 10):
+            return mpmath.log1p(-K / N) - 1 / (2 * x) + stirling_series(x, derivative=True)
+        with mpmath.extradps(digits_of(N) + 10):
             return mpmath.digamma(N - K) - mpmath.log(N)
 
     def h(self, kappa: mpmath.mpf) -> mpmath.mpf:
@@ -293,7 +275,8 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     Parameters
     ----------
     N : int
-        Number of vertices, ``N >= 21`` (any size: 10**100 and beyond).
+        Number of vertices, ``N >= 21`` (any size: tested to 10**1000; ``"relaxed"`` and
+        ``"best"`` work at ``dps + log10(N)`` digits, so their cost grows with the digits of N).
     order : str
         One of ``"leading"``, ``"next"``, ``"lambert"``, ``"corrected"``, ``"relaxed"``,
         ``"best"`` (see the module docstring for the formulas and their errors).
@@ -313,11 +296,11 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     ('5.1240457e-5', 492057)
     """
     N = _check_N(N)
-    if order not in ORDERS:
-        raise ValueError(f"order must be one of {ORDERS}, got {order!r}")
-    if not isinstance(dps, int) or dps < 5:
-        raise ValueError(f"dps must be an int >= 5, got {dps!r}")
-    with mpmath.workdps(dps + 15):
+    order = check_choice(order, "order", ORDERS)
+    dps = _dps(dps)
+    # the relaxation resolves k ~ sqrt(N ln N) to well below one unit: it needs log10(N) digits
+    wdps = dps + 15 + (digits_of(N) if order in ("relaxed", "best") else 0)
+    with mpmath.workdps(wdps):
         Nm = mpmath.mpf(N)
         L = mpmath.log(Nm)
         if order == "leading":
@@ -354,16 +337,13 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
                 q = mpmath.expm1(rel.h(kappa))
             else:
                 # c_k is unimodal in real k, so the integer argmin is floor(kappa) or the next
-                # integer; which one (and an exact tie -> the larger) is decided by the same
-                # certified sign of c_{k+1} - c_k as the exact solver uses (a value comparison
-                # at dps digits cannot resolve it: the two values agree to ~2 log10(k) digits).
-                from symhx.critical import _SignOracle
+                # integer. The relaxation only seeds: the integer (an exact tie -> the larger)
+                # is proved by the Arb-certified signs of c_{k+1} - c_k of the exact solver
+                # (a value comparison at dps digits cannot resolve it: the two values agree
+                # to ~2 log10(k) digits).
+                from symhx.critical import certified_argmin
 
-                lo_k = max(2, int(mpmath.floor(kappa)))
-                if lo_k + 1 <= N and _SignOracle(N).sign(lo_k) <= 0:
-                    kbest = lo_k + 1
-                else:
-                    kbest = lo_k
+                kbest = certified_argmin(N, seed=max(2, int(mpmath.ceil(kappa))))[-1]
                 k = kbest
                 q = mpmath.expm1(rel.h(mpmath.mpf(kbest)))
         p = (1 + q) / Nm

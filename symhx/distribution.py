@@ -44,17 +44,15 @@ from typing import Any
 import mpmath
 
 from symhx._numeric import (
-    G_iv,
     G_mp,
-    certified_sign,
     check_dps,
     check_N,
     check_p,
     digits_of,
     is_exact_type,
-    iv_bits_for,
     mp_value,
 )
+from symhx.certify import G_arb, bits_for, certified_sign, to_arb
 
 __all__ = [
     "Distribution",
@@ -378,10 +376,9 @@ def _hump(N: int, fr: Fraction | None, pm: mpmath.mpf) -> tuple[int, int, bool] 
     return j, j + 1, fb(j) == 0
 
 
-def _log_ratio_iv(iv: Any, N: int, a: int, b: int, K: int) -> Any:
-    """Interval for ``log Phi(K+1) - log Phi(1) = K log(N p) + G(N, K) - log(K + 1)``."""
-    return K * (iv.log(iv.mpf(N) * a) - iv.log(iv.mpf(b))) + G_iv(iv, N, K) - iv.log(
-        iv.mpf(K + 1))
+def _log_ratio_iv(N: int, a: int, b: int, K: int) -> Any:
+    """Arb ball of ``log Phi(K+1) - log Phi(1) = K log(N p) + G(N, K) - log(K + 1)``."""
+    return K * ((to_arb(N) * a).log() - to_arb(b).log()) + G_arb(N, K) - to_arb(K + 1).log()
 
 
 def _compare_with_one(N: int, fr: Fraction, K: int) -> int:
@@ -393,8 +390,8 @@ def _compare_with_one(N: int, fr: Fraction, K: int) -> int:
         rhs = (K + 1) * b**K
         return (lhs > rhs) - (lhs < rhs)
 
-    start = iv_bits_for(N, digits_of(a) + digits_of(b) + 20)
-    return certified_sign(lambda iv: _log_ratio_iv(iv, N, a, b, K), start_bits=start,
+    start = bits_for(N, a.bit_length() + b.bit_length() + 2 * K.bit_length() + 64)
+    return certified_sign(lambda: _log_ratio_iv(N, a, b, K), start_bits=start,
                           max_bits=32 * start, exact_fn=exact)
 
 

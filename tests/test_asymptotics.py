@@ -68,22 +68,48 @@ def test_k_jump_orders(table):
             assert rows["corrected"]["k_rel_error"] < rows["lambert"]["k_rel_error"]
 
 
+def _rel(a, b):
+    """Relative difference evaluated at 200 digits (above every claim checked here)."""
+    with mpmath.workdps(200):
+        return abs(mpmath.mpf(a) / mpmath.mpf(b) - 1)
+
+
 @settings(max_examples=30, deadline=None)
 @given(st.integers(21, 10**7))
 def test_best_equals_exact_solver(n):
     cp = symhx.critical_point(n, dps=40)
     a = asymptotic_critical_point(n, dps=40)
     assert a.k == cp.k_after
-    assert abs(a.q / cp.q - 1) < 1e-35
-    assert abs(a.p / cp.p - 1) < 1e-35
+    assert _rel(a.q, cp.q) < mpmath.mpf(10) ** -38
+    assert _rel(a.p, cp.p) < mpmath.mpf(10) ** -38
 
 
-@settings(max_examples=10, deadline=None)
-@given(st.integers(10**12, 10**60))
+@settings(max_examples=15, deadline=None)
+@given(st.integers(10**12, 10**60) | st.integers(10**60, 10**250))
 def test_best_equals_exact_solver_huge(n):
     cp = symhx.critical_point(n, dps=40)
     a = asymptotic_critical_point(n, dps=40)
-    assert a.k == cp.k_after and abs(a.q / cp.q - 1) < 1e-35
+    assert a.k == cp.k_after and _rel(a.q, cp.q) < mpmath.mpf(10) ** -38
+
+
+def test_best_integer_for_every_power_of_ten():
+    # issue 11: the 'best' integer is the certified one for N = 10**k, k = 2..300
+    for e in range(2, 301):
+        N = 10**e
+        a = asymptotic_critical_point(N, dps=20)
+        assert a.k == symhx.critical_point(N, dps=20).k_after, e
+
+
+def test_stated_precision_is_met_not_vacuous():
+    # the relative error claims are checked at 200 digits: a one-term Stirling series or
+    # a wrong guard would show here (at mpmath's default 15 digits every difference is 0)
+    N = 10**30
+    cp = symhx.critical_point(N, dps=150)
+    for order, claim in (("best", 100), ("relaxed", 31)):  # relaxed: O(1/(N ln N))
+        a = asymptotic_critical_point(N, order=order, dps=110)
+        assert _rel(a.q, cp.q) < mpmath.mpf(10) ** -claim, order
+    b = asymptotic_critical_point(10**5, dps=110)
+    assert _rel(b.q, symhx.critical_point(10**5, dps=150).q) < mpmath.mpf(10) ** -100
 
 
 def test_pd_series_coefficients_match_sympy():
@@ -119,8 +145,9 @@ def test_lambert_matches_symbolic_formula():
     for n in (10**3, 10**8, 10**40):
         a = asymptotic_critical_point(n, order="lambert", dps=40)
         with mpmath.workdps(40):
-            assert abs(fk(mpmath.mpf(n)).real / a.k - 1) < 1e-30
-            assert abs(mpmath.expm1(fq(mpmath.mpf(n)).real) / a.q - 1) < 1e-30
+            k_sym, q_sym = fk(mpmath.mpf(n)).real, mpmath.expm1(fq(mpmath.mpf(n)).real)
+        assert _rel(k_sym, a.k) < mpmath.mpf(10) ** -30
+        assert _rel(q_sym, a.q) < mpmath.mpf(10) ** -30
 
 
 def test_bad_input():

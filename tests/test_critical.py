@@ -30,7 +30,7 @@ def test_critical_against_exhaustive_scan(N):
 
 
 def test_degenerate_small_N():
-    # DESIGN.md §3.5
+    # degenerate small N (see the symhx.critical docstring)
     cp2 = symhx.critical_point(2)
     assert cp2.p_exact == 2 and cp2.p > 1  # no jump in (0, 1]
     cp3 = symhx.critical_point(3)
@@ -86,7 +86,7 @@ def test_argmin_is_certified_locally(N):
 
 @pytest.mark.parametrize("N", [20, 101, 1000, 5000])
 def test_c_is_unimodal_exhaustive(N):
-    # DESIGN: log c_k is unimodal in k (proof in symhx.critical); check every k
+    # log c_k is unimodal in k (proof in symhx.critical); check every k
     vals = [log_c_direct(N, k, 30) for k in range(2, N + 1)]
     d = [b - a for a, b in pairwise(vals)]
     changes = sum(1 for x, y in pairwise(d) if (x < 0) != (y < 0))

@@ -15,15 +15,23 @@ positive above. (With the ``;distinct`` weighting ``h_k`` is ``(k-1) log p`` plu
 Hence, as for the simple space, the mode is 1 exactly for ``p < p_c = min_{k>=2} c_k`` and jumps
 to an argmin at ``p_c`` (if several ``c_k`` tie, to the one whose ``h_k`` grows fastest).
 
-Algorithm (any ``N`` up to ~10**6, memory ~ ``8 (m + 4) N`` bytes):
+Algorithm (seed, then verify; ``N`` up to a few 10**6: the float64 seed uses arrays of length N,
+memory ~ ``8 (m + 4) N`` bytes):
 
-1. float64: every ``c_k``, ``k = 2..N``, by a vectorised safeguarded Newton iteration in
-   ``s = log(N p)`` (bracketed, so it cannot miss the single root);
-2. candidates: the ``k`` with ``h_k(s_min + 1e-9) >= -margin`` (margin > 100x the float64 error
-   of ``h``); every other ``k`` provably has ``c_k > p_c``;
-3. mpmath: each candidate's root at ``dps`` + guard digits; the ordering of the best against the
-   others certified by interval arithmetic at the ends of a tiny certified bracket of the best
-   root; near-equal roots are checked for an exact rational tie with integer arithmetic.
+1. seed (decides nothing): float64 ``c_k`` for every k by a vectorised safeguarded Newton
+   iteration; ``best`` = its argmin; its root refined with mpmath at ``dps`` + guard digits;
+2. bracket: exact binary rationals ``p_lo < p_hi`` (relative gap ``~10**-(dps+3)``) with
+   ``h_best(p_lo) < 0 < h_best(p_hi)`` proved by Arb balls; ``p_bounds = (p_lo, p_hi)``;
+3. exclusion, by Arb balls: ``W(k)/W(1)`` at ``p_hi`` is built as a running product of the exact
+   ratios ``W(k+1)/W(k) = p (N-k) k/(k+1) Q*(k+1)/Q*(k)``, and every ``k != best`` with
+   ``W(k) < W(1)`` has ``c_k > p_hi``. The product stops at the first ``k > r_max`` where
+   ``W(k) < W(1)`` and ``rho(k) = p (N-k) (k+m)/(k+1-r_max) < 1`` (exact rationals): ``rho`` is
+   non-increasing and bounds every later ratio (mediant inequality on the non-negative
+   polynomial coefficients of ``Q*``), so ``W`` decreases from there on;
+4. the few ``k`` the product cannot exclude are decided by high-precision Arb signs of
+   ``h_k(p_hi)`` and ``h_k(p_lo)``; roots inside the bracket are checked for an exact rational
+   tie with integer arithmetic (:func:`symhx.spaces.compare_weights`), else the precision is
+   raised.
 """
 
 from __future__ import annotations
@@ -35,19 +43,20 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx._numeric import (
-    G_iv,
-    G_mp,
+from symhx._numeric import G_mp, check_dps, check_N, digits_of
+from symhx.certify import (
+    G_arb,
     UndecidedError,
-    check_dps,
-    check_N,
-    digits_of,
-    iv_bits_for,
-    iv_prec,
+    arb_prec,
+    bits_for,
+    certified_sign,
+    mpf_bounds,
+    to_arb,
 )
-from symhx.critical import CriticalPoint, discriminant_root
+from symhx.critical import CriticalPoint, discriminant_root, discriminant_root_q
 from symhx.spaces._classes import Space, parse_space
-from symhx.spaces._dist import compare_weights, log_U_table, screen_margin
+from symhx.spaces._dist import compare_weights, log_U_table
+from symhx.validation import DEFAULT_DPS, as_fraction
 
 __all__ = ["critical_point", "root_estimates"]
 
@@ -129,20 +138,6 @@ def root_estimates(space: Space | str, N: int) -> np.ndarray:
     return s
 
 
-def _float_h_at(sp: Space, N: int, s: float) -> np.ndarray:
-    """float64 ``h_k(s)`` for ``k = 2..N``."""
-    from scipy.special import gammaln
-
-    lu = log_U_table(sp, N)
-    ks = np.arange(2, N + 1, dtype=float)
-    G = gammaln(float(N)) - gammaln(N - ks + 1.0) - (ks - 1.0) * math.log(N)
-    es = np.arange(sp.max_excess + 1, dtype=float)
-    t = lu + es[:, None] * (s - math.log(N)) if sp.weighting == "length" else lu
-    top = t.max(axis=0)
-    logQ = top + np.log(np.exp(t - top).sum(axis=0))
-    return (ks - 1.0) * s + G - np.log(ks) + logQ[1:] - logQ[0]
-
-
 # --------------------------------------------------------------------------- mpmath stage
 def _log_Q_mp(sp: Space, k: int, p: Any) -> Any:
     U = sp.U(k)
@@ -180,31 +175,44 @@ def _dh_mp(sp: Space, N: int, k: int, s: Any) -> Any:
     return (k - 1) + mean_excess(k) - mean_excess(1)
 
 
-def _h_iv(iv: Any, sp: Space, N: int, k: int, s: Any) -> Any:
-    si = iv.mpf(s)
-    p = iv.exp(si) / N
-
-    def logQ(j: int) -> Any:
-        U = sp.U(j)
-        if sp.weighting == "distinct":
-            return iv.log(iv.mpf(sum(U)))
-        total = iv.mpf(0)
-        for e, u in enumerate(U):
-            if u:
-                total += p**e * iv.mpf(u)
-        return iv.log(total)
-
-    return (k - 1) * si + G_iv(iv, N, k - 1) - iv.log(iv.mpf(k)) + logQ(k) - logQ(1)
+def _h_arb(sp: Space, N: int, k: int, fr: Fraction) -> Any:
+    """Ball of ``h_k(p) = log W(k) - log W(1)`` at the exact rational ``p = fr``:
+    ``(k-1) log(N p) + G(N, k-1) - log k + log Qnum(k) - log Qnum(1)``."""
+    a, b = fr.numerator, fr.denominator
+    return ((k - 1) * (to_arb(fr) * to_arb(N)).log() + G_arb(N, k - 1) - to_arb(k).log()
+            + to_arb(sp.Qnum(k, a, b)).log() - to_arb(sp.Qnum(1, a, b)).log())
 
 
-def _sign_iv(sp: Space, N: int, k: int, s: Any, bits: int) -> int:
-    with iv_prec(bits) as iv:
-        x = _h_iv(iv, sp, N, k, s)
-    if x.a > 0:
-        return 1
-    if x.b < 0:
-        return -1
-    return 0
+def _sign_h(sp: Space, N: int, k: int, fr: Fraction, bits: int) -> int:
+    """Certified sign of ``h_k(fr)`` (0 only if an exact comparison finds a tie)."""
+    return certified_sign(lambda: _h_arb(sp, N, k, fr), start_bits=bits, max_bits=8 * bits,
+                          exact_fn=lambda: compare_weights(sp, N, fr, 1, k))
+
+
+def _unexcluded(sp: Space, N: int, fr: Fraction, best: int) -> list[int]:
+    """Every ``k != best`` that the running Arb product cannot prove to have ``W(k) < W(1)`` at
+    ``p = fr`` (so every other k has ``c_k > fr``); see the module docstring, step 3."""
+    a, b = fr.numerator, fr.denominator
+    m, R = sp.max_excess, sp.max_parts
+    out: list[int] = []
+    bits = 96 + 2 * N.bit_length() + a.bit_length() + b.bit_length()
+    with arb_prec(bits):
+        pa = to_arb(fr)
+        one = to_arb(1)
+        ratio = one
+        qprev = to_arb(sp.Qnum(1, a, b))
+        for k in range(1, N):
+            qk1 = to_arb(sp.Qnum(k + 1, a, b))
+            ratio = ratio * pa * ((N - k) * k) / (k + 1) * qk1 / qprev
+            qprev = qk1
+            kk = k + 1  # ratio = W(kk) / W(1)
+            below = ratio < one
+            if not below and kk != best:
+                out.append(kk)
+            if (below and kk > R and kk > best
+                    and fr * (N - kk) * (kk + m) < kk + 1 - R):
+                break
+    return out
 
 
 def _root_mp(sp: Space, N: int, k: int, s0: float, wp: int) -> Any:
@@ -242,19 +250,31 @@ def _try_rational(sp: Space, N: int, s: Any, ks: list[int], wp: int) -> Fraction
     return None
 
 
-def critical_point(N: int, *, dps: int = 50, space: str | Space = "eq41",
+def _bracket(sp: Space, N: int, s: Any, dps: int, wp: int) -> tuple[Fraction, Fraction]:
+    """Exact binary rationals ``p_lo < e**s/N < p_hi``, relative gap ``~ 10**-(dps+3)``."""
+    with mpmath.workdps(wp):
+        p = mpmath.exp(s) / N
+        eps = mpmath.mpf(10) ** (-(dps + 3))
+        lo, hi = p * (1 - eps), p * (1 + eps)
+    flo, fhi = as_fraction(lo), as_fraction(hi)
+    assert flo is not None and fhi is not None
+    return flo, fhi
+
+
+def critical_point(N: int, *, space: str | Space = "eq41", dps: int = DEFAULT_DPS,
                    weighting: str | None = None) -> CriticalPoint:
     """Where the mode of X over ``space`` leaves 1 (the first jump), for any ``N >= 2``.
 
     Parameters
     ----------
     N : int
-        Vertices, ``2 <= N``; float64 arrays of length N are used, so ``N`` up to a few 10**6.
-    dps : int
-        Digits of ``p``, ``q``.
-    space : str
+        Vertices, ``2 <= N``; the float64 seed uses arrays of length N, so ``N`` up to a few
+        10**6.
+    space : str or Space
         See :func:`symhx.spaces.parse_space`; ``"simple"`` is delegated to
         :func:`symhx.critical.critical_point`.
+    dps : int
+        Digits of ``p``, ``q`` and the relative width of ``p_bounds``.
     weighting : str, optional
         ``"length"`` or ``"distinct"`` (instead of a ``;distinct`` suffix).
 
@@ -262,75 +282,89 @@ def critical_point(N: int, *, dps: int = 50, space: str | Space = "eq41",
     -------
     symhx.critical.CriticalPoint
         ``p = min_{k>=2} c_k``, ``q = N p - 1``, ``k_before = 1``, ``k_after`` the mode just
-        above ``p``, ``argmins`` all k with ``c_k = p``, ``p_exact`` when rational. ``p_d`` is
-        the *simple* space's discriminant root (eq. 16), kept for reference only: it has no
-        meaning for the other spaces.
+        above ``p``, ``argmins`` all k with ``c_k = p``, ``p_exact`` when rational,
+        ``p_bounds`` a rigorous enclosure (Arb). ``p_d`` is the *simple* space's discriminant
+        root (eq. 16), kept for reference only: it has no meaning for the other spaces.
 
     >>> cp = critical_point(101, space="eq41", dps=20)
     >>> cp.k_before, cp.k_after
     (1, 23)
+    >>> cp.p_bounds[0] < cp.p_bounds[1]
+    True
     """
     sp = parse_space(space, weighting)
     N = check_N(N)
-    dps = check_dps(dps)
+    d = check_dps(dps)
+    assert d is not None
+    dps = d
     if sp.base == "simple":
         from symhx.critical import critical_point as simple_cp
 
         return simple_cp(N, dps=dps)
-    s_all = root_estimates(sp, N)
-    kmin = int(np.argmin(s_all)) + 2
-    s_min = float(s_all[kmin - 2])
-    hv = _float_h_at(sp, N, s_min + 1e-9 * max(1.0, abs(s_min)))
-    margin = screen_margin(N)
-    cands = sorted({kmin, *(int(i) + 2 for i in np.nonzero(hv >= -margin)[0])})
+    s_all = root_estimates(sp, N)  # float64 seed: decides nothing
+    best = int(np.argmin(s_all)) + 2
     guard = 15 + 2 * digits_of(N)
     wp = dps + guard
-    roots = {k: _root_mp(sp, N, k, float(s_all[k - 2]), wp) for k in cands}
-    best = min(cands, key=lambda k: roots[k])
-    with mpmath.workdps(wp):
-        eps = mpmath.mpf(10) ** (-(dps + guard // 2)) * max(1, abs(roots[best]))
-        s_lo, s_hi = roots[best] - eps, roots[best] + eps
-    bits = iv_bits_for(N, wp + 10)
-    if not (_sign_iv(sp, N, best, s_lo, bits) < 0 < _sign_iv(sp, N, best, s_hi, bits)):
-        raise UndecidedError(f"could not bracket c_{best} for N={N}, space={sp.name}")
-    argmins = [best]
-    for k in cands:
-        if k == best:
-            continue
-        sg = _sign_iv(sp, N, k, s_hi, bits)
-        if sg < 0:
-            continue  # c_k > s_hi >= c_best
-        # c_k is within eps of c_best: an exact tie, or closer than the working precision
-        with mpmath.workdps(wp):
-            close = abs(roots[k] - roots[best]) <= 4 * eps
-        if close:
-            argmins.append(k)
-            continue
-        raise UndecidedError(f"ordering of c_{k} and c_{best} not certified (N={N})")
+    roots: dict[int, Any] = {}
+
+    def root(k: int) -> Any:
+        if k not in roots:
+            roots[k] = _root_mp(sp, N, k, float(s_all[k - 2]), wp)
+        return roots[k]
+
+    bits = bits_for(N, int(wp * 3.33) + 32)
+    evaluations = 0
+    for _ in range(N):  # each pass either certifies or strictly lowers c_best
+        p_lo, p_hi = _bracket(sp, N, root(best), dps, wp)
+        evaluations += 2
+        if not (_sign_h(sp, N, best, p_lo, bits) < 0 < _sign_h(sp, N, best, p_hi, bits)):
+            raise UndecidedError(f"could not bracket c_{best} for N={N}, space={sp.name}")
+        argmins, lower = [best], None
+        for k in _unexcluded(sp, N, p_hi, best):
+            evaluations += 1
+            if _sign_h(sp, N, k, p_hi, bits) < 0:
+                continue  # c_k > p_hi
+            evaluations += 1
+            if _sign_h(sp, N, k, p_lo, bits) >= 0:  # c_k <= p_lo < c_best: a better k
+                lower = k
+                break
+            argmins.append(k)  # c_k inside the bracket: an exact tie or closer than it
+        if lower is None:
+            break
+        best = lower
+    else:  # pragma: no cover - c_best strictly decreases, so at most N passes
+        raise UndecidedError(f"no certified argmin for N={N}, space={sp.name}")
     argmins.sort()
     p_exact = None
     if len(argmins) > 1:
-        p_exact = _try_rational(sp, N, roots[best], argmins, wp)
+        p_exact = _try_rational(sp, N, root(best), argmins, wp)
         if p_exact is None:
-            raise UndecidedError(f"c_k for k in {argmins} agree to {dps + guard // 2} digits "
-                                 f"but no exact rational tie was found (N={N}, {sp.name})")
+            raise UndecidedError(f"c_k for k in {argmins} agree to {dps + 3} digits but no "
+                                 f"exact rational tie was found (N={N}, {sp.name})")
     elif best * N.bit_length() < 200_000:
-        p_exact = _try_rational(sp, N, roots[best], [best], wp)
+        p_exact = _try_rational(sp, N, root(best), [best], wp)
     # the mode just above p_c: the tied k whose h_k grows fastest (largest k if equal)
     with mpmath.workdps(wp):
-        slopes = {k: _dh_mp(sp, N, k, roots[best]) for k in argmins}
+        slopes = {k: _dh_mp(sp, N, k, root(best)) for k in argmins}
         k_after = max(argmins, key=lambda k: (slopes[k], k))
-        s = roots[best]
+    with arb_prec(int(wp * 3.33) + 64 + N.bit_length()):
+        if p_exact is not None:
+            p_lo = p_hi = p_exact
+        pb = (mpf_bounds(to_arb(p_lo), dps)[0], mpf_bounds(to_arb(p_hi), dps)[1])
+        qb = (mpf_bounds(to_arb(N * p_lo - 1), dps)[0], mpf_bounds(to_arb(N * p_hi - 1), dps)[1])
+    with mpmath.workdps(wp):
         if p_exact is not None:
             p = mpmath.mpf(p_exact.numerator) / p_exact.denominator
             q = mpmath.mpf(N * p_exact.numerator - p_exact.denominator) / p_exact.denominator
         else:
-            p = mpmath.exp(s) / N
-            q = mpmath.expm1(s)
+            p = mpmath.exp(root(best)) / N
+            q = mpmath.expm1(root(best))
     with mpmath.workdps(dps):
         p, q = +p, +q
+    pb = (min(pb[0], p), max(pb[1], p))
+    qb = (min(qb[0], q), max(qb[1], q))
     return CriticalPoint(
         N=N, p=p, q=q, k_before=1, k_after=k_after, argmins=tuple(argmins),
-        p_d=discriminant_root(N, dps=dps), p_exact=p_exact, dps=dps,
-        sign_evaluations=len(cands),
+        p_d=discriminant_root(N, dps=dps), p_exact=p_exact, dps=dps, p_bounds=pb,
+        q_bounds=qb, q_d=discriminant_root_q(N, dps=dps), sign_evaluations=evaluations,
     )

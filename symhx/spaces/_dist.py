@@ -30,16 +30,14 @@ import numpy as np
 
 from symhx._numeric import (
     G_mp,
-    UndecidedError,
-    certified_sign,
     check_dps,
     check_N,
     check_p,
     digits_of,
     is_exact_type,
-    iv_bits_for,
     mp_value,
 )
+from symhx.certify import UndecidedError, bits_for, certified_sign, space_candidates, to_arb
 from symhx.distribution import EXACT_N_LIMIT, Distribution, _binary_split
 from symhx.spaces._classes import Space, paper_label, parse_space, shape_excess
 
@@ -158,14 +156,14 @@ def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
     if d <= 64 or N < 2000:
         return exact()
 
-    def interval(iv: Any) -> Any:
-        return (d * (iv.log(iv.mpf(a)) - iv.log(iv.mpf(b)))
-                + iv.loggamma(iv.mpf(N - j + 1)) - iv.loggamma(iv.mpf(N - k + 1))
-                + iv.log(iv.mpf(j)) - iv.log(iv.mpf(k))
-                + iv.log(iv.mpf(Qk)) - iv.log(iv.mpf(Qj)))
+    def ball() -> Any:
+        return (d * (to_arb(a).log() - to_arb(b).log())
+                + to_arb(N - j + 1).lgamma() - to_arb(N - k + 1).lgamma()
+                + to_arb(j).log() - to_arb(k).log()
+                + to_arb(Qk).log() - to_arb(Qj).log())
 
-    start = iv_bits_for(N, digits_of(a) + digits_of(b) + 20)
-    return certified_sign(interval, start_bits=start, max_bits=16 * start, exact_fn=exact)
+    start = bits_for(N, a.bit_length() + b.bit_length() + 2 * k.bit_length() + 64)
+    return certified_sign(ball, start_bits=start, max_bits=16 * start, exact_fn=exact)
 
 
 def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tuple[int, ...]:
@@ -173,9 +171,8 @@ def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tup
     frx = _rational(p, fr)
     if N == 1:
         return (1,)
-    lw = log_W_float(space, N, _logp_float(frx))
-    top = float(lw.max())
-    cand = [int(c) + 1 for c in np.nonzero(lw >= top - screen_margin(N))[0]]
+    lw = log_W_float(space, N, _logp_float(frx))  # float64 seed: decides nothing
+    cand = space_candidates(space, N, frx, int(np.argmax(lw)) + 1)  # Arb-certified superset
     best = [cand[0]]
     for k in cand[1:]:
         s = compare_weights(space, N, frx, best[0], k)
