@@ -41,6 +41,7 @@ from symhx.spaces._dist import (
     class_probabilities,
     distribution,
     modes,
+    space_modes,
 )
 from symhx.spaces.study import DEFAULT_PS, ConvergenceRow, convergence_study
 from symhx.spaces.symbolic import (
@@ -78,5 +79,6 @@ __all__ = [
     "root_estimates",
     "shape_excess",
     "shapes_up_to",
+    "space_modes",
     "verify_printed_formulas",
 ]
