@@ -10,10 +10,10 @@ import mpmath
 import pytest
 
 from symhx._numeric import as_fraction
-from symhx.circuits import enumerate_circuits, necklace_count, partitions
 from symhx.api import distribution_of
 from symhx.api import mean as dmean
 from symhx.api import modes as dmodes
+from symhx.circuits import enumerate_circuits, necklace_count, partitions
 from symhx.spaces import (
     EQ41_SHAPES,
     class_count,
