@@ -342,10 +342,13 @@ class Distribution:
         if self.dps is None:
             cdf = self._ftab["cdf"]
             return int(min(np.searchsorted(cdf, float(q), side="left"), self.N - 1)) + 1
-        lo, hi = 1, self.N  # smallest k with cdf(k) >= q (cdf(N) = 1 >= q)
+        # smallest k with cdf(k) >= q (cdf(N) = 1 >= q); on the mpmath path q is resolved to
+        # the dps digits of the cdf: a q within 10**(1 - dps) (relative) of cdf(k) counts as equal
+        qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
+        lo, hi = 1, self.N
         while lo < hi:
             mid = (lo + hi) // 2
-            if to_rational(self._cdf1(mid), "cdf") >= q:
+            if to_rational(self._cdf1(mid), "cdf") >= qq:
                 hi = mid
             else:
                 lo = mid + 1
@@ -359,10 +362,11 @@ class Distribution:
         if self.dps is None:
             sf = self._ftab["sf"]  # non-increasing: smallest k with sf(k) <= q
             return int(np.searchsorted(-sf, -float(q), side="left")) + 1
+        qq = q if self.exact else q * (1 + Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
         while lo < hi:
             mid = (lo + hi) // 2
-            if to_rational(self._sf1(mid), "sf") <= q:
+            if to_rational(self._sf1(mid), "sf") <= qq:
                 hi = mid
             else:
                 lo = mid + 1
@@ -370,8 +374,10 @@ class Distribution:
 
     def ppf(self, q: Any) -> Any:
         """Percent point function: the smallest ``k`` with ``cdf(k) >= q`` (``ppf(0) = 0``,
-        ``ppf(1) = N``), decided on the exact (or dps-digit) cdf.  ``q`` is read like ``p``
-        (``"0.5"`` and ``Fraction(1, 2)`` are exact).
+        ``ppf(1) = N``), decided on the exact cdf for exact ``p``.  On the mpmath path ``q`` is
+        resolved to the ``dps`` digits of the cdf (a ``q`` within a relative ``10**(1 - dps)``
+        of ``cdf(k)`` gives ``k``); on the float64 path it is compared with the float cdf.
+        ``q`` is read like ``p`` (``"0.5"`` and ``Fraction(1, 2)`` are exact).
 
         >>> import symhx
         >>> d = symhx.distribution_of(101, "0.02")
