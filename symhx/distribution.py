@@ -155,10 +155,25 @@ class Distribution:
         self._guard = 10 + 2 * digits_of(self.N)
 
     # ----------------------------------------------------------------- subclass hooks
-    # exact path: W(k) and partial sums sum_{j<=k} W(j) on the scale of _exact_moments[0]
-    _exact_moments: tuple[Fraction, Fraction, Fraction]
-    # mpmath path: (normaliser or its log, mean, variance) at dps + guard digits
-    _mp_moments: tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]
+    @property
+    def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:  # pragma: no cover
+        """Exact ``(sum_k W(k), sum_k k W(k), sum_k k**2 W(k))``."""
+        raise NotImplementedError
+
+    @property
+    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:  # pragma: no cover
+        """``(normaliser or its log, mean, variance)`` at ``dps`` + guard digits."""
+        raise NotImplementedError
+
+    @property
+    def normaliser(self) -> Any:  # pragma: no cover - interface
+        """The normalising constant ``sum_k W(k)`` (``Gamma_{N,p}`` of eq. 8 when simple)."""
+        raise NotImplementedError
+
+    @property
+    def log_normaliser(self) -> Any:  # pragma: no cover - interface
+        """``log`` of :attr:`normaliser`."""
+        raise NotImplementedError
 
     def _exact_partial(self, k: int) -> Fraction:  # pragma: no cover - interface
         raise NotImplementedError
@@ -187,10 +202,15 @@ class Distribution:
         with mpmath.workdps(self.dps or 15):
             return +x
 
+    @property
+    def _wdps(self) -> int:
+        """The working precision of the mpmath path: ``dps`` + guard digits."""
+        assert self.dps is not None, "the mpmath path needs an int dps"
+        return self.dps + self._guard
+
     def _wp(self) -> Any:
         """The working-precision context: ``dps`` + guard digits."""
-        assert self.dps is not None
-        return mpmath.workdps(self.dps + self._guard)
+        return mpmath.workdps(self._wdps)
 
     def _log_fraction(self, x: Fraction) -> mpmath.mpf:
         if x == 0:
@@ -341,14 +361,14 @@ class Distribution:
             return self.N
         if self.dps is None:
             cdf = self._ftab["cdf"]
-            return int(min(np.searchsorted(cdf, float(q), side="left"), self.N - 1)) + 1
+            return min(int(np.searchsorted(cdf, float(q), side="left")), self.N - 1) + 1
         # smallest k with cdf(k) >= q (cdf(N) = 1 >= q); on the mpmath path q is resolved to
         # the dps digits of the cdf: a q within 10**(1 - dps) (relative) of cdf(k) counts as equal
         qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
         while lo < hi:
             mid = (lo + hi) // 2
-            if to_rational(self._cdf1(mid), "cdf") >= qq:
+            if _exact_value(self._cdf1(mid)) >= qq:
                 hi = mid
             else:
                 lo = mid + 1
@@ -366,7 +386,7 @@ class Distribution:
         lo, hi = 1, self.N
         while lo < hi:
             mid = (lo + hi) // 2
-            if to_rational(self._sf1(mid), "sf") <= qq:
+            if _exact_value(self._sf1(mid)) <= qq:
                 hi = mid
             else:
                 lo = mid + 1
@@ -420,8 +440,8 @@ class Distribution:
         if self.dps is None:
             t = self._ftab["pmf"]
             ks = np.arange(1, self.N + 1, dtype=float)
-            mu = float(np.dot(ks, t))
-            return float(np.dot((ks - mu) ** 2, t))
+            mu_f = float(np.dot(ks, t))
+            return float(np.dot((ks - mu_f) ** 2, t))
         if self.exact:
             g, m1, m2 = self._exact_moments
             mu = m1 / g
@@ -600,7 +620,7 @@ class SimpleDistribution(Distribution):
         return runs
 
     def _below(self) -> mpmath.mpf:
-        return (self.dps + self._guard) * _LN10 + 2 * mpmath.log(self.N) + 5
+        return self._wdps * _LN10 + 2 * mpmath.log(self.N) + 5
 
     def _compute_runs(self, below: mpmath.mpf) -> tuple[mpmath.mpf, list[tuple[int, list]]]:
         """(log of the largest term, [(k0, [Phi(k)/max for k = k0, k0+1, ...]), ...]) keeping
@@ -637,7 +657,7 @@ class SimpleDistribution(Distribution):
                     if not edge:
                         break
                     lv = max(self._log_phi(k) for k in edge) - lmax
-                need = (self.dps + self._guard) * _LN10 - lv + 3 * mpmath.log(self.N) + 5
+                need = self._wdps * _LN10 - lv + 3 * mpmath.log(self.N) + 5
                 if need <= below:
                     break
                 below = need
@@ -724,6 +744,13 @@ class SimpleDistribution(Distribution):
                 out.append((k, self._round(w)))
                 w = w * pm * (N - k) * k / (k + 1)
         return out
+
+
+def _exact_value(x: Any) -> Fraction:
+    """The exact rational value of a Fraction or a (finite) mpf."""
+    fr = to_rational(x, "value")
+    assert fr is not None
+    return fr
 
 
 def _logp_float(p: Any, fr: Fraction | None) -> float:

@@ -236,7 +236,7 @@ class SpaceDistribution(Distribution):
             return [(1, N)]
         fr = _rational(self.p, self.fr)
         lw = log_W_float(self.sample_space, N, _logp_float(fr))
-        cut = lw.max() - (self.dps + self._guard) * math.log(10) - 20
+        cut = lw.max() - self._wdps * math.log(10) - 20
         idx = np.nonzero(lw >= cut)[0] + 1
         runs: list[tuple[int, int]] = []
         lo = prev = int(idx[0])
@@ -277,7 +277,7 @@ class SpaceDistribution(Distribution):
         """``{k: W(k)}`` (mpf at dps + guard) for every significant k."""
         N = self.N
         out: dict[int, mpmath.mpf] = {}
-        with mpmath.workdps(self.dps + self._guard):
+        with mpmath.workdpsself._wdps:
             pm = mp_value(self.p, self.fr)
             pe = self._pe(pm)
             sp = self.sample_space
@@ -288,7 +288,7 @@ class SpaceDistribution(Distribution):
             kmax = max(hi for _, hi in runs)
             small = range(1, min(kmax, sp.max_parts) + 1)
             extra = max(u.bit_length() for k in (*small, kmax) for u in sp.U(k))
-            P = mpmath.libmp.dps_to_prec(self.dps + self._guard) + extra + 20
+            P = mpmath.libmp.dps_to_precself._wdps + extra + 20
             pe_int = [int(mpmath.floor(x * mpmath.mpf(2) ** P)) for x in pe]
             scale = mpmath.mpf(2) ** -P
             distinct = sp.weighting == "distinct"
@@ -309,7 +309,7 @@ class SpaceDistribution(Distribution):
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
         terms = self._terms
-        with mpmath.workdps(self.dps + self._guard):
+        with mpmath.workdpsself._wdps:
             s0 = mpmath.fsum(terms.values())
             mu = mpmath.fsum(k * w for k, w in terms.items()) / s0
             var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
@@ -332,7 +332,7 @@ class SpaceDistribution(Distribution):
             ks: Any = range(lo, hi + 1)
         else:  # float screen relative to the largest weight in [lo, hi]
             lw = self._float_lw[lo - 1:hi]
-            cut = lw.max() - (self.dps + self._guard) * math.log(10) - 20  # type: ignore[operator]
+            cut = lw.max() - self._wdps * math.log(10) - 20
             ks = [lo + int(i) for i in np.nonzero(lw >= cut)[0]]
         with self._wp():
             return [(k, self._mp_weight(k) / s0) for k in ks]
@@ -501,6 +501,7 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
     joint: dict[tuple[int, ...], list[Any]] = {}
     totals: dict[tuple[int, ...], Any] = {}
     if dist.exact:
+        assert dist.fr is not None
         fr = Fraction(dist.fr)
         g = dist.normaliser
         for s in sp.shapes:
