@@ -199,3 +199,12 @@ def test_no_reference_to_files_outside_the_repository(word: str) -> None:
            "spaces/symbolic.py", "__init__.py"]
     hits = [f for f in own if word in (PKG / f).read_text()]
     assert hits == []
+
+
+def test_mypy_clean_on_the_public_layers() -> None:
+    """``mypy`` (configured in pyproject.toml: the files CI checks) reports no error."""
+    pytest.importorskip("mypy")
+    res = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental"], cwd=ROOT,
+                         capture_output=True, text=True, env={"PYTHONPATH": str(ROOT),
+                                                               "PATH": ""})
+    assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-2000:]
