@@ -396,3 +396,18 @@ def test_normaliser_precision_is_local() -> None:
         assert abs(got - want) <= mpmath.mpf(10) ** -39 * want
         want = _mp(sum(Case(30, Fraction(0.3), "eq41").weights))
         assert abs(got_space - want) <= mpmath.mpf(10) ** -39 * want
+
+
+def test_class_decomposition_by_excess_precision_is_local() -> None:
+    from symhx.spaces import class_decomposition
+
+    old = mpmath.mp.dps
+    try:
+        mpmath.mp.dps = 15
+        got = class_decomposition(30, 0.3, space="excess<=3", dps=40).by_excess
+    finally:
+        mpmath.mp.dps = old
+    ex = class_decomposition(30, Fraction(0.3), space="excess<=3").by_excess
+    with mpmath.workdps(80):
+        for e, want in ex.items():
+            assert abs(got[e] - _mp(want)) <= mpmath.mpf(10) ** -39 * _mp(want), e

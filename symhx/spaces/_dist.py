@@ -474,10 +474,19 @@ class ClassDecomposition:
         self.labels = {s: paper_label(s) for s in shapes}
         self.joint = joint
         self.totals = totals
-        by: dict[int, Any] = {}
+        groups: dict[int, list[Any]] = {}
         for s in shapes:
-            e = shape_excess(s)
-            by[e] = by.get(e, 0) + totals[s]
+            groups.setdefault(shape_excess(s), []).append(totals[s])
+        by: dict[int, Any] = {}
+        dps = getattr(dist, "dps", None)
+        for e, vals in groups.items():
+            if all(isinstance(v, Fraction) for v in vals):
+                by[e] = sum(vals, Fraction(0))
+            else:  # mpf: add at dps + 10 digits, not at the global precision
+                with mpmath.workdps((dps or 15) + 10):
+                    tot = mpmath.fsum(vals)
+                with mpmath.workdps(dps or 15):
+                    by[e] = +tot
         self.by_excess = by
 
     def __repr__(self) -> str:
