@@ -277,7 +277,7 @@ class SpaceDistribution(Distribution):
         """``{k: W(k)}`` (mpf at dps + guard) for every significant k."""
         N = self.N
         out: dict[int, mpmath.mpf] = {}
-        with mpmath.workdpsself._wdps:
+        with mpmath.workdps(self._wdps):
             pm = mp_value(self.p, self.fr)
             pe = self._pe(pm)
             sp = self.sample_space
@@ -288,7 +288,7 @@ class SpaceDistribution(Distribution):
             kmax = max(hi for _, hi in runs)
             small = range(1, min(kmax, sp.max_parts) + 1)
             extra = max(u.bit_length() for k in (*small, kmax) for u in sp.U(k))
-            P = mpmath.libmp.dps_to_precself._wdps + extra + 20
+            P = mpmath.libmp.dps_to_prec(self._wdps) + extra + 20
             pe_int = [int(mpmath.floor(x * mpmath.mpf(2) ** P)) for x in pe]
             scale = mpmath.mpf(2) ** -P
             distinct = sp.weighting == "distinct"
@@ -309,7 +309,7 @@ class SpaceDistribution(Distribution):
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
         terms = self._terms
-        with mpmath.workdpsself._wdps:
+        with mpmath.workdps(self._wdps):
             s0 = mpmath.fsum(terms.values())
             mu = mpmath.fsum(k * w for k, w in terms.items()) / s0
             var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
