@@ -32,7 +32,7 @@ from __future__ import annotations
 import dataclasses
 import warnings
 from collections.abc import Callable
-from typing import Any, overload
+from typing import Any
 
 import mpmath
 import numpy as np
@@ -85,12 +85,6 @@ def _build(N: int, p: Any, sp: Space, dps: int | None) -> Distribution:
     return SpaceDistribution(N, p, sp, dps=dps)
 
 
-@overload
-def distribution_of(N: int, p: Any, *, space: SpaceLike = ..., dps: None,
-                    weighting: str | None = ...) -> Distribution: ...
-@overload
-def distribution_of(N: int, p: Any, *, space: SpaceLike = ..., dps: int = ...,
-                    weighting: str | None = ...) -> Distribution: ...
 def distribution_of(N: Any, p: Any, *, space: SpaceLike = DEFAULT_SPACE,
                     dps: int | None = DEFAULT_DPS, weighting: str | None = None
                     ) -> Distribution:
@@ -375,10 +369,6 @@ def mode(N: int, p: Any, *, space: SpaceLike = DEFAULT_SPACE) -> Any:
 
 
 # --------------------------------------------------------------------------- critical point
-@overload
-def critical_point(N: int, *, space: SpaceLike = ..., dps: int = ...) -> CriticalPoint: ...
-@overload
-def critical_point(N: int, *, space: SpaceLike = ..., dps: None) -> CriticalPoint: ...
 def critical_point(N: Any, *, space: SpaceLike = DEFAULT_SPACE,
                    dps: int | None = DEFAULT_DPS) -> CriticalPoint:
     """The critical probability ``p_c`` at which the mode of X jumps away from 1 (eqs. 11-16),
