@@ -330,8 +330,12 @@ def test_module_functions_broadcast_like_scipy() -> None:
     assert m.shape == (2,) and m[1] == symhx.mean(101, 0.02, dps=None)
     assert list(symhx.mode(101, ["1/50", 0.02])) == [50, 51]
     assert list(symhx.modes(101, ["1/50", 0.02])) == [(50, 51), (51,)]
-    assert symhx.ppf(101, ["1/50", 0.02], "1/2").tolist() == [
-        symhx.median(101, "1/50"), symhx.median(101, 0.02)]
+    meds = [symhx.median(101, "1/50"), symhx.median(101, "1/100")]
+    assert meds[0] != meds[1]  # so that a permuted result cannot pass
+    assert symhx.ppf(101, ["1/50", "1/100"], "1/2").tolist() == meds
+    assert symhx.ppf(101, ["1/50", "1/100"], "1/2", dps=None).tolist() == meds
+    assert symhx.isf(101, "1/50", ["1/10", "9/10"]).tolist() == [
+        symhx.distribution_of(101, "1/50").isf(q) for q in ("1/10", "9/10")]
 
 
 def test_exact_ties_mode_is_smallest_maximiser() -> None:
