@@ -19,10 +19,9 @@ matplotlib.
 51
 """
 
-from __future__ import annotations
 
-import importlib
-from typing import Any
+import importlib as _importlib
+from typing import Any as _Any
 
 __version__ = "0.1.0"
 
@@ -39,20 +38,32 @@ _EXPORTS: dict[str, str] = {
     "circuits_of_length": "circuits",
     "total_simple_circuits": "circuits",
     "enumerate_circuits": "circuits",
-    # distribution
+    # distributions (frozen objects and scipy.stats-style functions: symhx.api)
     "Distribution": "distribution",
-    "distribution_of": "distribution",
-    "pmf": "distribution",
-    "logpmf": "distribution",
-    "normaliser": "distribution",
-    "mean": "distribution",
-    "variance": "distribution",
-    "mode": "distribution",
-    "modes": "distribution",
-    # critical
-    "discriminant_root": "critical",
-    "critical_point": "critical",
+    "distribution_of": "api",
+    "pmf": "api",
+    "logpmf": "api",
+    "cdf": "api",
+    "logcdf": "api",
+    "sf": "api",
+    "logsf": "api",
+    "ppf": "api",
+    "isf": "api",
+    "mean": "api",
+    "var": "api",
+    "std": "api",
+    "median": "api",
+    "entropy": "api",
+    "interval": "api",
+    "rvs": "api",
+    "normaliser": "api",
+    "variance": "api",
+    "mode": "api",
+    "modes": "api",
+    # critical point
+    "critical_point": "api",
     "CriticalPoint": "critical",
+    "discriminant_root": "critical",
     "mode_path": "critical",
     "ModePath": "critical",
     # asymptotics (mpmath only; the sympy derivations live in symhx.symbolic)
@@ -93,15 +104,16 @@ _EXPORTS: dict[str, str] = {
 __all__ = sorted(_EXPORTS)
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> _Any:
     try:
         module = _EXPORTS[name]
     except KeyError:
         raise AttributeError(f"module 'symhx' has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(f"symhx.{module}"), name)
+    value = getattr(_importlib.import_module(f"symhx.{module}"), name)
     globals()[name] = value
     return value
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_EXPORTS))
+    """The public names only (``__version__`` and the lazily loaded API)."""
+    return sorted({"__version__", *_EXPORTS})

@@ -16,7 +16,7 @@ All counts are exact Python ints.
 
 >>> phi(100, 1), phi(4, 4)
 (100, 6)
->>> circuit_count(7, (3,))      # one vertex three times: N circuits (DESIGN.md errata 1)
+>>> circuit_count(7, (3,))      # one vertex three times: N circuits (not N/3 as printed)
 7
 >>> circuit_count(7, (2, 2))    # two vertices twice each: N (N - 1)
 42
@@ -25,35 +25,61 @@ All counts are exact Python ints.
 from __future__ import annotations
 
 import math
-import operator
 from collections import Counter
 from collections.abc import Iterable, Iterator
 from functools import lru_cache
 
 import mpmath
 
+from symhx.validation import DEFAULT_DPS, check_dps, check_int
+
 __all__ = [
+    "MAX_CIRCUIT_LENGTH",
+    "MAX_COUNT_BITS",
+    "MAX_ENUMERATION",
+    "MAX_PATTERN_LENGTH",
+    "MAX_TOTAL_N",
     "brute_force_pattern_counts",
     "circuit_count",
     "circuits_of_length",
     "enumerate_circuits",
     "log_phi",
     "necklace_count",
+    "necklaces_with_content",
     "normalise_visits",
     "partitions",
     "phi",
     "total_simple_circuits",
 ]
 
+# Documented work limits: inputs beyond them are refused up front (they would run for hours or
+# exhaust memory).  Raise a limit by assigning the constant, e.g.
+# ``symhx.circuits.MAX_TOTAL_N = 10**6``, if you really need it.
+#: largest N of :func:`total_simple_circuits` (an O(N) loop on numbers of ~N log2 N bits: ~6 s)
+MAX_TOTAL_N = 50_000
+#: largest circuit length of :func:`circuit_count` (Burnside needs (length)!)
+MAX_CIRCUIT_LENGTH = 100_000
+#: largest length of :func:`circuits_of_length` (it lists every partition: p(50) = 204226)
+MAX_PATTERN_LENGTH = 50
+#: largest size in bits of a result of :func:`necklace_count` (~N**L)
+MAX_COUNT_BITS = 10_000_000
+#: largest number of words ``N**L`` that :func:`enumerate_circuits` may walk
+MAX_ENUMERATION = 10**8
+
 
 def _int(value: object, name: str, minimum: int) -> int:
-    try:
-        v = operator.index(value)  # type: ignore[arg-type]
-    except TypeError:
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}") from None
-    if v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {v}")
-    return v
+    return check_int(value, name, minimum=minimum)
+
+
+def _short(value: int) -> str:
+    if value.bit_length() > 200:
+        return f"<an integer of {int(value.bit_length() * 0.30103) + 1} digits>"
+    return str(value)
+
+
+def _refuse(what: str, value: int, limit: int, constant: str) -> ValueError:
+    return ValueError(f"{what}={_short(value)} is beyond the documented work limit {limit} "
+                      f"(symhx.circuits.{constant}); raise that constant to allow it")
 
 
 def phi(N: int, k: int) -> int:
@@ -78,13 +104,13 @@ def phi(N: int, k: int) -> int:
     [5, 10, 20, 30, 24]
     """
     N = _int(N, "N", 1)
-    k = operator.index(k)
+    k = check_int(k, "k")
     if k < 1 or k > N:
         return 0
     return math.perm(N, k) // k
 
 
-def log_phi(N: int, k: int, *, dps: int = 50) -> mpmath.mpf:
+def log_phi(N: int, k: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     """Natural log of :func:`phi` to ``dps`` significant digits, for any size of ``N``.
 
     >>> float(log_phi(10**100, 2, dps=30) - 2 * mpmath.log(10**100) + mpmath.log(2)) < 1e-90
@@ -92,9 +118,11 @@ def log_phi(N: int, k: int, *, dps: int = 50) -> mpmath.mpf:
     """
     N = _int(N, "N", 1)
     k = _int(k, "k", 1)
+    dps = check_dps(dps)
     if k > N:
         raise ValueError(f"k must be <= N, got k={k}, N={N}")
-    guard = 10 + len(str(N))  # loggamma(N+1) - loggamma(N-k+1) cancels ~log10(N) digits
+    # loggamma(N+1) - loggamma(N-k+1) cancels ~log10(N) digits
+    guard = 10 + int(N.bit_length() * 0.30103) + 1
     with mpmath.workdps(dps + guard):
         val = mpmath.loggamma(N + 1) - mpmath.loggamma(N - k + 1) - mpmath.log(k)
     with mpmath.workdps(dps):
@@ -104,10 +132,14 @@ def log_phi(N: int, k: int, *, dps: int = 50) -> mpmath.mpf:
 def total_simple_circuits(N: int) -> int:
     """Total number of simple circuits ``sum_k phi_N(k)``: 1, 3, 8, 24, 89, 415, ... (N >= 1).
 
+    The result has about ``N log2 N`` bits; ``N`` above :data:`MAX_TOTAL_N` is refused.
+
     >>> [total_simple_circuits(N) for N in range(1, 7)]
     [1, 3, 8, 24, 89, 415]
     """
     N = _int(N, "N", 1)
+    if N > MAX_TOTAL_N:
+        raise _refuse("N", N, MAX_TOTAL_N, "MAX_TOTAL_N")
     total, perm = 0, 1
     for k in range(1, N + 1):
         perm *= N - k + 1
@@ -121,10 +153,10 @@ def normalise_visits(visits: Iterable[int]) -> tuple[int, ...]:
     >>> normalise_visits([1, 2, 1])
     (2, 1, 1)
     """
-    try:
-        vs = tuple(sorted((operator.index(v) for v in visits), reverse=True))
-    except TypeError:
-        raise TypeError("visits must be an iterable of positive integers") from None
+    if isinstance(visits, (str, bytes)) or not isinstance(visits, Iterable):
+        raise TypeError(f"visits must be an iterable of positive integers, got "
+                        f"{type(visits).__name__} {visits!r}")
+    vs = tuple(sorted((check_int(v, "visits entry") for v in visits), reverse=True))
     if not vs:
         raise ValueError("visits must not be empty")
     if vs[-1] < 1:
@@ -133,9 +165,13 @@ def normalise_visits(visits: Iterable[int]) -> tuple[int, ...]:
 
 
 @lru_cache(maxsize=4096)
-def _necklaces_with_content(content: tuple[int, ...]) -> int:
+def necklaces_with_content(content: tuple[int, ...]) -> int:
     """Necklaces (words up to rotation) whose letters are distinct labelled symbols used
-    ``content[i]`` times each. Burnside: (1/L) sum_{d | gcd} phi(d) (L/d)! / prod (m_i/d)!."""
+    ``content[i]`` times each. Burnside: (1/L) sum_{d | gcd} phi(d) (L/d)! / prod (m_i/d)!.
+
+    >>> necklaces_with_content((2, 2)), necklaces_with_content((1, 1, 1))
+    (2, 2)
+    """
     L = sum(content)
     g = 0
     for m in content:
@@ -197,13 +233,16 @@ def circuit_count(N: int, visits: Iterable[int]) -> int:
     """
     N = _int(N, "N", 1)
     vs = normalise_visits(visits)
+    if sum(vs) > MAX_CIRCUIT_LENGTH:
+        raise _refuse("circuit length sum(visits)", sum(vs), MAX_CIRCUIT_LENGTH,
+                      "MAX_CIRCUIT_LENGTH")
     r = len(vs)
     if r > N:
         return 0
     choose = math.perm(N, r)
     for c in Counter(vs).values():
         choose //= math.factorial(c)
-    return choose * _necklaces_with_content(vs)
+    return choose * necklaces_with_content(vs)
 
 
 def necklace_count(N: int, L: int) -> int:
@@ -217,6 +256,8 @@ def necklace_count(N: int, L: int) -> int:
     """
     N = _int(N, "N", 1)
     L = _int(L, "L", 1)
+    if L * N.bit_length() > MAX_COUNT_BITS:
+        raise _refuse("L * bit_length(N)", L * N.bit_length(), MAX_COUNT_BITS, "MAX_COUNT_BITS")
     total = sum(_euler_phi(d) * N ** (L // d) for d in range(1, L + 1) if L % d == 0)
     return total // L
 
@@ -229,8 +270,8 @@ def partitions(L: int, max_part: int | None = None, max_parts: int | None = None
     [(4,), (3, 1), (2, 2), (2, 1, 1), (1, 1, 1, 1)]
     """
     L = _int(L, "L", 0)
-    top = L if max_part is None else min(L, max_part)
-    limit = L if max_parts is None else max_parts
+    top = L if max_part is None else min(L, _int(max_part, "max_part", 0))
+    limit = L if max_parts is None else _int(max_parts, "max_parts", 0)
 
     def rec(rem: int, top: int, left: int) -> Iterator[tuple[int, ...]]:
         if rem == 0:
@@ -252,6 +293,9 @@ def circuits_of_length(N: int, L: int) -> dict[tuple[int, ...], int]:
     {(3,): 3, (2, 1): 6, (1, 1, 1): 2}
     """
     N = _int(N, "N", 1)
+    L = _int(L, "L", 1)
+    if L > MAX_PATTERN_LENGTH:
+        raise _refuse("L", L, MAX_PATTERN_LENGTH, "MAX_PATTERN_LENGTH")
     return {v: circuit_count(N, v) for v in partitions(L, max_parts=N)}
 
 
@@ -267,6 +311,10 @@ def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
     """
     N = _int(N, "N", 1)
     L = _int(L, "L", 1)
+    if L * math.log2(N) > math.log2(MAX_ENUMERATION):
+        raise ValueError(f"N**L = {N}**{L} words is beyond the documented work limit "
+                         f"{MAX_ENUMERATION} (symhx.circuits.MAX_ENUMERATION); raise that "
+                         f"constant to allow it")
     a = [0] * (L + 1)
 
     def gen(t: int, p: int) -> Iterator[tuple[int, ...]]:

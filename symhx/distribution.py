@@ -1,135 +1,505 @@
-"""The distribution of X, the number of distinct impacts of a circuit (sections 4-5, eqs. 7-8).
+"""The distribution of X, the number of distinct impacts of a circuit, over the simple circuits
+(sections 4-5, eqs. 7-8), and the frozen-distribution interface shared by every sample space.
 
 Simple sample space: ``P(X = k) = Phi_{N,p}(k) / Gamma_{N,p}`` with
 ``Phi_{N,p}(k) = p**k N! / (k (N-k)!)`` and ``Gamma_{N,p} = sum_{j=1}^{N} Phi_{N,p}(j)``.
-Other sample spaces (higher-order circuits, section 8) live in :mod:`symhx.spaces`; every function
-here takes ``space=``.
+This module knows nothing of the higher-order spaces (:mod:`symhx.spaces` builds on it); the
+user-facing functions that pick a space (``symhx.pmf``, ``symhx.mean``, ...) live in
+:mod:`symhx.api`.
 
 Arithmetic
 ----------
-* **Exact** for ``p`` an int, ``Fraction`` or sympy ``Rational``: pmf, normaliser, mean and
-  variance are ``Fraction`` (binary splitting; practical up to ``N ~ 10**5``; larger N raise
-  ``ValueError`` -- pass a float or mpf ``p`` for the mpmath path).
+* **Exact** for ``p`` an int, ``Fraction``, sympy ``Rational`` or decimal string: pmf, cdf, sf,
+  normaliser, mean and variance are ``Fraction`` (binary splitting; ``N <= EXACT_N_LIMIT``;
+  larger N raise ``ValueError`` -- pass a float or mpf ``p`` for the mpmath path).
 * **mpmath** otherwise (floats and mpf are converted exactly, then evaluated at ``dps`` digits):
   log space throughout, so nothing overflows; only terms within ``dps`` + guard digits of the
-  largest one are summed (``Phi`` is decreasing, increasing, decreasing in k, so the significant
-  terms form at most two runs, found by bisection). ``N = 10**6`` runs in a fraction of a second to
-  seconds; the cost grows with the width of the distribution (~sqrt(N)), so ``N`` up to ~10**9 is
-  practical for ``mean``/``variance`` and ``N`` of any size for ``pmf``/``logpmf`` near the modes.
+  largest one (of the whole support, or of the summed range for cdf/sf) are summed (``Phi`` is
+  decreasing, increasing, decreasing in k, so the significant terms form at most two runs,
+  found by bisection).  ``N = 10**6`` runs in a fraction of a second to seconds; the cost grows
+  with the width of the distribution (~sqrt(N)), so ``N`` up to ~10**9 is practical for the
+  moments and ``N`` of any size for ``pmf``/``logpmf`` near the modes.
+* **float64** for ``dps=None``: numpy arrays over the whole support (``N <= FLOAT_N_LIMIT``).
 * **mode / modes** are decided exactly for every rational ``p`` (floats and mpf included) and
   any N (``10**100`` too): integer arithmetic locates the local maximum of ``Phi`` and a single
   comparison with ``Phi(1)`` is certified by interval arithmetic (exact integers on a near tie).
   The mode never needs the normaliser.
 
-Ties: :func:`mode` returns the smallest maximiser; :func:`modes` returns all of them, e.g.
+Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
 
->>> from fractions import Fraction
->>> pmf(4, Fraction(1, 2), 1)
-Fraction(16, 39)
->>> modes(101, Fraction(1, 50))
-(50, 51)
->>> mpmath.nstr(mean(100, 0.02, dps=20), 20)
+>>> d = SimpleDistribution(4, Fraction(1, 2))
+>>> d.pmf(1), d.modes()
+(Fraction(16, 39), (1,))
+>>> mpmath.nstr(SimpleDistribution(100, 0.02, dps=20).mean(), 20)
 '48.930449948267425369'
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 from fractions import Fraction
 from functools import cached_property
 from typing import Any
 
 import mpmath
+import numpy as np
 
 from symhx._numeric import (
     G_mp,
-    check_dps,
-    check_N,
-    check_p,
     digits_of,
-    is_exact_type,
     mp_value,
 )
 from symhx.certify import G_arb, bits_for, certified_sign, to_arb
+from symhx.validation import (
+    DEFAULT_DPS,
+    check_dps,
+    check_int,
+    check_N,
+    check_p,
+    check_real,
+    check_seed,
+    is_exact_type,
+    to_rational,
+)
 
 __all__ = [
+    "EXACT_N_LIMIT",
+    "FLOAT_N_LIMIT",
     "Distribution",
     "SimpleDistribution",
-    "distribution_of",
-    "logpmf",
-    "mean",
-    "mode",
-    "modes",
-    "normaliser",
-    "pmf",
-    "variance",
+    "binary_split",
+    "simple_modes",
 ]
 
 #: largest N for exact (Fraction) distributions
 EXACT_N_LIMIT = 100_000
+#: largest N for the float64 path (``dps=None``) and for :meth:`Distribution.rvs`: both build a
+#: float64 table of the whole support (8 bytes per k).  Raise it here if you have the memory.
+FLOAT_N_LIMIT = 10_000_000
+
+_LN10 = math.log(10)
+
+
+def _is_array(x: Any) -> bool:
+    return isinstance(x, (np.ndarray, list, tuple))
+
+
+def _check_k_scalar(k: Any) -> int:
+    return check_int(k, "k")
+
+
+def _check_k_array(k: Any) -> np.ndarray:
+    """An integer array of ``k`` values (ints of any size are kept as Python ints)."""
+    arr = np.asarray(k)
+    if arr.dtype == bool:
+        raise TypeError(f"k must be integers, got an array of dtype {arr.dtype}")
+    if arr.dtype.kind in "iu":
+        return arr
+    if arr.dtype.kind == "O":
+        return np.array([check_int(v, "k") for v in arr.ravel()], dtype=object).reshape(arr.shape)
+    raise TypeError(f"k must be integers, got an array of dtype {arr.dtype} "
+                    f"(k counts distinct impacts: pass ints, e.g. np.arange(1, N + 1))")
+
+
+def _check_q(q: Any, name: str = "q") -> Fraction:
+    return check_real(q, name, low=0, high=1)
 
 
 class Distribution:
-    """Common interface of the distribution of X over a sample space (see :func:`distribution_of`).
+    """A frozen distribution of X, the number of distinct impacts of a circuit, with the methods
+    of :mod:`scipy.stats` frozen discrete distributions.
 
-    Attributes: ``N``, ``p`` (as given), ``space``, ``dps``, ``exact`` (results are Fractions).
-    Methods/properties: ``pmf(k)``, ``logpmf(k)``, ``normaliser``, ``mean``, ``variance``,
-    ``mode``, ``modes``, ``support``.
+    Build one with :func:`symhx.distribution_of`.  Attributes: ``N``, ``p`` (as given), ``fr``
+    (its exact rational value, ``None`` for a sympy irrational), ``space`` (canonical name),
+    ``dps`` (``None`` for float64) and ``exact`` (results are ``Fraction``).
+
+    Result types follow ``p`` and ``dps``:
+
+    * exact ``p`` (int, ``Fraction``, sympy ``Rational``, decimal string) and an int ``dps``:
+      ``pmf``, ``cdf``, ``sf``, ``mean``, ``var`` are exact ``Fraction``; values that are not
+      rational (logs, ``std``, ``entropy``) are ``mpmath.mpf`` correct to ``dps`` digits;
+    * float / mpf ``p`` and an int ``dps``: ``mpmath.mpf`` correct to ``dps`` significant digits
+      (tails too: ``sf(k)`` is summed from the terms above ``k``, never ``1 - cdf``);
+    * ``dps=None``: float64 (numpy), vectorised over ``k`` (relative error about
+      ``1e-16 N log N``: the log-weights come from ``gammaln``; ``N <= FLOAT_N_LIMIT``).
+
+    Every method that takes ``k`` or ``q`` also takes an array and returns an array of the same
+    shape (object dtype for exact / mpmath values, float64 for ``dps=None``).  Integer results
+    (``ppf``, ``isf``, ``median``, ``mode``, ``interval``) are Python ints, decided exactly.
     """
 
     N: int
     p: Any
+    fr: Fraction | None
     space: str
-    dps: int
+    dps: int | None
     exact: bool
+    _guard: int
 
-    def pmf(self, k: int) -> Any:  # pragma: no cover - interface
+    def _setup(self, N: Any, p: Any, dps: Any) -> None:
+        self.N = check_N(N, minimum=1)
+        self.fr, self.p = check_p(p)
+        self.dps = check_dps(dps, allow_none=True)
+        self.exact = self.dps is not None and is_exact_type(p)
+        if self.exact and self.N > EXACT_N_LIMIT:
+            raise ValueError(
+                f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT} "
+                f"(symhx.distribution.EXACT_N_LIMIT); got N={self.N}. Pass p as a float or "
+                f"mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
+        # digits lost by the recurrences and the k, k**2 weights
+        self._guard = 10 + 2 * digits_of(self.N)
+
+    # ----------------------------------------------------------------- subclass hooks
+    @property
+    def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:  # pragma: no cover
+        """Exact ``(sum_k W(k), sum_k k W(k), sum_k k**2 W(k))``."""
         raise NotImplementedError
 
-    def logpmf(self, k: int) -> mpmath.mpf:  # pragma: no cover - interface
+    @property
+    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:  # pragma: no cover
+        """``(normaliser or its log, mean, variance)`` at ``dps`` + guard digits."""
         raise NotImplementedError
 
-    # Subclasses provide ``_exact_moments`` = (normaliser, sum k W(k), sum k**2 W(k)) as
-    # Fractions, and ``_mp_moments`` = (normaliser or its log, mean, variance) as mpf.
-    _exact_moments: tuple[Fraction, Fraction, Fraction]
-    _mp_moments: tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]
+    @property
+    def normaliser(self) -> Any:  # pragma: no cover - interface
+        """The normalising constant ``sum_k W(k)`` (``Gamma_{N,p}`` of eq. 8 when simple)."""
+        raise NotImplementedError
 
-    def _round(self, x: mpmath.mpf) -> mpmath.mpf:
-        with mpmath.workdps(self.dps):
+    @property
+    def log_normaliser(self) -> Any:  # pragma: no cover - interface
+        """``log`` of :attr:`normaliser`."""
+        raise NotImplementedError
+
+    def _exact_partial(self, k: int) -> Fraction:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def _mp_terms(self, lo: int, hi: int) -> list[tuple[int, mpmath.mpf]]:  # pragma: no cover
+        """``[(k, P(X = k))]`` at ``dps + guard`` digits for every ``k`` in ``[lo, hi]`` whose
+        probability is within ``dps + guard`` digits of the largest one in ``[lo, hi]``."""
+        raise NotImplementedError
+
+    def _float_logw(self) -> np.ndarray:  # pragma: no cover - interface
+        """float64 unnormalised ``log W(k)``, ``k = 1..N``."""
+        raise NotImplementedError
+
+    def _pmf1(self, k: int) -> Any:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def _logpmf1(self, k: int) -> mpmath.mpf:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def modes(self) -> tuple[int, ...]:  # pragma: no cover - interface
+        """All maximisers of ``P(X = k)``, increasing (certified exact for every rational p)."""
+        raise NotImplementedError
+
+    # ----------------------------------------------------------------- helpers
+    def _round(self, x: Any) -> mpmath.mpf:
+        with mpmath.workdps(self.dps or 15):
             return +x
 
     @property
-    def support(self) -> range:
-        """Values X can take: ``1..N``."""
-        return range(1, self.N + 1)
+    def _wdps(self) -> int:
+        """The working precision of the mpmath path: ``dps`` + guard digits."""
+        assert self.dps is not None, "the mpmath path needs an int dps"
+        return self.dps + self._guard
 
-    @property
+    def _wp(self) -> Any:
+        """The working-precision context: ``dps`` + guard digits."""
+        return mpmath.workdps(self._wdps)
+
+    def _log_fraction(self, x: Fraction) -> mpmath.mpf:
+        if x == 0:
+            return mpmath.ninf
+        with mpmath.workdps((self.dps or 15) + 10):
+            v = mpmath.log(x.numerator) - mpmath.log(x.denominator)
+        return self._round(v)
+
+    def _map_k(self, k: Any, one: Callable[[int], Any], table: Callable[[np.ndarray], Any]
+               ) -> Any:
+        """Apply a per-k function to a scalar or an array of k."""
+        if self.dps is None:
+            if _is_array(k):
+                kk = _check_k_array(k)
+                if kk.dtype.kind == "O":  # huge ints: clip into the int64 range first
+                    kk = np.array([min(max(int(v), 0), self.N + 1) for v in kk.ravel()],
+                                  dtype=np.int64).reshape(kk.shape)
+                return table(kk)
+            k1 = _check_k_scalar(k)
+            return table(np.array(min(max(k1, 0), self.N + 1)))[()]
+        if _is_array(k):
+            kk = _check_k_array(k)
+            out = np.empty(kk.shape, dtype=object)
+            for idx, v in np.ndenumerate(kk):
+                out[idx] = one(int(v))
+            return out
+        return one(_check_k_scalar(k))
+
+    def _map_q(self, q: Any, one: Callable[[Fraction], int]) -> Any:
+        if _is_array(q):
+            arr = np.asarray(q, dtype=object)
+            out = np.empty(arr.shape, dtype=object if self.dps is not None else np.int64)
+            for idx, v in np.ndenumerate(arr):
+                out[idx] = one(_check_q(v))
+            return out
+        return one(_check_q(q))
+
+    # ----------------------------------------------------------------- float64 path
+    @cached_property
+    def _ftab(self) -> dict[str, np.ndarray]:
+        if self.N > FLOAT_N_LIMIT:
+            raise ValueError(
+                f"the float64 path (dps=None) and rvs() tabulate the whole support; N={self.N} "
+                f"is above symhx.distribution.FLOAT_N_LIMIT={FLOAT_N_LIMIT}. Use an int dps for "
+                f"the mpmath path, or raise FLOAT_N_LIMIT if you have the memory.")
+        from scipy.special import logsumexp
+
+        lw = self._float_logw()
+        lp = lw - logsumexp(lw)
+        logcdf = np.minimum(np.logaddexp.accumulate(lp), 0.0)
+        logsf_incl = np.minimum(np.logaddexp.accumulate(lp[::-1])[::-1], 0.0)
+        logsf = np.append(logsf_incl[1:], -np.inf)
+        return {"logpmf": lp, "pmf": np.exp(lp), "logcdf": logcdf, "cdf": np.exp(logcdf),
+                "logsf": logsf, "sf": np.exp(logsf), "lognorm": np.array(logsumexp(lw))}
+
+    def _ftake(self, name: str, kk: np.ndarray, below: float, above: float) -> np.ndarray:
+        tab = self._ftab[name]
+        idx = np.clip(kk, 1, self.N) - 1
+        out = np.where(kk < 1, below, tab[idx])
+        if name in ("pmf", "logpmf"):
+            out = np.where(kk > self.N, above, out)
+        else:
+            out = np.where(kk >= self.N, above, out)
+        return np.asarray(out, dtype=float)
+
+    # ----------------------------------------------------------------- pmf and logpmf
+    def pmf(self, k: Any) -> Any:
+        """``P(X = k)`` (eq. 7); 0 outside ``1..N``.
+
+        >>> import symhx
+        >>> symhx.distribution_of(4, "1/2").pmf(1)
+        Fraction(16, 39)
+        """
+        zero: Any = Fraction(0) if self.exact else mpmath.mpf(0)
+        return self._map_k(k, lambda k1: self._pmf1(k1) if 1 <= k1 <= self.N else zero,
+                           lambda kk: self._ftake("pmf", kk, 0.0, 0.0))
+
+    def logpmf(self, k: Any) -> Any:
+        """``log P(X = k)`` (``-inf`` outside ``1..N``); never underflows."""
+        return self._map_k(
+            k, lambda k1: self._logpmf1(k1) if 1 <= k1 <= self.N else mpmath.ninf,
+            lambda kk: self._ftake("logpmf", kk, -np.inf, -np.inf))
+
+    # ----------------------------------------------------------------- cdf and sf
+    def _mp_sum(self, lo: int, hi: int) -> mpmath.mpf:
+        """``P(lo <= X <= hi)`` at dps + guard digits (relative accuracy, also in the tails)."""
+        with self._wp():
+            return mpmath.fsum(w for _, w in self._mp_terms(lo, hi))
+
+    def _cdf1(self, k: int) -> Any:
+        if k < 1:
+            return Fraction(0) if self.exact else mpmath.mpf(0)
+        if k >= self.N:
+            return Fraction(1) if self.exact else mpmath.mpf(1)
+        if self.exact:
+            return self._exact_partial(k) / self._exact_moments[0]
+        return self._round(self._mp_sum(1, k))
+
+    def _sf1(self, k: int) -> Any:
+        if k < 1:
+            return Fraction(1) if self.exact else mpmath.mpf(1)
+        if k >= self.N:
+            return Fraction(0) if self.exact else mpmath.mpf(0)
+        if self.exact:
+            return 1 - self._cdf1(k)
+        return self._round(self._mp_sum(k + 1, self.N))
+
+    def _logsum1(self, k: int, upper: bool) -> mpmath.mpf:
+        if self.exact:
+            return self._log_fraction(self._sf1(k) if upper else self._cdf1(k))
+        if (upper and k >= self.N) or (not upper and k < 1):
+            return mpmath.ninf
+        if (upper and k < 1) or (not upper and k >= self.N):
+            return mpmath.mpf(0)
+        s = self._mp_sum(k + 1, self.N) if upper else self._mp_sum(1, k)
+        with self._wp():
+            return self._round(mpmath.log(s))
+
+    def cdf(self, k: Any) -> Any:
+        """``P(X <= k)``; exactly ``1 - sf(k)`` for rational ``p``.
+
+        >>> import symhx
+        >>> d = symhx.distribution_of(3, "1/2")
+        >>> d.cdf(1), d.sf(1), d.cdf(1) + d.sf(1)
+        (Fraction(3, 5), Fraction(2, 5), Fraction(1, 1))
+        """
+        return self._map_k(k, self._cdf1, lambda kk: self._ftake("cdf", kk, 0.0, 1.0))
+
+    def sf(self, k: Any) -> Any:
+        """``P(X > k)``, summed from the upper tail (relative accuracy even when tiny)."""
+        return self._map_k(k, self._sf1, lambda kk: self._ftake("sf", kk, 1.0, 0.0))
+
+    def logcdf(self, k: Any) -> Any:
+        """``log P(X <= k)`` (never underflows on the mpmath path)."""
+        return self._map_k(k, lambda k1: self._logsum1(k1, False),
+                           lambda kk: self._ftake("logcdf", kk, -np.inf, 0.0))
+
+    def logsf(self, k: Any) -> Any:
+        """``log P(X > k)`` (never underflows on the mpmath path)."""
+        return self._map_k(k, lambda k1: self._logsum1(k1, True),
+                           lambda kk: self._ftake("logsf", kk, 0.0, -np.inf))
+
+    # ----------------------------------------------------------------- quantiles
+    def _ppf1(self, q: Fraction) -> int:
+        if q == 0:
+            return 0
+        if q == 1:
+            return self.N
+        if self.dps is None:
+            cdf = self._ftab["cdf"]
+            return min(int(np.searchsorted(cdf, float(q), side="left")), self.N - 1) + 1
+        # smallest k with cdf(k) >= q (cdf(N) = 1 >= q); on the mpmath path q is resolved to
+        # the dps digits of the cdf: a q within 10**(1 - dps) (relative) of cdf(k) counts as equal
+        qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
+        lo, hi = 1, self.N
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if _exact_value(self._cdf1(mid)) >= qq:
+                hi = mid
+            else:
+                lo = mid + 1
+        return lo
+
+    def _isf1(self, q: Fraction) -> int:
+        if q == 1:
+            return 0
+        if q == 0:
+            return self.N
+        if self.dps is None:
+            sf = self._ftab["sf"]  # non-increasing: smallest k with sf(k) <= q
+            return int(np.searchsorted(-sf, -float(q), side="left")) + 1
+        qq = q if self.exact else q * (1 + Fraction(10) ** (1 - self.dps))
+        lo, hi = 1, self.N
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if _exact_value(self._sf1(mid)) <= qq:
+                hi = mid
+            else:
+                lo = mid + 1
+        return lo
+
+    def ppf(self, q: Any) -> Any:
+        """Percent point function: the smallest ``k`` with ``cdf(k) >= q`` (``ppf(0) = 0``,
+        ``ppf(1) = N``), decided on the exact cdf for exact ``p``.  On the mpmath path ``q`` is
+        resolved to the ``dps`` digits of the cdf (a ``q`` within a relative ``10**(1 - dps)``
+        of ``cdf(k)`` gives ``k``); on the float64 path it is compared with the float cdf.
+        ``q`` is read like ``p`` (``"0.5"`` and ``Fraction(1, 2)`` are exact).
+
+        >>> import symhx
+        >>> d = symhx.distribution_of(101, "0.02")
+        >>> d.ppf(d.cdf(37)), d.median()
+        (37, 50)
+        """
+        return self._map_q(q, self._ppf1)
+
+    def isf(self, q: Any) -> Any:
+        """Inverse survival function: the smallest ``k`` with ``sf(k) <= q``."""
+        return self._map_q(q, self._isf1)
+
+    def median(self) -> int:
+        """``ppf(1/2)``."""
+        return self._ppf1(Fraction(1, 2))
+
+    def interval(self, confidence: Any) -> tuple[int, int]:
+        """``(ppf((1 - c)/2), ppf((1 + c)/2))``: an interval holding at least the fraction
+        ``c = confidence`` of the mass (scipy's convention)."""
+        c = check_real(confidence, "confidence", low=0, high=1)
+        return self._ppf1((1 - c) / 2), self._ppf1((1 + c) / 2)
+
+    def support(self) -> tuple[int, int]:
+        """``(1, N)``: X takes the values ``1..N``."""
+        return 1, self.N
+
+    # ----------------------------------------------------------------- moments
     def mean(self) -> Any:
-        """``E[X]``: a Fraction when exact, else an mpf to ``dps`` digits."""
+        """``E[X]``: a Fraction when exact, an mpf to ``dps`` digits, or a float."""
+        if self.dps is None:
+            t = self._ftab["pmf"]
+            return float(np.dot(np.arange(1, self.N + 1, dtype=float), t))
         if self.exact:
             g, m1, _ = self._exact_moments
             return m1 / g
         return self._round(self._mp_moments[1])
 
-    @property
-    def variance(self) -> Any:
+    def var(self) -> Any:
         """``Var[X]`` (the mpmath path sums ``(k - mean)**2 P(X=k)``: no cancellation)."""
+        if self.dps is None:
+            t = self._ftab["pmf"]
+            ks = np.arange(1, self.N + 1, dtype=float)
+            mu_f = float(np.dot(ks, t))
+            return float(np.dot((ks - mu_f) ** 2, t))
         if self.exact:
             g, m1, m2 = self._exact_moments
             mu = m1 / g
             return m2 / g - mu * mu
         return self._round(self._mp_moments[2])
 
-    @property
-    def modes(self) -> tuple[int, ...]:  # pragma: no cover - interface
-        raise NotImplementedError
+    def std(self) -> Any:
+        """``sqrt(var())``: an mpf to ``dps`` digits (float for ``dps=None``)."""
+        v = self.var()
+        if self.dps is None:
+            return math.sqrt(v)
+        with mpmath.workdps(self.dps + 10):
+            s = mpmath.sqrt(mpmath.mpf(v.numerator) / v.denominator if self.exact else v)
+        return self._round(s)
 
-    @property
+    def variance(self) -> Any:
+        """Deprecated alias of :meth:`var`."""
+        warnings.warn("Distribution.variance() is deprecated: use var() (scipy's name)",
+                      DeprecationWarning, stacklevel=2)
+        return self.var()
+
+    def entropy(self) -> Any:
+        """Shannon entropy ``-sum_k P(X=k) log P(X=k)`` (nats): mpf with absolute error below
+        ``10**-dps`` (float for ``dps=None``)."""
+        if self.dps is None:
+            lp = self._ftab["logpmf"]
+            pm = self._ftab["pmf"]
+            return float(-np.sum(np.where(pm > 0, pm * lp, 0.0)))
+        terms = self._mp_terms(1, self.N)
+        with self._wp():
+            h = -mpmath.fsum(w * mpmath.log(w) for _, w in terms if w > 0)
+        return self._round(h)
+
     def mode(self) -> int:
-        """The smallest maximiser."""
-        return self.modes[0]
+        """The smallest maximiser of ``P(X = k)``."""
+        return self.modes()[0]
+
+    # ----------------------------------------------------------------- sampling
+    def rvs(self, size: Any = None, random_state: Any = None) -> Any:
+        """Random draws of X (inverse transform on the float64 cdf, exact to ~1e-16 in
+        probability).  ``random_state``: ``None``, a non-negative int seed or a
+        :class:`numpy.random.Generator`; the same seed gives the same draws.  Returns an int
+        for ``size=None``, else an int64 array of shape ``size``.
+
+        >>> import symhx
+        >>> d = symhx.distribution_of(101, 0.02)
+        >>> bool((d.rvs(5, random_state=1) == d.rvs(5, random_state=1)).all())
+        True
+        """
+        if isinstance(random_state, np.random.Generator):
+            rng = random_state
+        else:
+            rng = np.random.default_rng(check_seed(random_state, "random_state"))
+        if size is not None:
+            shape = (check_int(size, "size", minimum=0),) if not isinstance(size, tuple) \
+                else tuple(check_int(s, "size", minimum=0) for s in size)
+        cdf = self._ftab["cdf"]
+        u = rng.random() if size is None else rng.random(shape)
+        idx = np.minimum(np.searchsorted(cdf, u, side="right"), self.N - 1) + 1
+        return int(idx) if size is None else idx.astype(np.int64)
 
     def __repr__(self) -> str:
         return (f"{type(self).__name__}(N={self.N}, p={self.p!r}, space={self.space!r}, "
@@ -137,12 +507,19 @@ class Distribution:
 
 
 # --------------------------------------------------------------------------- exact sums
-def _binary_split(N: int, a: int, b: int, weight: Callable[[int], tuple[int, int]]
-                  ) -> Fraction:
-    """``sum_{j=1}^{N} w(j) prod_{i=1}^{j} a (N-i+1) / b`` exactly, ``w(j) = num/den``.
+def binary_split(N: int, a: int, b: int, weight: Callable[[int], tuple[int, int]],
+                 stop: int | None = None) -> Fraction:
+    """``sum_{j=1}^{stop} w(j) prod_{i=1}^{j} a (N-i+1) / b`` exactly, ``w(j) = num/den``
+    (``stop`` defaults to ``N``).
 
     Haible-Papanikolaou binary splitting: O(M(size) log N) instead of N big-Fraction additions.
+
+    >>> binary_split(3, 1, 1, lambda j: (1, j))  # sum_k N!/(k (N-k)!) for N = 3
+    Fraction(8, 1)
     """
+    stop = N if stop is None else stop
+    if stop < 1:
+        return Fraction(0)
 
     def rec(lo: int, hi: int) -> tuple[int, int, int, int]:
         # returns P, Q, B, T with sum_{j=lo}^{hi-1} w(j) prod_{i=lo}^{j} p_i/q_i = T / (B Q)
@@ -155,32 +532,23 @@ def _binary_split(N: int, a: int, b: int, weight: Callable[[int], tuple[int, int
         P2, Q2, B2, T2 = rec(mid, hi)
         return P1 * P2, Q1 * Q2, B1 * B2, B2 * Q2 * T1 + B1 * P1 * T2
 
-    _, Q, B, T = rec(1, N + 1)
+    _, Q, B, T = rec(1, stop + 1)
     return Fraction(T, B * Q)
 
 
 class SimpleDistribution(Distribution):
-    """X over the simple circuits (eqs. 7-8). Build it with :func:`distribution_of`."""
+    """X over the simple circuits (eqs. 7-8). Build it with :func:`symhx.distribution_of`."""
 
     space = "simple"
 
-    def __init__(self, N: int, p: Any, *, dps: int = 50) -> None:
-        self.N = check_N(N, minimum=1)
-        self.fr, self.p = check_p(p)
-        self.dps = check_dps(dps)
-        self.exact = is_exact_type(p)
-        if self.exact and self.N > EXACT_N_LIMIT:
-            raise ValueError(
-                f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT}; got N={self.N}. "
-                f"Pass p as a float or mpmath.mpf for the mpmath path at dps digits."
-            )
-        # digits lost by the recurrences and the k, k**2 weights
-        self._guard = 10 + 2 * digits_of(self.N)
+    def __init__(self, N: int, p: Any, *, dps: int | None = DEFAULT_DPS) -> None:
+        self._setup(N, p, dps)
 
     # ----------------------------------------------------------------- exact path
-    def _split(self, weight: Callable[[int], tuple[int, int]]) -> Fraction:
+    def _split(self, weight: Callable[[int], tuple[int, int]], stop: int | None = None
+               ) -> Fraction:
         assert self.fr is not None
-        return _binary_split(self.N, self.fr.numerator, self.fr.denominator, weight)
+        return binary_split(self.N, self.fr.numerator, self.fr.denominator, weight, stop)
 
     @cached_property
     def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:
@@ -189,46 +557,81 @@ class SimpleDistribution(Distribution):
         m2 = self._split(lambda j: (j, 1))
         return gamma, m1, m2
 
+    def _exact_partial(self, k: int) -> Fraction:
+        return self._split(lambda j: (1, j), k)
+
     def _phi_exact(self, k: int) -> Fraction:
         assert self.fr is not None
         return self.fr**k * math.perm(self.N, k) / k
 
+    # ----------------------------------------------------------------- float64 path
+    def _float_logw(self) -> np.ndarray:
+        from scipy.special import gammaln
+
+        N = self.N
+        ks = np.arange(1, N + 1, dtype=float)
+        return ks * _logp_float(self.p, self.fr) + (gammaln(N + 1.0) - gammaln(N - ks + 1.0)) \
+            - np.log(ks)
+
     # ----------------------------------------------------------------- mpmath path
     def _log_phi(self, k: int) -> mpmath.mpf:
         """log Phi(k) at the working precision (caller sets it)."""
-        N = self.N
-        # log Phi(k) = k log p + log N + lgamma(N) - lgamma(N-k+1) - log k
-        #            = k log(N p) + G(N, k-1) - log k + (log N - log N) ... written without
+        # log Phi(k) = k log p + log N + lgamma(N) - lgamma(N-k+1) - log k, written without
         # the O(N log N) lgamma terms: lgamma(N) - lgamma(N-k+1) = G(N, k-1) + (k-1) log N
-        return (k * mpmath.log(self._pm) + (k - 1) * self._logN + self._logN
-                + G_mp(N, k - 1) - mpmath.log(k))
+        return (k * self._logp + k * self._logN + G_mp(self.N, k - 1) - mpmath.log(k))
+
+    @cached_property
+    def _ctx(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        """``(p, log p, log N)`` as mpf at ``dps`` + guard digits."""
+        with self._wp():
+            pm = mp_value(self.p, self.fr)
+            return pm, mpmath.log(pm), mpmath.log(self.N)
+
+    @property
+    def _pm(self) -> mpmath.mpf:
+        return self._ctx[0]
+
+    @property
+    def _logp(self) -> mpmath.mpf:
+        return self._ctx[1]
+
+    @property
+    def _logN(self) -> mpmath.mpf:
+        return self._ctx[2]
+
+    def _runs_above(self, cut: mpmath.mpf, lo: int, hi: int, shift: mpmath.mpf
+                    ) -> list[tuple[int, list[mpmath.mpf]]]:
+        """``[(k0, [Phi(k) e**-shift for k = k0, k0+1, ...])]`` over the k in ``[lo, hi]``
+        with ``log Phi(k) >= cut`` (at most two runs); working precision set by the caller."""
+        N, pm = self.N, self._pm
+        runs = []
+        for a, b in _significant_ranges(N, self.fr, pm, self._log_phi, cut):
+            a, b = max(a, lo), min(b, hi)
+            if a > b:
+                continue
+            w = mpmath.exp(self._log_phi(a) - shift)
+            ws = [w]
+            for k in range(a, b):
+                w = w * pm * (N - k) * k / (k + 1)
+                ws.append(w)
+            runs.append((a, ws))
+        return runs
+
+    def _below(self) -> mpmath.mpf:
+        return self._wdps * _LN10 + 2 * mpmath.log(self.N) + 5
 
     def _compute_runs(self, below: mpmath.mpf) -> tuple[mpmath.mpf, list[tuple[int, list]]]:
         """(log of the largest term, [(k0, [Phi(k)/max for k = k0, k0+1, ...]), ...]) keeping
         every term within ``exp(-below)`` of the largest (at most two runs)."""
-        N = self.N
-        with mpmath.workdps(self.dps + self._guard):
-            self._pm = mp_value(self.p, self.fr)
-            self._logN = mpmath.log(N)
-            top = _candidates(N, self.fr, self._pm)
+        with self._wp():
+            top = _candidates(self.N, self.fr, self._pm)
             lmax = max(self._log_phi(k) for k in top)
-            ks = _significant_ranges(N, self.fr, self._pm, self._log_phi, lmax - below)
-            runs = []
-            pm = self._pm
-            for lo, hi in ks:
-                w = mpmath.exp(self._log_phi(lo) - lmax)
-                ws = [w]
-                for k in range(lo, hi):
-                    w = w * pm * (N - k) * k / (k + 1)
-                    ws.append(w)
-                runs.append((lo, ws))
-        return lmax, runs
+            return lmax, self._runs_above(lmax - below, 1, self.N, lmax)
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-        with mpmath.workdps(self.dps + self._guard):
-            ln10 = mpmath.log(10)
-            below = (self.dps + self._guard) * ln10 + 2 * mpmath.log(self.N) + 5
+        with self._wp():
+            below = self._below()
             lmax, runs = self._compute_runs(below)
             s0 = mpmath.fsum(w for _, ws in runs for w in ws)
             self._pmf_runs = [(k0, [w / s0 for w in ws]) for k0, ws in runs]
@@ -252,7 +655,7 @@ class SimpleDistribution(Distribution):
                     if not edge:
                         break
                     lv = max(self._log_phi(k) for k in edge) - lmax
-                need = (self.dps + self._guard) * ln10 - lv + 3 * mpmath.log(self.N) + 5
+                need = self._wdps * _LN10 - lv + 3 * mpmath.log(self.N) + 5
                 if need <= below:
                     break
                 below = need
@@ -260,65 +663,65 @@ class SimpleDistribution(Distribution):
                 v = central(runs)
             return lmax + mpmath.log(s0), mu, v / s0
 
-    # ----------------------------------------------------------------- public
-    def _check_k(self, k: int) -> int:
-        if not isinstance(k, int) or isinstance(k, bool):
-            raise TypeError(f"k must be an int, got {type(k).__name__}")
-        return k
+    def _mp_terms(self, lo: int, hi: int) -> list[tuple[int, mpmath.mpf]]:
+        log_gamma = self._mp_moments[0]
+        with self._wp():
+            hump = _hump(self.N, self.fr, self._pm)
+            cand = {lo, hi} | ({hump[1]} if hump and lo <= hump[1] <= hi else set())
+            lmax = max(self._log_phi(k) for k in cand)
+            runs = self._runs_above(lmax - self._below(), lo, hi, log_gamma)
+        return [(k0 + i, w) for k0, ws in runs for i, w in enumerate(ws)]
 
-    def pmf(self, k: int) -> Any:
-        """``P(X = k)`` (eq. 7): a Fraction when exact, else an mpf; 0 outside ``1..N``."""
-        k = self._check_k(k)
-        if not 1 <= k <= self.N:
-            return Fraction(0) if self.exact else mpmath.mpf(0)
+    def _logpmf_raw(self, k: int) -> mpmath.mpf:
+        """log P(X = k) at the working precision with guard digits (not rounded: exp() of a
+        log rounded to dps digits would lose log10|log P| digits)."""
+        log_gamma = self._mp_moments[0]
+        with self._wp():
+            return self._log_phi(k) - log_gamma
+
+    # ----------------------------------------------------------------- per-k values
+    def _pmf1(self, k: int) -> Any:
         if self.exact:
             return self._phi_exact(k) / self._exact_moments[0]
         self._mp_moments  # noqa: B018 - fills the cached, normalised significant terms
         for k0, ws in self._pmf_runs:
             if k0 <= k < k0 + len(ws):
                 return self._round(ws[k - k0])
-        with mpmath.workdps(self.dps + self._guard):
+        with self._wp():
             return self._round(mpmath.exp(self._logpmf_raw(k)))
 
-    def logpmf(self, k: int) -> mpmath.mpf:
-        """``log P(X = k)`` as an mpf (``-inf`` outside ``1..N``), never underflows."""
-        k = self._check_k(k)
-        if not 1 <= k <= self.N:
-            return mpmath.ninf
+    def _logpmf1(self, k: int) -> mpmath.mpf:
         if self.exact:
-            with mpmath.workdps(self.dps + 5):
-                pk = self.pmf(k)
-                return self._round(mpmath.log(pk.numerator) - mpmath.log(pk.denominator))
+            return self._log_fraction(self._pmf1(k))
         return self._round(self._logpmf_raw(k))
-
-    def _logpmf_raw(self, k: int) -> mpmath.mpf:
-        """log P(X = k) at the working precision with guard digits (not rounded: exp() of a
-        log rounded to dps digits would lose log10|log P| digits)."""
-        log_gamma = self._mp_moments[0]
-        with mpmath.workdps(self.dps + self._guard):
-            return self._log_phi(k) - log_gamma
 
     @property
     def normaliser(self) -> Any:
-        """``Gamma_{N,p}`` (eq. 8): Fraction when exact, else mpf (may overflow the float
-        range; see :attr:`log_normaliser`)."""
+        """``Gamma_{N,p}`` (eq. 8): Fraction when exact, else mpf (float for ``dps=None``;
+        may overflow there: see :attr:`log_normaliser`)."""
+        if self.dps is None:
+            return float(np.exp(self._ftab["lognorm"]))
         if self.exact:
             return self._exact_moments[0]
-        return self._round(mpmath.exp(self._mp_moments[0]))
+        with self._wp():
+            return self._round(mpmath.exp(self._mp_moments[0]))
 
     @property
-    def log_normaliser(self) -> mpmath.mpf:
+    def log_normaliser(self) -> Any:
         """``log Gamma_{N,p}``."""
+        if self.dps is None:
+            return float(self._ftab["lognorm"])
         if self.exact:
-            g = self._exact_moments[0]
-            with mpmath.workdps(self.dps + 5):
-                return self._round(mpmath.log(g.numerator) - mpmath.log(g.denominator))
+            return self._log_fraction(self._exact_moments[0])
         return self._round(self._mp_moments[0])
 
-    @property
     def modes(self) -> tuple[int, ...]:
-        """All maximisers of ``P(X = k)``, increasing (exact for rational ``p``)."""
-        return _simple_modes(self.N, self.fr, self.p)
+        """All maximisers of ``P(X = k)``, increasing (exact for rational ``p``).
+
+        >>> SimpleDistribution(101, "0.02").modes()
+        (50, 51)
+        """
+        return simple_modes(self.N, self.fr, self.p)
 
     def table(self) -> list[tuple[int, Any]]:
         """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N).
@@ -326,17 +729,34 @@ class SimpleDistribution(Distribution):
         The mpmath path runs the term ratio ``Phi(k+1)/Phi(k) = p (N-k) k/(k+1)`` across the
         whole support from ``P(X = 1)``, with guard digits for the ``N`` roundings.
         """
+        if self.dps is None:
+            return [(k, float(v)) for k, v in enumerate(self._ftab["pmf"], 1)]
         if self.exact:
-            return [(k, self.pmf(k)) for k in self.support]
+            return [(k, self._pmf1(k)) for k in range(1, self.N + 1)]
         N = self.N
-        with mpmath.workdps(self.dps + self._guard):
+        with self._wp():
             w = mpmath.exp(self._logpmf_raw(1))
-            pm = mp_value(self.p, self.fr)
+            pm = self._pm
             out = []
             for k in range(1, N + 1):
                 out.append((k, self._round(w)))
                 w = w * pm * (N - k) * k / (k + 1)
         return out
+
+
+def _exact_value(x: Any) -> Fraction:
+    """The exact rational value of a Fraction or a (finite) mpf."""
+    fr = to_rational(x, "value")
+    assert fr is not None
+    return fr
+
+
+def _logp_float(p: Any, fr: Fraction | None) -> float:
+    """float64 ``log p`` for any size of numerator and denominator."""
+    if fr is not None:
+        return math.log(fr.numerator) - math.log(fr.denominator)
+    with mpmath.workdps(30):
+        return float(mpmath.log(mp_value(p, None)))
 
 
 # --------------------------------------------------------------------------- structure of Phi
@@ -395,7 +815,13 @@ def _compare_with_one(N: int, fr: Fraction, K: int) -> int:
                           max_bits=32 * start, exact_fn=exact)
 
 
-def _simple_modes(N: int, fr: Fraction | None, p: Any) -> tuple[int, ...]:
+def simple_modes(N: int, fr: Fraction | None, p: Any) -> tuple[int, ...]:
+    """All maximisers of ``Phi_{N,p}(k)`` (eq. 8), certified: ``fr`` is ``p``'s exact value
+    (``None`` for a sympy irrational, then read at 60 digits).
+
+    >>> simple_modes(101, Fraction(1, 50), None)
+    (50, 51)
+    """
     if fr is None:
         with mpmath.workdps(60):
             pm = mp_value(p, None)
@@ -484,99 +910,18 @@ def _frac(x: mpmath.mpf) -> tuple[int, int]:
     return f.numerator, f.denominator
 
 
-# --------------------------------------------------------------------------- public functions
-def distribution_of(N: int, p: Any, *, space: str = "simple", dps: int = 50) -> Distribution:
-    """The distribution of X for ``N`` vertices and impact probability ``p``.
-
-    Parameters
-    ----------
-    N : int
-        Number of vertices (possible impacts), ``N = n + 1`` for ``n`` pipes.
-    p : int, Fraction, sympy Rational, float or mpf
-        Impact probability, ``p > 0`` (``p > 1`` is accepted but unphysical). Exact types give
-        exact results; floats/mpf are taken at their exact binary value and evaluated at ``dps``.
-    space : str
-        ``"simple"`` (eqs. 7-8) or a higher-order space of :mod:`symhx.spaces`.
-    dps : int
-        Significant digits of mpmath results.
-
-    >>> d = distribution_of(3, Fraction(1, 2))
-    >>> [d.pmf(k) for k in d.support], d.mean
-    ([Fraction(3, 5), Fraction(3, 10), Fraction(1, 10)], Fraction(3, 2))
-    """
-    if space == "simple":
-        return SimpleDistribution(N, p, dps=dps)
-    from symhx import spaces
-
-    return spaces.distribution(N, p, space=space, dps=dps)
+# --------------------------------------------------------------------------- deprecated names
+_MOVED = ("distribution_of", "pmf", "logpmf", "normaliser", "mean", "variance", "mode", "modes")
 
 
-def pmf(N: int, p: Any, k: int, *, space: str = "simple", dps: int = 50) -> Any:
-    """``P(X = k)`` (eq. 7). See :func:`distribution_of` for types.
+def __getattr__(name: str) -> Any:
+    """``symhx.distribution.mean`` etc. moved to :mod:`symhx.api` (``symhx.mean``): the old
+    names still work, with a DeprecationWarning (a lazy forward, not an import of the upper
+    layer at load time)."""
+    if name in _MOVED:
+        warnings.warn(f"symhx.distribution.{name} moved to symhx.{name} (symhx.api.{name})",
+                      DeprecationWarning, stacklevel=2)
+        import importlib
 
-    >>> pmf(2, 1, 2)
-    Fraction(1, 3)
-    """
-    return distribution_of(N, p, space=space, dps=dps).pmf(k)
-
-
-def logpmf(N: int, p: Any, k: int, *, space: str = "simple", dps: int = 50) -> mpmath.mpf:
-    """``log P(X = k)`` as an mpf; works where the pmf underflows.
-
-    >>> float(logpmf(10**6, 0.5, 1)) < -1e6
-    True
-    """
-    return distribution_of(N, p, space=space, dps=dps).logpmf(k)
-
-
-def normaliser(N: int, p: Any, *, space: str = "simple", dps: int = 50) -> Any:
-    """``Gamma_{N,p}`` (eq. 8).
-
-    >>> normaliser(4, 1) == sum(phi for phi in (4, 6, 8, 6))
-    True
-    """
-    return distribution_of(N, p, space=space, dps=dps).normaliser
-
-
-def mean(N: int, p: Any, *, space: str = "simple", dps: int = 50) -> Any:
-    """``E[X]``: Fraction for exact ``p``, else mpf to ``dps`` digits.
-
-    >>> mean(2, Fraction(1, 2))
-    Fraction(6, 5)
-    """
-    return distribution_of(N, p, space=space, dps=dps).mean
-
-
-def variance(N: int, p: Any, *, space: str = "simple", dps: int = 50) -> Any:
-    """``Var[X]``.
-
-    >>> variance(2, Fraction(1, 2))
-    Fraction(4, 25)
-    """
-    return distribution_of(N, p, space=space, dps=dps).variance
-
-
-def modes(N: int, p: Any, *, space: str = "simple") -> tuple[int, ...]:
-    """All maximisers of ``P(X = k)`` (exact for rational ``p``, any N; no normaliser needed).
-
-    >>> modes(5, Fraction(1, 2))
-    (1, 2, 3)
-    """
-    if space != "simple":
-        from symhx import spaces
-
-        return spaces.modes(N, p, space=space)
-    N = check_N(N, minimum=1)
-    fr, p = check_p(p)
-    return _simple_modes(N, fr, p)
-
-
-def mode(N: int, p: Any, *, space: str = "simple") -> int:
-    """The mode of X (smallest maximiser), eq. (7); see :func:`modes`.
-
-    >>> mode(101, 0.01), mode(101, 0.013), mode(10**100, Fraction(1, 10**100))
-    (1, 21, 1)
-    """
-    return modes(N, p, space=space)[0]
-
-
+        return getattr(importlib.import_module("symhx.api"), name)
+    raise AttributeError(f"module 'symhx.distribution' has no attribute {name!r}")

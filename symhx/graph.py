@@ -16,17 +16,13 @@ the next one may be any impact, including the same one again.
 
 from __future__ import annotations
 
-import operator
+from symhx.validation import check_int
+
+__all__ = ["impacts_from_pipes", "pipe_pipe_lattice", "vertices_lattice", "vertices_row"]
 
 
 def _positive_int(value: int, name: str, minimum: int = 1) -> int:
-    try:
-        v = operator.index(value)
-    except TypeError:
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}") from None
-    if v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {v}")
-    return v
+    return check_int(value, name, minimum=minimum)
 
 
 def vertices_row(n: int) -> int:

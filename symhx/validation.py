@@ -44,7 +44,7 @@ import re
 from collections.abc import Iterable
 from decimal import Decimal, InvalidOperation
 from fractions import Fraction
-from typing import Any
+from typing import Any, Literal, overload
 
 import mpmath
 import numpy as np
@@ -261,6 +261,10 @@ def check_N(N: Any, name: str = "N", minimum: int = 2) -> int:
     return check_int(N, name, minimum=minimum)
 
 
+@overload
+def check_dps(dps: Any, *, allow_none: Literal[False] = ..., name: str = ...) -> int: ...
+@overload
+def check_dps(dps: Any, *, allow_none: bool, name: str = ...) -> int | None: ...
 def check_dps(dps: Any, *, allow_none: bool = False, name: str = "dps") -> int | None:
     """Validate a precision: an int in ``[1, MAX_DPS]`` (``None`` too when ``allow_none``,
     meaning float64)."""
@@ -317,7 +321,7 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
     if arr.dtype == bool or arr.dtype.kind not in "iuf":
         if arr.dtype.kind == "O":
             try:
-                arr = np.array([float(to_rational(v, name)) for v in arr.ravel()],  # type: ignore[arg-type]
+                arr = np.array([float(to_rational(v, name)) for v in arr.ravel()],  # type: ignore[arg-type,type-var]
                                dtype=float).reshape(arr.shape)
             except (TypeError, ValueError) as exc:
                 raise type(exc)(f"{exc}") from None

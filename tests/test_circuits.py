@@ -108,3 +108,39 @@ def test_log_phi_huge():
     with mpmath.workdps(60):
         exact_log = mpmath.log(C.phi(30, 7))
     assert mpmath.almosteq(C.log_phi(30, 7, dps=40), exact_log, rel_eps=mpmath.mpf(10) ** -38)
+
+
+def test_bad_inputs_and_work_limits_are_clear_errors():
+    import pytest
+
+    from symhx import circuits as C
+    from symhx.spaces import class_count, parse_space
+
+    with pytest.raises(TypeError, match="k must be an int"):
+        C.phi(10, 2.5)
+    with pytest.raises(TypeError, match="N"):
+        C.phi(True, 1)
+    with pytest.raises(ValueError, match="N must be >= 1, got -3"):
+        class_count(-3, (2,), 1)
+    with pytest.raises(ValueError, match="MAX_TOTAL_N"):
+        C.total_simple_circuits(10**1000)
+    assert C.total_simple_circuits(C.MAX_TOTAL_N // 100) > 0  # below the cap: works
+    with pytest.raises(ValueError, match="MAX_EXCESS"):
+        parse_space("excess<=1000")
+    with pytest.raises(ValueError, match="MAX_EXCESS"):
+        parse_space("excess<=" + "9" * 5000)
+    assert len(parse_space("excess<=5").shapes) == 19
+    with pytest.raises(ValueError, match="MAX_PATTERN_LENGTH"):
+        C.circuits_of_length(10, 10**6)
+    with pytest.raises(ValueError, match="MAX_ENUMERATION"):
+        next(C.enumerate_circuits(10, 10**6))
+    with pytest.raises(ValueError, match="MAX_CIRCUIT_LENGTH"):
+        C.circuit_count(3, (10**9,))
+    with pytest.raises(ValueError, match="MAX_COUNT_BITS"):
+        C.necklace_count(10, 10**9)
+    with pytest.raises(TypeError, match="visits"):
+        C.circuit_count(3, "21")
+    with pytest.raises(TypeError, match="dps"):
+        C.log_phi(10, 2, dps=True)
+    # a huge N in log_phi (more digits than Python's int->str limit) still works
+    assert C.log_phi(10**5000, 2, dps=20) > 0

@@ -1,14 +1,16 @@
 """Higher-order sample spaces (section 8 of the paper): circuits that visit a vertex more than once.
 
-Space syntax (accepted as ``space=`` by every distribution function and by ``critical_point``):
+Space syntax (accepted as ``space=`` by every distribution function and by ``critical_point``;
+the default everywhere is ``"simple"``, :data:`symhx.validation.DEFAULT_SPACE`):
 
 * ``"simple"`` -- simple circuits only (eqs. 7-8);
 * ``"eq41"`` -- the paper's five classes (simple, phi^1, phi^{1,0}, phi^2, phi^{1,0,0}) with the
   correct counts at every length, including the boundary terms eq. (41) leaves out;
 * ``"eq41-printed"`` -- the counts as printed: formulas (35), (38)-(40) inside their stated ranges,
   (36) ``phi^1(2) = N``, zero for the other boundary terms (only to reproduce figures 11-13);
-* ``"excess<=m"`` (any ``m >= 0``) -- every visit pattern whose length exceeds its number of
-  distinct vertices by at most ``m``: the consistent truncation (``"excess<=0"`` is ``"simple"``);
+* ``"excess<=m"`` (``0 <= m <= MAX_EXCESS``, a documented work limit) -- every visit pattern
+  whose length exceeds its number of distinct vertices by at most ``m``: the consistent
+  truncation (``"excess<=0"`` is ``"simple"``);
 * suffix ``";distinct"`` (or ``weighting="distinct"`` in this module) weights a circuit by
   ``p**k`` (k distinct vertices) instead of the default ``p**length`` (``";length"``).
 
@@ -22,6 +24,7 @@ Fraction(4, 25)
 
 from symhx.spaces._classes import (
     EQ41_SHAPES,
+    MAX_EXCESS,
     PRINTED_RANGES,
     Space,
     class_count,
@@ -41,6 +44,7 @@ from symhx.spaces._dist import (
     class_probabilities,
     distribution,
     modes,
+    space_modes,
 )
 from symhx.spaces.study import DEFAULT_PS, ConvergenceRow, convergence_study
 from symhx.spaces.symbolic import (
@@ -54,6 +58,7 @@ from symhx.spaces.symbolic import (
 __all__ = [
     "DEFAULT_PS",
     "EQ41_SHAPES",
+    "MAX_EXCESS",
     "PRINTED_RANGES",
     "ClassDecomposition",
     "ConvergenceRow",
@@ -78,5 +83,6 @@ __all__ = [
     "root_estimates",
     "shape_excess",
     "shapes_up_to",
+    "space_modes",
     "verify_printed_formulas",
 ]

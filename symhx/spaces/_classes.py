@@ -21,7 +21,7 @@ relative to the simple count ``phi_N(k) = N!/(k (N-k)!)`` (eq. 5) this is the po
 
 which does not depend on N. At ``k = r`` (every vertex repeated) rotations can fix a circuit and
 the polynomial gives ``words / L`` instead of the number of necklaces: this is exactly where the
-paper's eqs. (35), (38)-(40) fail (DESIGN.md §3.1). The boundary value comes from Burnside's
+paper's eqs. (35), (38)-(40) fail. The boundary value comes from Burnside's
 lemma (:func:`symhx.circuits.circuit_count`).
 
 A space is a finite set of classes plus a weighting. With ``w_e = p**e`` (length weighting,
@@ -36,19 +36,21 @@ one common denominator ``D``; only ``Phi`` depends on N.
 from __future__ import annotations
 
 import math
-import operator
 import re
 from collections import Counter
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 
-from symhx.circuits import _necklaces_with_content, normalise_visits, partitions
+from symhx.circuits import necklaces_with_content, normalise_visits, partitions
+from symhx.validation import check_int, check_N
 
 __all__ = [
     "EQ41_SHAPES",
+    "MAX_EXCESS",
     "PRINTED_RANGES",
     "Space",
+    "check_shape",
     "class_count",
     "class_ratio",
     "eq41_terms",
@@ -71,6 +73,9 @@ PRINTED_RANGES: dict[str, tuple[tuple[int, ...], int]] = {
 }
 
 WEIGHTINGS = ("length", "distinct")
+#: Largest excess m of ``"excess<=m"`` (a documented work limit: the number of classes grows like
+#: the partition numbers, 9296 classes at m = 25).  Raise it by assigning the constant.
+MAX_EXCESS = 25
 
 
 def shape_excess(shape: tuple[int, ...]) -> int:
@@ -82,8 +87,16 @@ def shape_excess(shape: tuple[int, ...]) -> int:
     return sum(s - 1 for s in shape)
 
 
-def _check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
-    s = tuple(sorted((operator.index(x) for x in shape), reverse=True))
+def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
+    """Validate a class (the parts ``> 1`` of a visit pattern); return it sorted decreasing.
+
+    >>> check_shape([2, 3])
+    (3, 2)
+    """
+    if isinstance(shape, (str, bytes)) or not hasattr(shape, "__iter__"):
+        raise TypeError(f"shape must be a tuple of ints >= 2, got {type(shape).__name__} "
+                        f"{shape!r}")
+    s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
         raise ValueError(f"a class lists the parts > 1 of a visit pattern, got {shape!r}")
     return s
@@ -99,9 +112,12 @@ def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
     >>> [len(shapes_up_to(m)) for m in range(7)]
     [1, 2, 4, 7, 12, 19, 30]
     """
-    m = operator.index(m)
-    if m < 0:
-        raise ValueError(f"maximum excess must be >= 0, got {m}")
+    m = check_int(m, "maximum excess m", minimum=0)
+    if m > MAX_EXCESS:
+        raise ValueError(f"maximum excess m={m} is beyond the documented work limit {MAX_EXCESS} "
+                         f"(symhx.spaces._classes.MAX_EXCESS: excess<=25 already has 9296 "
+                         f"classes and takes seconds per distribution); raise that constant "
+                         f"to allow it")
     out: list[tuple[int, ...]] = [()]
     for e in range(1, m + 1):
         out += [tuple(x + 1 for x in part) for part in partitions(e)]
@@ -115,7 +131,7 @@ def paper_label(shape: tuple[int, ...]) -> str:
     >>> [paper_label(s) for s in EQ41_SHAPES]
     ['phi', 'phi^1', 'phi^{1,0}', 'phi^2', 'phi^{1,0,0}']
     """
-    s = _check_shape(shape)
+    s = check_shape(shape)
     if not s:
         return "phi"
     c = Counter(s)
@@ -162,7 +178,7 @@ def _poly_ratio(shape: tuple[int, ...], k: int) -> Fraction:
 def _true_boundary_ratio(shape: tuple[int, ...]) -> Fraction:
     """``count(N, s, r) / phi_N(r)`` at ``k = r`` (Burnside): ``r * necklaces(s) / C_s``."""
     r = len(shape)
-    return Fraction(r * _necklaces_with_content(shape), _C(shape))
+    return Fraction(r * necklaces_with_content(shape), _C(shape))
 
 
 def class_ratio(shape: tuple[int, ...], k: int, *, printed: bool = False) -> Fraction:
@@ -176,8 +192,8 @@ def class_ratio(shape: tuple[int, ...], k: int, *, printed: bool = False) -> Fra
     >>> class_ratio((2, 2), 2), class_ratio((2, 2), 2, printed=True)
     (Fraction(2, 1), Fraction(0, 1))
     """
-    s = _check_shape(shape)
-    k = operator.index(k)
+    s = check_shape(shape)
+    k = check_int(k, "k")
     r = len(s)
     if k < max(r, 1):
         return Fraction(0)
@@ -200,8 +216,8 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     >>> class_count(10, (2, 2), 4)      # eq. (40) at length 6: (1/8) 5!/2! * 10!/6!
     37800
     """
-    N = operator.index(N)
-    k = operator.index(k)
+    N = check_N(N, minimum=1)
+    k = check_int(k, "k")
     if k < 1 or k > N:
         return 0
     val = class_ratio(shape, k, printed=printed) * Fraction(math.perm(N, k), k)
@@ -223,8 +239,8 @@ def printed_count(eq: str, N: int, L: int, *, outside: str = "zero") -> Fraction
     >>> printed_count("40", 10, 4, outside="formula")
     Fraction(135, 2)
     """
-    L = operator.index(L)
-    N = operator.index(N)
+    L = check_int(L, "L")
+    N = check_N(N, minimum=1)
     if eq == "36":
         return Fraction(N) if L == 2 else Fraction(0)
     if eq not in PRINTED_RANGES:
@@ -304,14 +320,14 @@ class Space:
 
     def ratio(self, shape: tuple[int, ...], k: int) -> Fraction:
         """``count(N, shape, k) / phi_N(k)`` in this space (0 for a class not in it)."""
-        s = _check_shape(shape)
+        s = check_shape(shape)
         if s not in self.shapes:
             return Fraction(0)
         return class_ratio(s, k, printed=self.printed)
 
     def count(self, N: int, shape: tuple[int, ...], k: int) -> int:
         """Circuits of class ``shape`` with ``k`` distinct vertices counted by this space."""
-        s = _check_shape(shape)
+        s = check_shape(shape)
         if s not in self.shapes:
             return 0
         return class_count(N, s, k, printed=self.printed)
@@ -435,6 +451,9 @@ def _parse(base: str, weighting: str) -> Space:
                      printed=True)
     mt = _SPACE_RE.match(base)
     if mt:
+        if len(mt.group(1)) > 6:
+            raise ValueError(f"maximum excess m in {base[:40]!r} is beyond the documented work "
+                             f"limit {MAX_EXCESS} (symhx.spaces._classes.MAX_EXCESS)")
         m = int(mt.group(1))
         return Space(f"excess<={m}" + suffix, "excess", m, weighting, shapes_up_to(m))
     raise ValueError(
@@ -467,7 +486,7 @@ def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
     >>> visits_of((2,), 3)
     (2, 1, 1)
     """
-    s = _check_shape(shape)
+    s = check_shape(shape)
     if k < len(s):
         raise ValueError(f"class {s} needs at least {len(s)} distinct vertices")
     return normalise_visits(s + (1,) * (k - len(s))) if k else ()

@@ -30,16 +30,18 @@ import numpy as np
 
 from symhx._numeric import (
     G_mp,
-    check_dps,
-    check_N,
-    check_p,
     digits_of,
-    is_exact_type,
     mp_value,
 )
 from symhx.certify import UndecidedError, bits_for, certified_sign, space_candidates, to_arb
-from symhx.distribution import EXACT_N_LIMIT, Distribution, _binary_split
+from symhx.distribution import (
+    Distribution,
+    SimpleDistribution,
+    binary_split,
+    simple_modes,
+)
 from symhx.spaces._classes import Space, paper_label, parse_space, shape_excess
+from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, check_dps, check_N, check_p
 
 __all__ = [
     "ClassDecomposition",
@@ -191,18 +193,13 @@ class SpaceDistribution(Distribution):
     :attr:`sample_space` the parsed :class:`~symhx.spaces.Space`.
     """
 
-    def __init__(self, N: int, p: Any, space: Space, *, dps: int = 50) -> None:
-        self.N = check_N(N, minimum=1)
-        self.fr, self.p = check_p(p)
-        self.dps = check_dps(dps)
-        self.exact = is_exact_type(p)
+    def __init__(self, N: int, p: Any, space: Space, *, dps: int | None = DEFAULT_DPS) -> None:
+        if not isinstance(space, Space):
+            raise TypeError(f"space must be a parsed symhx.spaces.Space (use parse_space), got "
+                            f"{type(space).__name__} {space!r}")
+        self._setup(N, p, dps)
         self.sample_space = space
         self.space = space.name
-        if self.exact and self.N > EXACT_N_LIMIT:
-            raise ValueError(
-                f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT}; got N={self.N}. "
-                f"Pass p as a float or mpmath.mpf for the mpmath path at dps digits.")
-        self._guard = 10 + 2 * digits_of(self.N)
 
     # ----------------------------------------------------------------- exact path
     @cached_property
@@ -211,10 +208,16 @@ class SpaceDistribution(Distribution):
         sp, N = self.sample_space, self.N
         a, b = self.fr.numerator, self.fr.denominator
         den = sp.Qden(b)
-        g = _binary_split(N, a, b, lambda j: (sp.Qnum(j, a, b), j)) / den
-        m1 = _binary_split(N, a, b, lambda j: (sp.Qnum(j, a, b), 1)) / den
-        m2 = _binary_split(N, a, b, lambda j: (j * sp.Qnum(j, a, b), 1)) / den
+        g = binary_split(N, a, b, lambda j: (sp.Qnum(j, a, b), j)) / den
+        m1 = binary_split(N, a, b, lambda j: (sp.Qnum(j, a, b), 1)) / den
+        m2 = binary_split(N, a, b, lambda j: (j * sp.Qnum(j, a, b), 1)) / den
         return g, m1, m2
+
+    def _exact_partial(self, k: int) -> Fraction:
+        assert self.fr is not None
+        sp = self.sample_space
+        a, b = self.fr.numerator, self.fr.denominator
+        return binary_split(self.N, a, b, lambda j: (sp.Qnum(j, a, b), j), k) / sp.Qden(b)
 
     def weight_exact(self, k: int) -> Fraction:
         """``W(k) = Phi_{N,p}(k) Q*(k)`` exactly (needs rational ``p``)."""
@@ -230,7 +233,7 @@ class SpaceDistribution(Distribution):
             return [(1, N)]
         fr = _rational(self.p, self.fr)
         lw = log_W_float(self.sample_space, N, _logp_float(fr))
-        cut = lw.max() - (self.dps + self._guard) * math.log(10) - 20
+        cut = lw.max() - self._wdps * math.log(10) - 20
         idx = np.nonzero(lw >= cut)[0] + 1
         runs: list[tuple[int, int]] = []
         lo = prev = int(idx[0])
@@ -271,7 +274,7 @@ class SpaceDistribution(Distribution):
         """``{k: W(k)}`` (mpf at dps + guard) for every significant k."""
         N = self.N
         out: dict[int, mpmath.mpf] = {}
-        with mpmath.workdps(self.dps + self._guard):
+        with mpmath.workdps(self._wdps):
             pm = mp_value(self.p, self.fr)
             pe = self._pe(pm)
             sp = self.sample_space
@@ -282,7 +285,7 @@ class SpaceDistribution(Distribution):
             kmax = max(hi for _, hi in runs)
             small = range(1, min(kmax, sp.max_parts) + 1)
             extra = max(u.bit_length() for k in (*small, kmax) for u in sp.U(k))
-            P = mpmath.mp.prec + extra + 20
+            P = mpmath.libmp.dps_to_prec(self._wdps) + extra + 20
             pe_int = [int(mpmath.floor(x * mpmath.mpf(2) ** P)) for x in pe]
             scale = mpmath.mpf(2) ** -P
             distinct = sp.weighting == "distinct"
@@ -303,40 +306,51 @@ class SpaceDistribution(Distribution):
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
         terms = self._terms
-        with mpmath.workdps(self.dps + self._guard):
+        with mpmath.workdps(self._wdps):
             s0 = mpmath.fsum(terms.values())
             mu = mpmath.fsum(k * w for k, w in terms.items()) / s0
             var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
             return s0, mu, var
 
-    # ----------------------------------------------------------------- public
-    def pmf(self, k: int) -> Any:
-        """``P(X = k)``: Fraction when exact, else mpf; 0 outside ``1..N``."""
-        if not isinstance(k, int) or isinstance(k, bool):
-            raise TypeError(f"k must be an int, got {type(k).__name__}")
-        if not 1 <= k <= self.N:
-            return Fraction(0) if self.exact else mpmath.mpf(0)
-        if self.exact:
-            return self.weight_exact(k) / self._exact_moments[0]
+    def _float_logw(self) -> np.ndarray:
+        return log_W_float(self.sample_space, self.N, _logp_float(_rational(self.p, self.fr)))
+
+    def _mp_weight(self, k: int) -> mpmath.mpf:
+        """``W(k)`` at the working precision (set by the caller)."""
         w = self._terms.get(k)
         if w is not None:
-            with mpmath.workdps(self.dps + self._guard):
-                val = w / self._mp_moments[0]
-            return self._round(val)
-        return self._round(mpmath.exp(self.logpmf(k)))
+            return w
+        pm = mp_value(self.p, self.fr)
+        return mpmath.exp(self._log_phi_mp(k, pm)) * self._q_mp(k, self._pe(pm))
 
-    def logpmf(self, k: int) -> mpmath.mpf:
-        """``log P(X = k)`` (``-inf`` outside ``1..N``); never underflows."""
-        if not isinstance(k, int) or isinstance(k, bool):
-            raise TypeError(f"k must be an int, got {type(k).__name__}")
-        if not 1 <= k <= self.N:
-            return mpmath.ninf
-        if self.exact:
-            v = self.pmf(k)
-            with mpmath.workdps(self.dps + 5):
-                return self._round(mpmath.log(v.numerator) - mpmath.log(v.denominator))
+    def _mp_terms(self, lo: int, hi: int) -> list[tuple[int, mpmath.mpf]]:
         s0 = self._mp_moments[0]
-        with mpmath.workdps(self.dps + self._guard):
+        if self.N <= DIRECT_LIMIT:  # every W(k) is in _terms
+            ks: Any = range(lo, hi + 1)
+        else:  # float screen relative to the largest weight in [lo, hi]
+            lw = self._float_lw[lo - 1:hi]
+            cut = lw.max() - self._wdps * math.log(10) - 20
+            ks = [lo + int(i) for i in np.nonzero(lw >= cut)[0]]
+        with self._wp():
+            return [(k, self._mp_weight(k) / s0) for k in ks]
+
+    @cached_property
+    def _float_lw(self) -> np.ndarray:
+        return log_W_float(self.sample_space, self.N, _logp_float(_rational(self.p, self.fr)))
+
+    # ----------------------------------------------------------------- per-k values
+    def _pmf1(self, k: int) -> Any:
+        if self.exact:
+            return self.weight_exact(k) / self._exact_moments[0]
+        s0 = self._mp_moments[0]
+        with self._wp():
+            return self._round(self._mp_weight(k) / s0)
+
+    def _logpmf1(self, k: int) -> mpmath.mpf:
+        if self.exact:
+            return self._log_fraction(self._pmf1(k))
+        s0 = self._mp_moments[0]
+        with self._wp():
             w = self._terms.get(k)
             if w is not None:
                 return self._round(mpmath.log(w) - mpmath.log(s0))
@@ -347,39 +361,43 @@ class SpaceDistribution(Distribution):
     @property
     def normaliser(self) -> Any:
         """``sum_k W(k)``: the generalisation of ``Gamma_{N,p}`` (eq. 8) to this space."""
+        if self.dps is None:
+            return float(np.exp(self._ftab["lognorm"]))
         if self.exact:
             return self._exact_moments[0]
         return self._round(self._mp_moments[0])
 
     @property
-    def log_normaliser(self) -> mpmath.mpf:
+    def log_normaliser(self) -> Any:
         """``log`` of :attr:`normaliser`."""
-        g = self.normaliser
-        with mpmath.workdps(self.dps + 5):
-            if isinstance(g, Fraction):
-                return self._round(mpmath.log(g.numerator) - mpmath.log(g.denominator))
-            return self._round(mpmath.log(g))
+        if self.dps is None:
+            return float(self._ftab["lognorm"])
+        if self.exact:
+            return self._log_fraction(self._exact_moments[0])
+        with self._wp():
+            return self._round(mpmath.log(self._mp_moments[0]))
 
-    @property
     def modes(self) -> tuple[int, ...]:
         """All maximisers of ``P(X = k)`` (exact for rational ``p``)."""
         return space_modes(self.sample_space, self.N, self.p, self.fr)
 
-
     def table(self) -> list[tuple[int, Any]]:
         """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range)."""
+        if self.dps is None:
+            return [(k, float(v)) for k, v in enumerate(self._ftab["pmf"], 1)]
         if self.exact:
             g = self._exact_moments[0]
-            return [(k, self.weight_exact(k) / g) for k in self.support]
+            return [(k, self.weight_exact(k) / g) for k in range(1, self.N + 1)]
         terms = self._terms
         s0 = self._mp_moments[0]
         zero = mpmath.mpf(0)
-        with mpmath.workdps(self.dps):
-            return [(k, terms[k] / s0 if k in terms else zero) for k in self.support]
+        with self._wp():
+            vals = [(k, terms[k] / s0 if k in terms else zero) for k in range(1, self.N + 1)]
+        return [(k, self._round(v)) for k, v in vals]
 
 
-def distribution(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
-                 weighting: str | None = None) -> Distribution:
+def distribution(N: int, p: Any, *, space: str | Space = DEFAULT_SPACE,
+                 dps: int | None = DEFAULT_DPS, weighting: str | None = None) -> Distribution:
     """The distribution of X over a sample space (see :func:`symhx.spaces.parse_space`).
 
     Parameters
@@ -391,8 +409,8 @@ def distribution(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
     space : str
         ``"simple"``, ``"eq41"``, ``"eq41-printed"``, ``"excess<=m"``, optionally with
         ``";distinct"``.
-    dps : int
-        Significant digits of mpmath results.
+    dps : int or None
+        Significant digits of mpmath results; ``None`` for float64.
     weighting : {"length", "distinct"}, optional
         Alternative to the ``;distinct`` suffix.
 
@@ -403,18 +421,16 @@ def distribution(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
         and distinct weighting coincide there), else :class:`SpaceDistribution`.
 
     >>> d = distribution(3, Fraction(1, 2), space="excess<=1")
-    >>> d.pmf(1), d.mean
+    >>> d.pmf(1), d.mean()
     (Fraction(36, 73), Fraction(123, 73))
     """
     sp = parse_space(space, weighting)
     if sp.base == "simple":
-        from symhx.distribution import SimpleDistribution
-
         return SimpleDistribution(N, p, dps=dps)
     return SpaceDistribution(N, p, sp, dps=dps)
 
 
-def modes(N: int, p: Any, *, space: str | Space = "eq41", weighting: str | None = None
+def modes(N: int, p: Any, *, space: str | Space = DEFAULT_SPACE, weighting: str | None = None
           ) -> tuple[int, ...]:
     """All maximisers of ``P(X = k)`` over ``space``, increasing (exact for rational ``p``).
 
@@ -425,9 +441,7 @@ def modes(N: int, p: Any, *, space: str | Space = "eq41", weighting: str | None 
     N = check_N(N, minimum=1)
     fr, p = check_p(p)
     if sp.base == "simple":
-        from symhx.distribution import _simple_modes
-
-        return _simple_modes(N, fr, p)
+        return simple_modes(N, fr, p)
     return space_modes(sp, N, p, fr)
 
 
@@ -457,17 +471,26 @@ class ClassDecomposition:
         self.labels = {s: paper_label(s) for s in shapes}
         self.joint = joint
         self.totals = totals
-        by: dict[int, Any] = {}
+        groups: dict[int, list[Any]] = {}
         for s in shapes:
-            e = shape_excess(s)
-            by[e] = by.get(e, 0) + totals[s]
+            groups.setdefault(shape_excess(s), []).append(totals[s])
+        by: dict[int, Any] = {}
+        dps = getattr(dist, "dps", None)
+        for e, vals in groups.items():
+            if all(isinstance(v, Fraction) for v in vals):
+                by[e] = sum(vals, Fraction(0))
+            else:  # mpf: add at dps + 10 digits, not at the global precision
+                with mpmath.workdps((dps or 15) + 10):
+                    tot = mpmath.fsum(vals)
+                with mpmath.workdps(dps or 15):
+                    by[e] = +tot
         self.by_excess = by
 
     def __repr__(self) -> str:
         return f"ClassDecomposition({self.distribution!r}, classes={len(self.shapes)})"
 
 
-def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
+def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int = DEFAULT_DPS,
                         weighting: str | None = None) -> ClassDecomposition:
     """Split ``P(X = k)`` by class (the paper's figure 11): exact for rational ``p``.
 
@@ -478,11 +501,13 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
     (Fraction(1, 1), Fraction(8, 75))
     """
     sp = parse_space(space, weighting)
+    dps = check_dps(dps)
     dist = distribution(N, p, space=sp, dps=dps)
     N = dist.N
     joint: dict[tuple[int, ...], list[Any]] = {}
     totals: dict[tuple[int, ...], Any] = {}
     if dist.exact:
+        assert dist.fr is not None
         fr = Fraction(dist.fr)
         g = dist.normaliser
         for s in sp.shapes:
@@ -519,7 +544,8 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
     return ClassDecomposition(dist, sp.shapes, joint, totals)
 
 
-def class_probabilities(N: int, p: Any, *, space: str | Space = "eq41", dps: int = 50,
+def class_probabilities(N: int, p: Any, *, space: str | Space = "eq41",
+                        dps: int = DEFAULT_DPS,
                         weighting: str | None = None) -> dict[str, Any]:
     """``{paper label: P(class)}`` (the "probability of observing each class", figure 11).
 

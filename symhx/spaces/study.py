@@ -56,6 +56,6 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     for sp in spaces:
         cp = critical_point(N, space=sp, dps=dps)
         with mpmath.workdps(dps + 10):
-            means = {p: distribution(N, mpmath.mpf(p), space=sp, dps=dps).mean for p in ps}
+            means = {p: distribution(N, mpmath.mpf(p), space=sp, dps=dps).mean() for p in ps}
         rows.append(ConvergenceRow(sp, cp.p, cp.k_after, means))
     return rows

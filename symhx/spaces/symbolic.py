@@ -8,8 +8,8 @@ import math
 from collections import Counter
 from typing import Any
 
-from symhx.circuits import _necklaces_with_content, normalise_visits
-from symhx.spaces._classes import PRINTED_RANGES, _check_shape, class_count, printed_count
+from symhx.circuits import necklaces_with_content, normalise_visits
+from symhx.spaces._classes import PRINTED_RANGES, check_shape, class_count, printed_count
 
 __all__ = [
     "boundary_table",
@@ -36,7 +36,7 @@ def pattern_count_symbolic(visits: Any) -> Any:
     choose = sp.ff(N, len(v))
     for c in Counter(v).values():
         choose /= sp.factorial(c)
-    return sp.factor(sp.expand_func(choose * _necklaces_with_content(v)))
+    return sp.factor(sp.expand_func(choose * necklaces_with_content(v)))
 
 
 def class_count_symbolic(shape: Any) -> Any:
@@ -49,7 +49,7 @@ def class_count_symbolic(shape: Any) -> Any:
     """
     import sympy as sp
 
-    s = _check_shape(shape)
+    s = check_shape(shape)
     N, L = sp.symbols("N L", integer=True, positive=True)
     e, r = sum(x - 1 for x in s), len(s)
     C = math.prod(math.factorial(c) for c in Counter(s).values())
