@@ -20,14 +20,16 @@ including timeouts), ``survived``, ``equivalent`` and ``no_tests`` (no test exec
 function), the ``kill_rate = killed / (killed + survived + no_tests)`` over non-equivalent mutants,
 and the diff of every surviving mutant. Equivalent mutants are declared by hand in the
 ``equivalent`` section of the report: ``{mutant name: {"diff": ..., "why": one line}}``. A
-declaration only counts while its diff still matches the mutant (mutant names are renumbered when the code
-changes); stale declarations are listed under ``stale_equivalent`` and the mutant counts as
-survived.
+declaration only counts while its diff still matches the mutant (mutant names are renumbered
+when the code changes); stale declarations are listed under ``stale_equivalent`` and the mutant
+counts as survived.
 """
 
 from __future__ import annotations
 
 import argparse
+import ast
+import difflib
 import json
 import os
 import shutil
@@ -89,12 +91,29 @@ def _write_mutmut_config(workdir: Path, modules: list[str], tests: list[str],
     py.write_text(text.rstrip() + "\n\n" + "\n".join(table), "utf-8")
 
 
-def _mutant_diff(workdir: Path, name: str) -> str:
-    out = subprocess.run([sys.executable, "-m", "mutmut", "show", name], cwd=workdir,
-                         capture_output=True, text=True)
-    lines = [ln for ln in out.stdout.splitlines()
-             if ln.startswith(("+", "-")) and not ln.startswith(("+++", "---"))]
-    return "\n".join(ln.rstrip() for ln in lines)
+def _function_sources(path: Path) -> dict[str, list[str]]:
+    """Source lines (without the ``def`` line) of every function in a mutated file."""
+    text = path.read_text("utf-8")
+    out: dict[str, list[str]] = {}
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            seg = ast.get_source_segment(text, node) or ""
+            body = seg.split("\n")
+            start = next((i for i, ln in enumerate(body) if ln.rstrip().endswith(":")), 0)
+            out[node.name] = [ln.strip() for ln in body[start + 1:]] + [
+                " ".join(body[: start + 1]).split("(", 1)[-1].strip()]
+    return out
+
+
+def _mutant_diff(sources: dict[str, list[str]], name: str) -> str:
+    """``-`` / ``+`` lines between a mutant and the original function (from mutmut's file)."""
+    func = name.rsplit(".", 1)[-1]
+    orig = sources.get(func.rsplit("__mutmut_", 1)[0] + "__mutmut_orig")
+    mutant = sources.get(func)
+    if orig is None or mutant is None:
+        return "(source not found)"
+    lines = [ln for ln in difflib.ndiff(orig, mutant) if ln.startswith(("- ", "+ "))]
+    return "\n".join(ln[0] + " " + ln[2:] for ln in lines)
 
 
 def _module_of(meta: Path, workdir: Path) -> str:
@@ -112,6 +131,7 @@ def build_report(workdir: Path, modules: list[str], old: dict) -> dict:
         if module not in modules:
             continue
         codes = json.loads(meta.read_text())["exit_code_by_key"]
+        sources = _function_sources(meta.with_suffix(""))
         killed = survived = equivalent = no_tests = other = 0
         survivors: dict[str, str] = {}
         unresolved: dict[str, str] = {}
@@ -119,7 +139,7 @@ def build_report(workdir: Path, modules: list[str], old: dict) -> dict:
             if code in KILLED:
                 killed += 1
                 continue
-            diff = _mutant_diff(workdir, name)
+            diff = _mutant_diff(sources, name)
             decl = equivalent_decl.get(name)
             if code in SURVIVED | NO_TESTS and decl is not None:
                 if decl.get("diff") == diff:
