@@ -6,14 +6,14 @@ from __future__ import annotations
 import itertools
 import math
 from collections import Counter
-from functools import lru_cache
+from functools import cache
 
 
 def least_rotation(word: tuple[int, ...]) -> tuple[int, ...]:
     return min(word[i:] + word[:i] for i in range(len(word)))
 
 
-@lru_cache(maxsize=None)
+@cache
 def necklaces(N: int, L: int) -> frozenset[tuple[int, ...]]:
     """All closed walks of length L on N vertices up to rotation (least rotations)."""
     return frozenset(least_rotation(w) for w in itertools.product(range(N), repeat=L))
@@ -24,12 +24,12 @@ def pattern(word: tuple[int, ...]) -> tuple[int, ...]:
     return tuple(sorted(Counter(word).values(), reverse=True))
 
 
-@lru_cache(maxsize=None)
+@cache
 def pattern_counts(N: int, L: int) -> dict[tuple[int, ...], int]:
     return dict(Counter(pattern(w) for w in necklaces(N, L)))
 
 
-@lru_cache(maxsize=None)
+@cache
 def necklaces_with_content(content: tuple[int, ...]) -> int:
     """Words using letter i exactly content[i] times, up to rotation (explicit enumeration)."""
     letters = [i for i, m in enumerate(content) for _ in range(m)]

@@ -31,7 +31,7 @@ SHAPES = [(), (2,), (3,), (2, 2), (4,), (3, 2), (2, 2, 2), (5,), (3, 3), (4, 2)]
 
 
 def shape_of(word: tuple[int, ...]) -> tuple[tuple[int, ...], int]:
-    """(class, k) of an explicit circuit: the parts > 1 of its visit pattern, its distinct vertices."""
+    """(class, k) of an explicit circuit: parts > 1 of its visit pattern, distinct vertices."""
     mult = sorted(Counter(word).values(), reverse=True)
     return tuple(m for m in mult if m > 1), len(mult)
 
