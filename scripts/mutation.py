@@ -7,6 +7,8 @@ Usage (from the repository root)::
     python scripts/mutation.py symhx/circuits.py symhx/graph.py
     python scripts/mutation.py --all                # every core module in pyproject
     python scripts/mutation.py --report-only        # rebuild the report from the last run
+    python scripts/mutation.py symhx/circuits.py --rerun symhx.circuits.x_phi__mutmut_3  # after
+                                                    # adding a test for a survivor
 
 Each run works in a scratch copy of the repository (``--workdir``, default a directory under the
 system temp dir), so the work tree never gets a ``mutants/`` directory. The copy gets a
@@ -195,13 +197,17 @@ def main(argv: list[str] | None = None) -> int:
                         help="files to mutate (default: [tool.symhx-mutation] default)")
     parser.add_argument("--all", action="store_true", help="every module in [tool.symhx-mutation]")
     parser.add_argument("--max-children", type=int, default=1)
-    parser.add_argument("--timeout-multiplier", type=float, default=10.0)
+    parser.add_argument("--timeout-multiplier", type=float, default=4.0)
     parser.add_argument("--workdir", type=Path,
                         default=Path(tempfile.gettempdir()) / "symhx-mutation")
     parser.add_argument("--report", type=Path, default=REPORT)
     parser.add_argument("--report-only", action="store_true",
                         help="only rebuild the report from the last run in --workdir")
     parser.add_argument("--no-nice", action="store_true")
+    parser.add_argument("--rerun", nargs="+", metavar="MUTANT", default=None,
+                        help="rerun only these mutants in the existing --workdir with the current "
+                             "test files (after adding tests for survivors), then rebuild the "
+                             "report")
     args = parser.parse_args(argv)
 
     test_map: dict[str, list[str]] = cfg.get("tests", {})
@@ -213,10 +219,18 @@ def main(argv: list[str] | None = None) -> int:
     tests = sorted({t for m in modules for t in test_map[m] if (ROOT / t).exists()})
     workdir: Path = args.workdir.resolve()
 
+    if args.rerun:
+        for dest in (workdir / "tests", workdir / "mutants" / "tests"):
+            shutil.copytree(ROOT / "tests", dest, dirs_exist_ok=True)
+        # new tests are only run for a mutant once mutmut has re-collected which tests
+        # execute which function
+        (workdir / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     if not args.report_only:
-        _copy_repo(workdir)
-        _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
-        cmd = [sys.executable, "-m", "mutmut", "run", "--max-children", str(args.max_children)]
+        if not args.rerun:
+            _copy_repo(workdir)
+            _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
+        cmd = [sys.executable, "-m", "mutmut", "run", "--max-children", str(args.max_children),
+               *(args.rerun or [])]
         if not args.no_nice:
             cmd = ["nice", "-n", "19", *cmd]
         # mutmut puts mutants/ first on sys.path itself; an inherited PYTHONPATH (for instance the

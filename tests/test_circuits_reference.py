@@ -142,11 +142,11 @@ def test_partitions_brute():
 def test_normalise_visits():
     assert normalise_visits([1, 3, 2, 1]) == (3, 2, 1, 1)
     assert normalise_visits((5,)) == (5,)
-    with pytest.raises(ValueError, match="must not be empty"):
+    with pytest.raises(ValueError, match="^visits must not be empty$"):
         normalise_visits([])
     with pytest.raises(ValueError, match=r"multiplicity must be >= 1, got \(2, 0\)"):
         normalise_visits([0, 2])
-    with pytest.raises(TypeError, match="iterable of positive integers"):
+    with pytest.raises(TypeError, match="^visits must be an iterable of positive integers$"):
         normalise_visits([1.5])
 
 
@@ -167,6 +167,17 @@ def test_errors_name_argument_and_value():
         list(partitions(-1))
     with pytest.raises(TypeError, match=r"^L must be an integer, got str$"):
         necklace_count(2, "3")
+    for func in (circuits_of_length, necklace_count, enumerate_circuits):
+        with pytest.raises(ValueError, match=r"^N must be >= 1, got 0$"):
+            list(func(0, 2))
+        with pytest.raises(TypeError, match=r"^N must be an integer, got float$"):
+            list(func(2.0, 2))
+
+
+def test_log_phi_default_precision_is_50_digits():
+    for N, k in ((10**6, 7), (37, 5), (10**40, 3)):
+        assert log_phi(N, k) == log_phi(N, k, dps=50)  # exact mpf equality: same rounding
+        assert log_phi(N, k) != log_phi(N, k, dps=51)
 
 
 def test_circuit_count_too_many_vertices():
