@@ -279,3 +279,14 @@ def test_parse_space_names_and_errors():
         parse_space("eq41;distinct", "length")
     with pytest.raises(TypeError, match="space must be a str, got int"):
         parse_space(3)
+
+
+def test_fresh_space_tables():
+    """A Space built directly (not the cached one from parse_space) fills its own tables."""
+    sp = Space("excess<=2", "excess", 2, "length", shapes_up_to(2))
+    assert sp._cache == {}
+    p = Fraction(1, 3)
+    for k in (1, 2, 5, 9):
+        want = sum(p ** shape_excess(s) * class_ratio(s, k) for s in shapes_up_to(2))
+        assert sp.Qstar(k, p) == want
+        assert sp.U(k) == sp.U(k)
