@@ -282,11 +282,20 @@ def test_parse_space_names_and_errors():
 
 
 def test_fresh_space_tables():
-    """A Space built directly (not the cached one from parse_space) fills its own tables."""
-    sp = Space("excess<=2", "excess", 2, "length", shapes_up_to(2))
-    assert sp._cache == {}
+    """A Space built directly (not the cached one from parse_space) fills its own tables, in the
+    boundary region (k <= max_parts) and the polynomial one, and a cache hit returns the same."""
     p = Fraction(1, 3)
-    for k in (1, 2, 5, 9):
-        want = sum(p ** shape_excess(s) * class_ratio(s, k) for s in shapes_up_to(2))
-        assert sp.Qstar(k, p) == want
-        assert sp.U(k) == sp.U(k)
+    for m, weighting in ((2, "length"), (3, "length"), (3, "distinct"), (4, "length")):
+        shapes = shapes_up_to(m)
+        sp = Space(f"excess<={m}", "excess", m, weighting, shapes)
+        assert sp._cache == {}
+        for k in (1, 2, 3, 5, 9, 2, 1):
+            ratios = [sum(class_ratio(s, k) for s in shapes if shape_excess(s) == e)
+                      for e in range(m + 1)]
+            assert sp.U(k) == tuple(r * sp.denominator for r in ratios), (m, k)
+            w = [p**e if weighting == "length" else 1 for e in range(m + 1)]
+            assert sp.Qstar(k, p) == sum(wi * r for wi, r in zip(w, ratios, strict=True))
+    sp = parse_space("excess<=2")
+    assert parse_space(sp, "distinct").weighting == "distinct"
+    assert parse_space(sp, "distinct").Qstar(3, p) == sum(class_ratio(s, 3)
+                                                          for s in shapes_up_to(2))
