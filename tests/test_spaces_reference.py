@@ -299,3 +299,14 @@ def test_fresh_space_tables():
     assert parse_space(sp, "distinct").weighting == "distinct"
     assert parse_space(sp, "distinct").Qstar(3, p) == sum(class_ratio(s, 3)
                                                           for s in shapes_up_to(2))
+
+
+def test_fresh_printed_space_boundary():
+    """eq41-printed built directly: at k <= max_parts the printed boundary values are used."""
+    sp = Space("eq41-printed", "eq41-printed", 3, "length", EQ41_SHAPES, printed=True)
+    for k in (1, 2, 3, 6):
+        ratios = [sum(class_ratio(s, k, printed=True) for s in EQ41_SHAPES
+                      if shape_excess(s) == e) for e in range(4)]
+        assert sp.U(k) == tuple(r * sp.denominator for r in ratios), k
+    # the printed boundary differs from the true one: phi^{1,0}(3) = N is missing at k = 1
+    assert sp.U(1) != parse_space("eq41").U(1)
