@@ -142,11 +142,11 @@ def test_partitions_brute():
 def test_normalise_visits():
     assert normalise_visits([1, 3, 2, 1]) == (3, 2, 1, 1)
     assert normalise_visits((5,)) == (5,)
-    with pytest.raises(ValueError, match="^visits must not be empty$"):
+    with pytest.raises(ValueError, match=r"^visits must not be empty$"):
         normalise_visits([])
     with pytest.raises(ValueError, match=r"multiplicity must be >= 1, got \(2, 0\)"):
         normalise_visits([0, 2])
-    with pytest.raises(TypeError, match="^visits must be an iterable of positive integers$"):
+    with pytest.raises(TypeError, match=r"^visits must be an iterable of positive integers$"):
         normalise_visits([1.5])
 
 
