@@ -1,0 +1,692 @@
+"""Fuzz test of every public function and every CLI command with hostile inputs (issue 12).
+
+Contract checked for each call: it returns a correct-looking value (no NaN anywhere in it) or raises
+ValueError/TypeError; it finishes within :data:`TIME_LIMIT` seconds; it leaves ``mpmath.mp.dps``
+unchanged.  For a hostile value that is *not allowed* for the argument's role (NaN, infinities,
+bools, negatives where only positives make sense, dps outside ``[1, MAX_DPS]``, ...) returning a
+value is a failure too (a silent wrong answer).  A CLI command must exit 0, or exit 2 with exactly
+one ``error:`` line on stderr and no traceback; a value that is not allowed must exit 2.
+
+Calls run in a forked child process (one per batch of calls), each under a SIGALRM time limit; a
+call stuck in C code (big-int arithmetic, for example) is killed by the parent and reported as a
+hang, and the batch continues after it.  Every failure of a function or command is collected and
+reported together (``pytest -m fuzz tests/test_fuzz.py``); nothing here is xfailed.
+
+The table :data:`API` gives, for every name in ``symhx.__all__`` and ``symhx.impact.__all__``, a
+valid call and the *role* of each argument; :data:`NOT_CALLABLE` lists the names that are result
+classes or constants, each with the reason.  ``test_every_public_name_is_covered`` fails when a new
+public name is added without an entry.
+"""
+
+from __future__ import annotations
+
+import ast
+import contextlib
+import io
+import math
+import os
+import pickle
+import select
+import signal
+import struct
+import time
+import traceback
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, fields, is_dataclass
+from decimal import Decimal
+from fractions import Fraction
+from typing import Any
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import symhx
+import symhx.impact
+
+pytestmark = pytest.mark.fuzz
+
+TIME_LIMIT = 2.0  # seconds per call (SIGALRM in the child; the parent kills it 1 s later)
+KILL_GRACE = 1.0
+
+# --------------------------------------------------------------------------- hostile values
+_NAN = float("nan")
+
+
+class _Weird:
+    """An object that is no number at all."""
+
+    def __repr__(self) -> str:
+        return "<weird object>"
+
+
+HOSTILE: dict[str, Any] = {
+    "nan": _NAN,
+    "inf": math.inf,
+    "-inf": -math.inf,
+    "np.nan": np.float64("nan"),
+    "mpf nan": mpmath.mpf("nan"),
+    "mpf -inf": mpmath.mpf("-inf"),
+    "Decimal nan": Decimal("nan"),
+    "0": 0,
+    "0.0": 0.0,
+    "-1": -1,
+    "-3.5": -3.5,
+    "mpf -0.1": mpmath.mpf("-0.1"),
+    "True": True,
+    "False": False,
+    "np.True_": np.True_,
+    "10**1000": 10**1000,
+    "-10**1000": -(10**1000),
+    "2.5": 2.5,
+    "1e308": 1e308,
+    "5e-324": 5e-324,
+    "'abc'": "abc",
+    "''": "",
+    "'1/0'": "1/0",
+    "'nan'": "nan",
+    "'1e-400'": "1e-400",
+    "None": None,
+    "[]": [],
+    "[1, 'a', nan]": [1, "a", _NAN],
+    "np.array([])": np.array([]),
+    "1j": 1j,
+    "np.int64(-1)": np.int64(-1),
+    "np.int64(7)": np.int64(7),
+    "np.float32(0.1)": np.float32(0.1),
+    "object": _Weird(),
+    "10**6": 10**6,
+}
+
+_NOT_REAL = {"'abc'", "''", "'1/0'", "'nan'", "None", "[]", "[1, 'a', nan]", "np.array([])", "1j",
+             "object", "True", "False", "np.True_"}
+_NONFINITE = {"nan", "inf", "-inf", "np.nan", "mpf nan", "mpf -inf", "Decimal nan"}
+_NEGATIVE = {"-1", "-3.5", "mpf -0.1", "-10**1000", "np.int64(-1)"}
+_NON_INTEGRAL = {"2.5", "1e308", "5e-324", "0.0", "np.float32(0.1)", "'1e-400'", "-3.5",
+                 "mpf -0.1"} | _NONFINITE
+_ZERO = {"0", "0.0"}
+
+#: role -> labels of HOSTILE that must be refused with ValueError/TypeError
+REJECT: dict[str, set[str]] = {
+    # a number of vertices / pipes / a count: an int >= 1 (or 2)
+    "N": _NOT_REAL | _NON_INTEGRAL | _NEGATIVE | _ZERO,
+    # an int that may be zero or negative where documented (phi(N, 0) == 0)
+    "int": _NOT_REAL | _NON_INTEGRAL,
+    # an int >= 0 (seeds, counts)
+    "count": _NOT_REAL | _NON_INTEGRAL | _NEGATIVE,
+    # a probability p > 0 (p > 1 allowed but unphysical)
+    "p": _NOT_REAL | _NONFINITE | _NEGATIVE | _ZERO,
+    # a probability strictly inside (0, 1) (inverse problems)
+    "p01": _NOT_REAL | _NONFINITE | _NEGATIVE | _ZERO | {"2.5", "1e308", "10**1000", "np.int64(7)",
+                                                         "10**6"},
+    # a finite positive real (scales, spacings, frequencies, durations)
+    "positive": _NOT_REAL | _NONFINITE | _NEGATIVE | _ZERO,
+    # a finite real >= 0 (sigma: 0 means no forcing)
+    "nonneg": _NOT_REAL | _NONFINITE | _NEGATIVE,
+    # a finite positive real or None (optional parameter)
+    "positive?": (_NOT_REAL - {"None"}) | _NONFINITE | _NEGATIVE | _ZERO,
+    # a restitution coefficient in (0, 1]
+    "restitution": _NOT_REAL | _NONFINITE | _NEGATIVE | _ZERO | {"2.5", "1e308", "10**1000",
+                                                                 "np.int64(7)", "10**6"},
+    # precision: an int in [1, MAX_DPS]
+    "dps": _NOT_REAL | _NON_INTEGRAL | _NEGATIVE | _ZERO | {"10**1000", "10**6"},
+    # precision or None for float64
+    "dps?": (_NOT_REAL - {"None"}) | _NON_INTEGRAL | _NEGATIVE | _ZERO | {"10**1000", "10**6"},
+    # a sample space name (str) or a word from a fixed list
+    "choice": set(HOSTILE) - set(),
+    # an optional choice (None = default)
+    "choice?": set(HOSTILE) - {"None"},
+    # an int or None
+    "int?": (_NOT_REAL - {"None"}) | _NON_INTEGRAL | _NEGATIVE | _ZERO,
+    "seed": (_NOT_REAL - {"None"}) | _NON_INTEGRAL | _NEGATIVE,
+    # sequences (of positive reals, of visit multiplicities, ...)
+    "array+": set(HOSTILE) - {"np.int64(7)"},  # a scalar may be read as a one-element array
+    "visits": set(HOSTILE),
+    "shape": set(HOSTILE) - {"[]", "np.array([])"},  # () is the class of simple circuits
+    "ints": set(HOSTILE) - {"[]", "np.array([])"},
+    "row": set(HOSTILE),
+    "bool": set(HOSTILE) - {"True", "False", "np.True_"},
+}
+
+
+@dataclass(frozen=True)
+class Entry:
+    """A public callable, one valid call (``kwargs``) and the role of each argument."""
+
+    name: str
+    func: Callable[..., Any]
+    kwargs: dict[str, Any]
+    roles: dict[str, str]
+
+
+def _row() -> Any:
+    return symhx.PipeRow.random(3, 0.3, seed=1)
+
+
+_FORCING = {"sigma": 0.3, "sigma1": None, "omega": 1, "Omega": None, "d": 1, "dps": None}
+_FORCING_ROLES = {"sigma": "nonneg", "sigma1": "positive?", "omega": "positive",
+                  "Omega": "positive?", "d": "positive", "dps": "dps?"}
+
+
+def _entries() -> list[Entry]:
+    s = symhx
+    E = Entry
+    out = [
+        E("asymptotic_critical_point", s.asymptotic_critical_point,
+          {"N": 10**6, "order": "best", "dps": 20}, {"N": "N", "order": "choice", "dps": "dps"}),
+        E("circuit_count", s.circuit_count, {"N": 5, "visits": (2, 1)},
+          {"N": "N", "visits": "visits"}),
+        E("circuits_of_length", s.circuits_of_length, {"N": 4, "L": 3}, {"N": "N", "L": "N"}),
+        E("class_count", s.class_count, {"N": 10, "shape": (2,), "k": 3},
+          {"N": "N", "shape": "shape", "k": "int"}),
+        E("class_decomposition", s.class_decomposition,
+          {"N": 10, "p": "0.1", "space": "eq41", "dps": 20},
+          {"N": "N", "p": "p", "space": "choice", "dps": "dps"}),
+        E("class_probabilities", s.class_probabilities,
+          {"N": 10, "p": "0.1", "space": "eq41", "dps": 20},
+          {"N": "N", "p": "p", "space": "choice", "dps": "dps"}),
+        E("convergence_study", s.convergence_study,
+          {"N": 20, "ms": (0, 1), "ps": ("0.01",), "dps": 15, "extra": (), "weighting": "length"},
+          {"N": "N", "ms": "ints", "ps": "array+", "dps": "dps", "weighting": "choice"}),
+        E("critical_point", s.critical_point, {"N": 20, "dps": 20, "space": "simple"},
+          {"N": "N", "dps": "dps", "space": "choice"}),
+        E("discriminant_root", s.discriminant_root, {"N": 20, "dps": 20},
+          {"N": "N", "dps": "dps"}),
+        E("distribution_of", s.distribution_of, {"N": 20, "p": "0.1", "space": "simple", "dps": 20},
+          {"N": "N", "p": "p", "space": "choice", "dps": "dps"}),
+        E("enumerate_circuits", s.enumerate_circuits, {"N": 3, "L": 3}, {"N": "N", "L": "N"}),
+        E("eq41_terms", s.eq41_terms, {"N": 10, "k": 3}, {"N": "N", "k": "int"}),
+        E("error_table", s.error_table,
+          {"Ns": (1000,), "dps": 20, "orders": ("leading",), "pd_terms": 2},
+          {"Ns": "ints", "dps": "dps", "orders": "ints", "pd_terms": "N"}),
+        E("ensemble", s.ensemble,
+          {"sigmas": [0.5], "runs": 2, "n": 3, "t_transient": 20.0, "t_window": 20.0, "seed": 0,
+           "progress": False},
+          {"sigmas": "array+", "runs": "N", "n": "N", "t_transient": "nonneg",
+           "t_window": "positive", "seed": "seed", "progress": "bool"}),
+        E("free_flight_closure_fraction", s.free_flight_closure_fraction,
+          {"sigma": 0.3, "gaps": 3, "horizon": 10.0, "seed": 0},
+          {"sigma": "positive", "gaps": "N", "horizon": "positive", "seed": "seed"}),
+        E("log_phi", s.log_phi, {"N": 10, "k": 3, "dps": 20}, {"N": "N", "k": "N", "dps": "dps"}),
+        E("logpmf", s.logpmf, {"N": 10, "p": "0.1", "k": 3, "space": "simple", "dps": 20},
+          {"N": "N", "p": "p", "k": "int", "space": "choice", "dps": "dps"}),
+        E("mode", s.mode, {"N": 10, "p": "0.1", "space": "simple"},
+          {"N": "N", "p": "p", "space": "choice"}),
+        E("modes", s.modes, {"N": 10, "p": "0.1", "space": "simple"},
+          {"N": "N", "p": "p", "space": "choice"}),
+        E("mode_path", s.mode_path, {"N": 10, "p_max": 1, "dps": 20},
+          {"N": "N", "p_max": "p", "dps": "dps"}),
+        E("naive_impact_probability", s.naive_impact_probability,
+          {"sigma": 0.3, "sigma1": None, "omega": 1, "Omega": None, "d": 1},
+          {k: v for k, v in _FORCING_ROLES.items() if k != "dps"}),
+        E("parse_space", s.parse_space, {"space": "eq41", "weighting": None},
+          {"space": "choice", "weighting": "choice?"}),
+        E("pattern_count_symbolic", s.pattern_count_symbolic, {"visits": (2, 1)},
+          {"visits": "visits"}),
+        E("pd_series", s.pd_series, {"N": 1000, "n_terms": 3, "dps": 20},
+          {"N": "N", "n_terms": "N", "dps": "dps"}),
+        E("phi", s.phi, {"N": 10, "k": 3}, {"N": "N", "k": "int"}),
+        E("pmf", s.pmf, {"N": 10, "p": "0.1", "k": 3, "space": "simple", "dps": 20},
+          {"N": "N", "p": "p", "k": "int", "space": "choice", "dps": "dps"}),
+        E("rayleigh_scales", s.rayleigh_scales,
+          {k: v for k, v in _FORCING.items() if k != "d"},
+          {k: v for k, v in _FORCING_ROLES.items() if k != "d"}),
+        E("rayleigh_sum_probability", s.rayleigh_sum_probability,
+          {"scales": [0.5, 0.3], "d": 1, "tail": "upper", "dps": None},
+          {"scales": "array+", "d": "positive", "tail": "choice", "dps": "dps?"}),
+        E("sigma_for_impact_probability", s.sigma_for_impact_probability,
+          {**{k: v for k, v in _FORCING.items() if k != "sigma"}, "p": 0.1},
+          {**{k: v for k, v in _FORCING_ROLES.items() if k != "sigma"}, "p": "p01"}),
+        E("simulate", s.simulate,
+          {"row": "ROW", "t_end": 5.0, "dps": None, "v_stick": None, "max_events": None,
+           "engine": "auto"},
+          {"row": "row", "t_end": "positive", "dps": "dps?", "v_stick": "positive?",
+           "max_events": "int?", "engine": "choice"}),
+        E("theory_curve", s.theory_curve,
+          {"sigma": [0.2, 0.3], "N": 11, "space": "simple", "dps": 15},
+          {"sigma": "array+", "N": "N", "space": "choice", "dps": "dps"}),
+        E("total_simple_circuits", s.total_simple_circuits, {"N": 10}, {"N": "N"}),
+        E("vertices_lattice", s.vertices_lattice, {"m": 3}, {"m": "N"}),
+        E("vertices_row", s.vertices_row, {"n": 3}, {"n": "N"}),
+        E("impacts_from_pipes", s.impacts_from_pipes, {"n": 3}, {"n": "N"}),
+        E("PipeRow.random", s.PipeRow.random,
+          {"n": 3, "sigma": 0.3, "seed": 1, "restitution": 0.8, "omega": 1.0, "d": 1.0},
+          {"n": "N", "sigma": "nonneg", "seed": "seed", "restitution": "restitution",
+           "omega": "positive", "d": "positive"}),
+        E("impact.default_v_stick", symhx.impact.default_v_stick, {"row": "ROW", "dps": None},
+          {"row": "row", "dps": "dps?"}),
+        E("impact.work_dps", symhx.impact.work_dps, {"dps": 20}, {"dps": "dps"}),
+    ]
+    for name in ("impact_probability", "no_impact_probability", "log_impact_probability",
+                 "log_no_impact_probability", "dp_dsigma"):
+        out.append(E(name, getattr(s, name), dict(_FORCING), dict(_FORCING_ROLES)))
+    for name in ("mean", "variance", "normaliser"):
+        out.append(E(name, getattr(s, name), {"N": 10, "p": "0.1", "space": "simple", "dps": 20},
+                     {"N": "N", "p": "p", "space": "choice", "dps": "dps"}))
+    return out
+
+
+API = _entries()
+
+#: public names that are not functions to fuzz, with the reason
+NOT_CALLABLE = {
+    "AsymptoticCriticalPoint": "result class, built by asymptotic_critical_point",
+    "CriticalPoint": "result class, built by critical_point",
+    "Distribution": "result class, built by distribution_of",
+    "EnsembleResult": "result class, built by ensemble",
+    "History": "result class, built by simulate",
+    "ModePath": "result class, built by mode_path",
+    "RayleighSumResult": "result class, built by rayleigh_sum_probability",
+    "TheoryCurve": "result class, built by theory_curve",
+    "SigmaStats": "result class, built by ensemble",
+    "PipeRow": "fuzzed through PipeRow.random",
+    "GRAZE": "constant",
+    "IMPACT": "constant",
+    "KIND_NAMES": "constant",
+    "RELEASE": "constant",
+    "SQRT2": "constant",
+    "STICK": "constant",
+    "default_v_stick": "fuzzed as impact.default_v_stick",
+    "work_dps": "fuzzed as impact.work_dps",
+}
+
+
+# --------------------------------------------------------------------------- isolated runner
+class _CallTimeout(BaseException):
+    pass
+
+
+def _has_nan(x: Any, depth: int = 0) -> bool:
+    """True if a NaN hides anywhere in a result (numbers, arrays, containers, dataclasses)."""
+    if depth > 6:
+        return False
+    if isinstance(x, (bool, int, str, Fraction)) or x is None:
+        return False
+    if isinstance(x, float):
+        return math.isnan(x)
+    if isinstance(x, mpmath.mpf):
+        return bool(mpmath.isnan(x))
+    if isinstance(x, mpmath.mpc):
+        return bool(mpmath.isnan(x.real) or mpmath.isnan(x.imag))
+    if isinstance(x, np.ndarray):
+        if x.dtype.kind in "fc":
+            return bool(np.isnan(x).any())
+        if x.dtype.kind == "O":
+            return any(_has_nan(v, depth + 1) for v in x.ravel()[:1000])
+        return False
+    if isinstance(x, np.generic):
+        return bool(np.isnan(x)) if x.dtype.kind in "fc" else False
+    if isinstance(x, dict):
+        return any(_has_nan(v, depth + 1) for v in list(x.values())[:1000])
+    if isinstance(x, (list, tuple)):
+        return any(_has_nan(v, depth + 1) for v in x[:1000])
+    if is_dataclass(x):
+        return any(_has_nan(getattr(x, f.name, None), depth + 1) for f in fields(x))
+    return False
+
+
+def _one_call(thunk: Callable[[], Any]) -> dict[str, Any]:
+    before = mpmath.mp.dps
+    t0 = time.perf_counter()
+    signal.setitimer(signal.ITIMER_REAL, TIME_LIMIT)
+    try:
+        res = thunk()
+        if isinstance(res, Iterator):
+            res = [x for _, x in zip(range(100_000), res, strict=False)]
+        out = {"kind": "value", "nan": _has_nan(res), "repr": repr(res)[:120]}
+    except _CallTimeout:
+        out = {"kind": "timeout"}
+    except (ValueError, TypeError) as exc:
+        out = {"kind": "error", "type": type(exc).__name__, "msg": str(exc)[:200]}
+    except BaseException as exc:
+        tb = traceback.extract_tb(exc.__traceback__)[-1]
+        out = {"kind": "crash", "type": type(exc).__name__, "msg": str(exc)[:200],
+               "where": f"{os.path.basename(tb.filename)}:{tb.lineno}"}
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+    out["seconds"] = round(time.perf_counter() - t0, 3)
+    out["dps_changed"] = mpmath.mp.dps != before
+    mpmath.mp.dps = before
+    return out
+
+
+def _send(fd: int, obj: Any) -> None:
+    data = pickle.dumps(obj)
+    os.write(fd, struct.pack("!I", len(data)) + data)
+
+
+def _alarm(signum: int, frame: Any) -> None:
+    raise _CallTimeout
+
+
+_WARM: list[bool] = []
+
+
+def _warm_up() -> None:
+    """Run every valid call once in this process, so that lazy imports (scipy, sympy, the C
+    engine) happen before forking: an import in a forked child is slow and may fail."""
+    if _WARM:
+        return
+    _WARM.append(True)
+    for entry in API:
+        with contextlib.suppress(Exception):
+            res = _call(entry, {})()
+            if isinstance(res, Iterator):
+                list(res)
+    import tempfile
+
+    from symhx.cli import main
+
+    here = os.getcwd()
+    with tempfile.TemporaryDirectory() as tmp:
+        os.chdir(tmp)
+        try:
+            for command, (template, _) in CLI.items():
+                if command == "paper":  # the valid call is the whole paper job
+                    continue
+                argv = [a.format(**dict(CLI_VALID, path=os.path.join(tmp, "out")))
+                        for a in template]
+                with (contextlib.suppress(BaseException),
+                      contextlib.redirect_stdout(io.StringIO()),
+                      contextlib.redirect_stderr(io.StringIO())):
+                    main(argv)
+        finally:
+            os.chdir(here)
+
+
+def run_isolated(thunks: list[Callable[[], Any]]) -> list[dict[str, Any]]:
+    """Run each thunk in a forked child (one child per batch), each under the time limit."""
+    _warm_up()
+    results: list[dict[str, Any] | None] = [None] * len(thunks)
+    start = 0
+    while start < len(thunks):
+        r, w = os.pipe()
+        pid = os.fork()
+        if pid == 0:  # child
+            os.close(r)
+            code = 0
+            try:
+                signal.signal(signal.SIGALRM, _alarm)
+                with open(os.devnull, "w") as devnull, contextlib.redirect_stderr(devnull):
+                    for i in range(start, len(thunks)):
+                        _send(w, ("start", i))
+                        _send(w, ("done", i, _one_call(thunks[i])))
+            except BaseException:
+                code = 1
+            finally:
+                os._exit(code)
+        os.close(w)
+        buf = b""
+        current, t_start = start, time.monotonic()
+        killed = False
+        while True:
+            left = TIME_LIMIT + KILL_GRACE - (time.monotonic() - t_start)
+            ready, _, _ = select.select([r], [], [], max(left, 0))
+            if not ready:
+                os.kill(pid, signal.SIGKILL)
+                results[current] = {"kind": "hang", "seconds": TIME_LIMIT + KILL_GRACE,
+                                    "dps_changed": False}
+                killed = True
+                break
+            chunk = os.read(r, 65536)
+            if not chunk:
+                break
+            buf += chunk
+            while len(buf) >= 4:
+                (n,) = struct.unpack("!I", buf[:4])
+                if len(buf) < 4 + n:
+                    break
+                msg, buf = pickle.loads(buf[4:4 + n]), buf[4 + n:]
+                if msg[0] == "start":
+                    current, t_start = msg[1], time.monotonic()
+                else:
+                    results[msg[1]] = msg[2]
+        os.close(r)
+        os.waitpid(pid, 0)
+        if results[current] is None and not killed:
+            results[current] = {"kind": "crash", "type": "child died", "msg": "",
+                                "dps_changed": False, "seconds": 0}
+        start = current + 1
+    return [x if x is not None else {"kind": "skipped"} for x in results]
+
+
+def _verdict(res: dict[str, Any], must_reject: bool) -> str | None:
+    """None if the outcome meets the contract, else a one-line description of the failure."""
+    if res["dps_changed"]:
+        return "changed mpmath.mp.dps"
+    kind = res["kind"]
+    if kind in ("timeout", "hang"):
+        return f"no answer within {TIME_LIMIT} s ({kind})"
+    if kind == "crash":
+        return f"raised {res['type']}: {res['msg'][:100]} ({res.get('where', '')})"
+    if kind == "error":
+        return None
+    if kind == "value":
+        if must_reject:
+            return f"returned a value instead of an error: {res['repr'][:80]}"
+        if res["nan"]:
+            return f"returned NaN: {res['repr'][:80]}"
+        return None
+    return f"unexpected outcome {res}"
+
+
+def _call(entry: Entry, override: dict[str, Any]) -> Callable[[], Any]:
+    def thunk() -> Any:
+        kw = {**entry.kwargs, **override}
+        for k, v in kw.items():
+            if isinstance(v, str) and v == "ROW":
+                kw[k] = _row()
+        return entry.func(**kw)
+
+    return thunk
+
+
+# --------------------------------------------------------------------------- API tests
+def test_every_public_name_is_covered():
+    names = {e.name.split(".")[-1] for e in API}
+    missing = [n for n in (*symhx.__all__, *symhx.impact.__all__)
+               if n not in names and n not in NOT_CALLABLE]
+    assert not missing, f"public names without a fuzz table entry: {missing}"
+
+
+@pytest.mark.parametrize("entry", API, ids=[e.name for e in API])
+def test_valid_call_works(entry: Entry):
+    """The table's valid call itself must work (otherwise the fuzz below proves nothing)."""
+    (res,) = run_isolated([_call(entry, {})])
+    assert res["kind"] == "value" and not res["nan"] and not res["dps_changed"], res
+
+
+@pytest.mark.parametrize("entry", API, ids=[e.name for e in API])
+def test_hostile_single_argument(entry: Entry):
+    """Every argument of every public function against every hostile value, one at a time."""
+    cases = [(arg, label) for arg in entry.roles for label in HOSTILE]
+    results = run_isolated([_call(entry, {arg: HOSTILE[label]}) for arg, label in cases])
+    failures = []
+    for (arg, label), res in zip(cases, results, strict=True):
+        bad = _verdict(res, label in REJECT[entry.roles[arg]])
+        if bad:
+            failures.append(f"{entry.name}({arg}={label}): {bad}")
+    assert not failures, f"{len(failures)} failures:\n" + "\n".join(failures)
+
+
+_LABELS = sorted(HOSTILE)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=list(HealthCheck))
+@given(data=st.data())
+def test_hostile_combinations(data):
+    """Random functions with several arguments hostile at once, plus random floats and ints."""
+    entry = data.draw(st.sampled_from(API), label="function")
+    args = data.draw(st.lists(st.sampled_from(sorted(entry.roles)), min_size=1, max_size=3,
+                              unique=True), label="arguments")
+    override, must_reject = {}, False
+    for arg in args:
+        value = data.draw(st.one_of(
+            st.sampled_from(_LABELS).map(lambda k: ("hostile", k)),
+            st.floats(allow_nan=True, allow_infinity=True).map(lambda x: ("float", x)),
+            st.integers(min_value=-(10**30), max_value=10**30).map(lambda x: ("int", x)),
+        ), label=arg)
+        if value[0] == "hostile":
+            override[arg] = HOSTILE[value[1]]
+            must_reject |= value[1] in REJECT[entry.roles[arg]]
+        else:
+            override[arg] = value[1]
+            if value[0] == "float" and not math.isfinite(value[1]):
+                must_reject |= entry.roles[arg] not in ("choice", "choice?")
+    (res,) = run_isolated([_call(entry, override)])
+    bad = _verdict(res, must_reject)
+    assert bad is None, f"{entry.name}({override!r}): {bad}"
+
+
+# --------------------------------------------------------------------------- CLI
+#: command -> (valid argv, {placeholder position or option: role})
+CLI: dict[str, tuple[list[str], dict[str, str]]] = {
+    "critical": (["critical", "{N}", "--dps", "{dps}"], {"N": "N", "dps": "dps"}),
+    "distribution": (["distribution", "{N}", "{p}", "--dps", "{dps}", "--space", "{space}"],
+                     {"N": "N", "p": "p", "dps": "dps", "space": "choice"}),
+    "distribution --float": (["distribution", "{N}", "{p}", "--float"], {"N": "N", "p": "p"}),
+    "circuits": (["circuits", "{N}", "--visits", "{visits}"], {"N": "N", "visits": "visits"}),
+    "circuits --length": (["circuits", "{N}", "--length", "{L}"], {"N": "N", "L": "N"}),
+    "mode-path": (["mode-path", "{N}", "--p-max", "{p}", "--dps", "{dps}"],
+                  {"N": "N", "p": "p", "dps": "dps"}),
+    "asymptotics": (["asymptotics", "{N}", "--order", "{order}", "--dps", "{dps}"],
+                    {"N": "N", "order": "choice", "dps": "dps"}),
+    "derive": (["derive", "{label}"], {"label": "choice"}),
+    "p-sigma": (["p-sigma", "{sigma}", "--omega", "{omega}", "--d", "{d}", "--dps", "{dps}"],
+                {"sigma": "nonneg", "omega": "positive", "d": "positive", "dps": "dps"}),
+    "p-sigma --json": (["p-sigma", "{sigma}", "--json"], {"sigma": "nonneg"}),
+    "p-sigma --inverse": (["p-sigma", "{sigma}", "--inverse"], {"sigma": "p01"}),
+    "p-sigma --csv": (["p-sigma", "0.3", "--csv", "{path}"], {"path": "path"}),
+    "simulate": (["simulate", "--n", "{n}", "--sigma", "{sigma}", "--t-end", "{t}", "--seed",
+                  "{seed}"], {"n": "N", "sigma": "nonneg", "t": "positive", "seed": "seed"}),
+    "ensemble": (["ensemble", "--sigmas", "{sigma}", "--runs", "{runs}", "--n", "{n}",
+                  "--t-transient", "{tt}", "--t-window", "{tw}", "--workers", "1"],
+                 {"sigma": "positive", "runs": "N", "n": "N", "tt": "nonneg", "tw": "positive"}),
+    "spaces": (["spaces", "{N}", "{p}", "--space", "{space}", "--dps", "{dps}"],
+               {"N": "N", "p": "p", "space": "choice", "dps": "dps"}),
+    "convergence": (["convergence", "{N}", "--max-m", "{m}", "--dps", "{dps}"],
+                    {"N": "N", "m": "count", "dps": "dps"}),
+    "paper": (["paper", "--out", "{path}"], {"path": "path"}),
+}
+CLI_VALID = {"N": "12", "dps": "15", "p": "0.1", "space": "simple", "visits": "2,1,1", "L": "3",
+             "order": "best", "label": "5", "sigma": "0.3", "omega": "1", "d": "1", "n": "3",
+             "t": "5", "seed": "0", "runs": "1", "tt": "1", "tw": "1", "m": "1",
+             "path": "/tmp/symhx-fuzz-out.csv"}
+CLI_HOSTILE = {
+    "nan": "nan", "inf": "inf", "-inf": "-inf", "0": "0", "-1": "-1", "-0.1": "-0.1",
+    "1e-400": "1e-400", "1e1000": "1e1000", "10**1000": "10**1000", "abc": "abc", "empty": "",
+    "1/0": "1/0", "True": "True", "2.5": "2.5", "1e-3": "1e-3", "1e6": "1e6", "10**6": "10**6",
+    "excess<=1000": "excess<=1000", "1,,2": "1,,2", "unwritable": "/proc/symhx/forbidden/out",
+}
+#: role -> hostile labels that must be refused (exit code 2)
+CLI_REJECT: dict[str, set[str]] = {
+    "N": {"nan", "inf", "-inf", "0", "-1", "-0.1", "1e-400", "abc", "empty", "1/0", "True", "2.5",
+          "1e-3", "excess<=1000", "1,,2", "unwritable"},
+    "count": {"nan", "inf", "-inf", "-1", "-0.1", "1e-400", "abc", "empty", "1/0", "True", "2.5",
+              "1e-3", "excess<=1000", "1,,2", "unwritable"},
+    "p": {"nan", "inf", "-inf", "0", "-1", "-0.1", "abc", "empty", "1/0", "True", "excess<=1000",
+          "1,,2", "unwritable"},
+    "p01": {"nan", "inf", "-inf", "0", "-1", "-0.1", "abc", "empty", "1/0", "True", "2.5",
+            "excess<=1000", "1,,2", "unwritable", "1e1000", "10**1000", "1e6", "10**6"},
+    "positive": {"nan", "inf", "-inf", "0", "-1", "-0.1", "abc", "empty", "1/0", "True",
+                 "excess<=1000", "1,,2", "unwritable"},
+    "nonneg": {"nan", "inf", "-inf", "-1", "-0.1", "abc", "empty", "1/0", "True", "excess<=1000",
+               "1,,2", "unwritable"},
+    "seed": {"nan", "inf", "-inf", "-1", "-0.1", "1e-400", "abc", "empty", "1/0", "True", "2.5",
+             "1e-3", "excess<=1000", "1,,2", "unwritable"},
+    "dps": {"nan", "inf", "-inf", "0", "-1", "-0.1", "1e-400", "1e1000", "10**1000", "abc",
+            "empty", "1/0", "True", "2.5", "1e-3", "1e6", "10**6", "excess<=1000", "1,,2",
+            "unwritable"},
+    "choice": set(CLI_HOSTILE) - {"excess<=1000"},
+    "visits": set(CLI_HOSTILE) - {"1e6", "10**6", "1e1000", "10**1000"},
+    "path": {"unwritable"},
+}
+
+
+def _cli_thunk(argv: list[str], cwd: str) -> Callable[[], Any]:
+    def thunk() -> Any:
+        from symhx.cli import main
+
+        os.chdir(cwd)  # in the forked child: files a command writes land in a temporary folder
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            try:
+                rc = main(argv)
+            except SystemExit as exc:  # argparse
+                rc = exc.code if isinstance(exc.code, int) else 1
+        return {"rc": rc, "stdout": out.getvalue()[-2000:], "stderr": err.getvalue()[-2000:]}
+
+    return thunk
+
+
+@pytest.mark.parametrize("command", sorted(CLI), ids=sorted(CLI))
+def test_cli_hostile(command: str, tmp_path):
+    """Each placeholder of each command against every hostile string, the others valid."""
+    template, roles = CLI[command]
+    # an output path that is merely unusual ("-1", "") is valid and would run the whole job
+    cases = [(slot, label) for slot in roles for label in CLI_HOSTILE
+             if roles[slot] != "path" or label in CLI_REJECT["path"]]
+    argvs = []
+    base = [] if command == "paper" else [(None, None)]  # paper's valid call: the whole job
+    for slot, label in [*base, *cases]:
+        values = dict(CLI_VALID, path=str(tmp_path / "out"))
+        if slot is not None:
+            values[slot] = CLI_HOSTILE[label]
+        argvs.append([a.format(**values) for a in template])
+    outcomes = run_isolated([_cli_result(argv, str(tmp_path)) for argv in argvs])
+    failures = []
+    for (slot, label), argv, res in zip([*base, *cases], argvs, outcomes, strict=True):
+        must_reject = slot is not None and label in CLI_REJECT[roles[slot]]
+        bad = _judge_cli(res, must_reject)
+        if bad:
+            failures.append(f"symhx {' '.join(argv)}  [{slot}={label}]: {bad}")
+    assert not failures, f"{len(failures)} failures:\n" + "\n".join(failures)
+
+
+def _cli_result(argv: list[str], cwd: str) -> Callable[[], Any]:
+    inner = _cli_thunk(argv, cwd)
+
+    def thunk() -> Any:
+        r = inner()
+        # summarised in the child: the parent only gets this tuple back through repr()
+        return (r["rc"], _stderr_problem(r["stderr"], r["rc"]), _stdout_problem(r["stdout"]))
+
+    return thunk
+
+
+def _stderr_problem(err: str, rc: Any) -> str:
+    if "Traceback" in err:
+        return "traceback on stderr: " + err.strip().splitlines()[-1][:100]
+    if rc == 0:
+        return ""
+    lines = [ln for ln in err.splitlines() if "error:" in ln]
+    if len(lines) != 1:
+        return f"stderr has {len(lines)} 'error:' lines: {err.strip()[:120]!r}"
+    return ""
+
+
+def _stdout_problem(out: str) -> str:
+    low = out.lower()
+    for bad in ("nan", "infinity", "traceback"):
+        if bad in low.replace("nan_", "").replace("\"infinity\"", ""):
+            return f"{bad!r} in stdout: {out.strip()[:100]!r}"
+    return ""
+
+
+def _judge_cli(res: dict[str, Any], must_reject: bool) -> str | None:
+    if res["kind"] != "value":
+        return _verdict(res, False) or f"escaped main(): {res}"
+    if res["dps_changed"]:
+        return "changed mpmath.mp.dps"
+    rc, err_problem, out_problem = ast.literal_eval(res["repr"])
+    if rc not in (0, 2):
+        return f"exit code {rc} (want 0 or 2)" + (f"; {err_problem}" if err_problem else "")
+    if err_problem:
+        return err_problem
+    if rc == 0 and must_reject:
+        return "exit code 0 for a value that is not allowed (silent wrong answer)"
+    if rc == 0 and out_problem:
+        return out_problem
+    return None
