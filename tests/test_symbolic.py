@@ -101,7 +101,7 @@ def test_general_pattern_count_equals_circuit_count(repeats, singles, n):
 @settings(max_examples=20, deadline=None)
 @given(st.integers(2, 25), st.integers(1, 40), st.integers(1, 40), st.data())
 def test_pmf_lambdified_equals_distribution(n, a, b, data):
-    from symhx import distribution
+    from symhx import api as distribution
 
     kk = data.draw(st.integers(1, n))
     pv = Fraction(a, b)
@@ -142,7 +142,7 @@ def test_crossing_values_give_the_exact_critical_point(n):
 
 
 def test_eq41_weighted_agrees_with_eq41_space():
-    from symhx import distribution
+    from symhx import api as distribution
 
     w = derivation("41-weighted").result.rhs
     n, pv = 9, Fraction(1, 5)

@@ -146,7 +146,7 @@ def cmd_critical(args: argparse.Namespace) -> int:
 
 
 def cmd_distribution(args: argparse.Namespace) -> int:
-    from symhx.distribution import distribution_of
+    from symhx.api import distribution_of
 
     p: Any = args.p
     if args.float:
@@ -154,10 +154,10 @@ def cmd_distribution(args: argparse.Namespace) -> int:
             p = mpmath.mpf(p.numerator) / p.denominator
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
-                           "mean": d.mean, "variance": d.variance, "modes": list(d.modes),
-                           "mode": d.mode, "log_normaliser": d.log_normaliser}
+                           "mean": d.mean(), "variance": d.var(), "modes": list(d.modes()),
+                           "mode": d.mode(), "log_normaliser": d.log_normaliser}
     if args.table:
-        out["pmf"] = {k: d.pmf(k) for k in d.support}
+        out["pmf"] = {k: d.pmf(k) for k in range(1, d.N + 1)}
     if args.json:
         print(dump_json(out))
         return 0

@@ -65,7 +65,7 @@ def cmd_spaces(args: argparse.Namespace) -> int:
             if args.float:
                 p = mpmath.mpf(args.p.numerator) / args.p.denominator
             d = distribution(args.N, p, space=args.space, dps=args.dps)
-            out.update(p=args.p, mean=d.mean, variance=d.variance, modes=list(d.modes))
+            out.update(p=args.p, mean=d.mean(), variance=d.var(), modes=list(d.modes()))
             if args.classes:
                 out["classes"] = class_probabilities(args.N, p, space=args.space, dps=args.dps)
     if args.json:

@@ -14,8 +14,8 @@ import matplotlib.pyplot as plt
 import mpmath
 import numpy as np
 
+from symhx.api import distribution_of
 from symhx.critical import critical_point, mode_path
-from symhx.distribution import distribution_of
 
 __all__ = ["plot_distributions", "plot_f_and_phi", "plot_mode_path"]
 
@@ -73,7 +73,7 @@ def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.
         d = distribution_of(N, p, dps=20)
         pmf = np.array([float(d.pmf(int(k))) for k in ks])
         a.plot(ks, pmf, marker=".", ms=3, lw=0.8, color=f"C{i}",
-               label=f"$p = {p:g}$, $E[X] = {float(d.mean):.3g}$")
+               label=f"$p = {p:g}$, $E[X] = {float(d.mean()):.3g}$")
         if ax is None:
             a.set_title(f"({PANEL_LETTERS[i]}) $p = {p:g}$")
             a.set_xlabel("number of distinct impacts $k$")

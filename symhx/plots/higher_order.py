@@ -94,7 +94,7 @@ def plot_simple_vs_higher(N: int = 100, p: float = 0.015, *, spaces: Sequence[st
     for sp in spaces:
         d = distribution(N, p, space=sp, dps=20)
         ax.plot(ks, [float(d.pmf(int(k))) for k in ks], lw=1.2,
-                label=f"{sp}: E[X] = {float(d.mean):.2f}")
+                label=f"{sp}: E[X] = {float(d.mean()):.2f}")
     ax.set_xlabel(r"number of distinct impacts $k$")
     ax.set_ylabel(r"$P(X=k)$")
     ax.set_title(rf"simple and higher-order circuits, $N={N}$, $p={p}$")
@@ -132,7 +132,7 @@ def plot_mean_vs_p_spaces(N: int = 100, *, spaces: Sequence[str] = ("simple", "e
     ps = np.geomspace(p_range[0], p_range[1], points)
     for i, sp in enumerate(spaces):
         with mpmath.workdps(20):
-            mu = [float(distribution(N, float(p), space=sp, dps=15).mean) for p in ps]
+            mu = [float(distribution(N, float(p), space=sp, dps=15).mean()) for p in ps]
         ax.plot(ps, mu, label=sp, **_space_style(sp, i))
     if simulation is not None:
         ax.plot(simulation[0], simulation[1], "x", color="black", label="simulation")

@@ -56,7 +56,7 @@ from symhx.certify import (
 from symhx.critical import CriticalPoint, discriminant_root, discriminant_root_q
 from symhx.spaces._classes import Space, parse_space
 from symhx.spaces._dist import compare_weights, log_U_table
-from symhx.validation import DEFAULT_DPS, as_fraction
+from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, as_fraction
 
 __all__ = ["critical_point", "root_estimates"]
 
@@ -261,7 +261,7 @@ def _bracket(sp: Space, N: int, s: Any, dps: int, wp: int) -> tuple[Fraction, Fr
     return flo, fhi
 
 
-def critical_point(N: int, *, space: str | Space = "eq41", dps: int = DEFAULT_DPS,
+def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEFAULT_DPS,
                    weighting: str | None = None) -> CriticalPoint:
     """Where the mode of X over ``space`` leaves 1 (the first jump), for any ``N >= 2``.
 
