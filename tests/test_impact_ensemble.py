@@ -25,7 +25,8 @@ from symhx.impact.ensemble import (
     window_counts,
 )
 
-E = importlib.import_module("symhx.impact.ensemble")  # package re-exports a function re-exports a function
+# the package re-exports a function named ensemble: get the module itself
+E = importlib.import_module("symhx.impact.ensemble")
 KW = dict(n=20, t_transient=30.0, t_window=20.0, seed=123, progress=False)
 SIGMAS = [0.12, 0.2, 0.35]
 
@@ -279,7 +280,7 @@ def _cli(argv, capsys):
 
 
 def test_cli_simulate_table_and_json(capsys):
-    rc, out, err = _cli(["simulate", "--pipes", "4", "--sigma", "0.4", "--t-end", "5"], capsys)
+    rc, out, _ = _cli(["simulate", "--pipes", "4", "--sigma", "0.4", "--t-end", "5"], capsys)
     assert rc == 0 and "time t" in out and "kind" in out and "events" in out
     assert not out.lstrip().startswith("{")
     rc, out2, _ = _cli(["simulate", "--n", "4", "--sigma", "0.4", "--t-end", "5", "--json"],

@@ -364,8 +364,8 @@ def ensemble(
     r = float(check_real(restitution, "restitution", low=0, high=1))
     om = float(check_real(omega, "omega", low=0, low_open=True))
     dd = float(check_real(d, "d", low=0, low_open=True))
-    if sigma0 is None or isinstance(sigma0, (Sequence, np.ndarray)) and not isinstance(
-            sigma0, (str, bytes)):
+    if sigma0 is None or (isinstance(sigma0, (Sequence, np.ndarray))
+                          and not isinstance(sigma0, (str, bytes))):
         s0s = [None] * len(sig) if sigma0 is None else [
             float(check_real(v, f"sigma0[{i}]", low=0)) for i, v in enumerate(sigma0)]
         if len(s0s) != len(sig):
@@ -494,7 +494,8 @@ def site_transitions(
 
     Runs ``k = 0..runs-1`` draw the same rows as :func:`ensemble` (``SeedSequence([seed,
     i_sigma, k])``) and are simulated with :func:`symhx.impact.simulate` (float64); for each run
-    the sites of the impacts (kinds ``impact`` and ``stick``, as counted by the ensemble) with ``t >= t_transient``, in time order.  Failed
+    the sites of the impacts (kinds ``impact`` and ``stick``, as counted by the ensemble) with
+    ``t >= t_transient``, in time order.  Failed
     runs give an empty sequence.
 
     >>> seqs = site_transitions(0.3, 2, n=6, t_transient=5, t_window=5, seed=1)
