@@ -8,7 +8,7 @@ Usage (about 10 minutes on one core; writes symhx/data/ensemble_calibration.json
 
 Each configuration: 26 values of sigma (0.05..0.30, step 0.01) x ``--runs`` runs of 100 pipes.
 Only per-sigma histograms are stored.  The thresholds and their bootstrap intervals are computed
-from the histograms by :func:`thresholds` (also used by the book).
+from the histograms by :func:`symhx.impact.ensemble.thresholds` (in the book).
 """
 
 from __future__ import annotations
@@ -19,8 +19,6 @@ import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
-
-import numpy as np
 
 from symhx.impact.ensemble import ensemble
 
@@ -73,43 +71,6 @@ def main() -> int:
             args.out.write_text(json.dumps(data, indent=0) + "\n")
             print(f"{label:40s} {time.time() - t0:7.1f} s", file=sys.stderr, flush=True)
     return 0
-
-
-def thresholds(res_dict: dict, *, level: int = 10, boot: int = 400, seed: int = 0
-               ) -> dict[str, list[float]]:
-    """Simulated thresholds of one stored ensemble, with bootstrap 16-84 % intervals.
-
-    ``mode``: the first sigma whose mode of impacting pipes is ``>= level``;
-    ``steep``: the midpoint of the grid interval where the mean number of impacting pipes
-    (runs without impact counted as 0 here, so that the mean is not conditioned on the
-    exclusion) rises most.  Each as ``[estimate, low, high]``.
-    """
-    per = res_dict["per_sigma"]
-    sig = np.array([s["sigma"] for s in per])
-    hists = []
-    for s in per:
-        h = np.array(s["pipes"]["hist"], dtype=float)
-        h[0] += s["excluded"]          # runs without impact: 0 pipes
-        hists.append(h)
-    rng = np.random.default_rng(seed)
-
-    def est(hs: list[np.ndarray]) -> tuple[float, float]:
-        modes = np.array([np.argmax(h[1:]) + 1 if h[1:].sum() else 0 for h in hs])
-        means = np.array([(h * np.arange(len(h))).sum() / h.sum() for h in hs])
-        above = np.nonzero(modes >= level)[0]
-        m = sig[above[0]] if len(above) else np.nan
-        k = int(np.argmax(np.diff(means)))
-        return float(m), float((sig[k] + sig[k + 1]) / 2)
-
-    m0, s0 = est(hists)
-    bm, bs = [], []
-    for _ in range(boot):
-        hb = [rng.multinomial(int(h.sum()), h / h.sum()).astype(float) for h in hists]
-        a, b = est(hb)
-        bm.append(a)
-        bs.append(b)
-    q = lambda x: [float(v) for v in np.nanpercentile(x, [16, 84])]  # noqa: E731
-    return {"mode": [m0, *q(bm)], "steep": [s0, *q(bs)]}
 
 
 if __name__ == "__main__":
