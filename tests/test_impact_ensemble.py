@@ -55,7 +55,7 @@ def _hand_count(sigma, i, k, *, n, t_transient, t_window, seed, restitution=0.8)
     for s in sites_hit:          # gap s lies between pipe s (0: left wall) and pipe s + 1
         pipes.update(j for j in (s, s + 1) if 1 <= j <= n)
     ever = {int(s) for s, kind in zip(h.sites, h.kinds, strict=True) if kind in (IMPACT, STICK)}
-    return len(pipes), len(sites_hit), len(ever)
+    return len(pipes), len(sites_hit), len(ever), sites_hit
 
 
 def test_counts_match_hand_count_from_the_python_engine():
@@ -65,11 +65,19 @@ def test_counts_match_hand_count_from_the_python_engine():
     saw_window_differs = saw_pipes_ne_sites = False
     for i, (s, st) in enumerate(zip(sigmas, res.per_sigma, strict=True)):
         hand = [_hand_count(s, i, k, **kw) for k in range(runs)]
-        kept = [(p, q) for p, q, _ in hand if q > 0]
+        kept = [(p, q) for p, q, _, _ in hand if q > 0]
         assert st.pipes.tolist() == [p for p, _ in kept]
         assert st.sites.tolist() == [q for _, q in kept]
-        assert st.excluded == sum(q == 0 for _, q, _ in hand)
-        saw_window_differs |= any(q != ever for _, q, ever in hand)
+        assert st.excluded == sum(q == 0 for _, q, _, _ in hand)
+        # runs with an impact at each site, and the measured rate of the pipe-pipe sites
+        hits = np.zeros(kw["n"] + 1, dtype=int)
+        for *_, where in hand:
+            hits[sorted(where)] += 1
+        assert st.site_hits.tolist() == hits.tolist()
+        interior = sum(len([x for x in where if 1 <= x <= kw["n"] - 1]) for *_, where in hand)
+        assert st.gap_rate(interior=True)[0] == pytest.approx(
+            interior / (runs * (kw["n"] - 1)), rel=1e-12)
+        saw_window_differs |= any(q != ever for _, q, ever, _ in hand)
         saw_pipes_ne_sites |= any(p != q for p, q in kept)
     # the data can tell a window starting at 0 from one at t_transient, and pipes from sites
     assert saw_window_differs and saw_pipes_ne_sites
@@ -203,6 +211,8 @@ def test_describe_histogram_against_numpy():
     # intervals never leave the observed values (no error bar below 0 pipes)
     st0 = describe_histogram([5, 1, 0, 0], np.random.default_rng(2))
     assert st0["mean_ci"][0] >= 0 and st0["mode_ci"] == [0, 0]
+    # ties: the smallest most frequent value, as in the paper's k* = min argmax
+    assert describe_histogram([0, 3, 1, 3], np.random.default_rng(0))["mode"] == 1
     empty = describe_histogram([0, 0, 0])
     assert empty["mode"] is None and math.isnan(empty["mean"])
 
