@@ -153,6 +153,17 @@ def test_failed_runs_are_counted_not_fatal(monkeypatch):
     assert back.per_sigma[1].failed == 3
 
 
+def test_failed_draws_are_counted():
+    # sigma0 = 0: the pipes start at j d + forced(0); with strong forcing some rows overlap and
+    # cannot be drawn: failed runs with the reason "draw", the others counted as usual
+    res = ensemble([0.3], 12, **{**KW, "sigma0": 0.0})
+    st = res.per_sigma[0]
+    assert 0 < st.failed < 12 and st.failures[0][1].startswith("draw: could not draw")
+    assert st.failed + st.excluded + len(st.sites) == 12
+    with pytest.raises(ValueError, match="resonance"):   # bad parameters: one clear error
+        ensemble([0.1], 2, **{**KW, "Omega": (1.0,)})
+
+
 @pytest.mark.parametrize("kw, err, match", [
     ({"t_window": math.inf}, ValueError, "t_window"),
     ({"t_transient": math.inf}, ValueError, "t_transient"),

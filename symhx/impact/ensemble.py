@@ -95,6 +95,10 @@ def pipes_and_sites(counts: Any) -> tuple[int, int]:
     return int((hit[:-1] | hit[1:]).sum()), int(hit.sum())
 
 
+class _DrawError(RuntimeError):
+    """A run whose random row could not be drawn (e.g. overlapping pipes with ``sigma0 = 0``)."""
+
+
 def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transient: float,
               t_window: float, seed: int, restitution: float, omega: float, d: float,
               Omega: tuple, sigma0: float | None = None) -> dict[str, Any]:
@@ -118,12 +122,16 @@ def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transie
     for k, run in enumerate(runs):
         ss = np.random.SeedSequence([int(seed), int(i_sigma), int(run)])
         try:
-            row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, omega=omega, d=d,
-                                 Omega=Omega, sigma0=sigma0)
+            try:
+                row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, omega=omega,
+                                     d=d, Omega=Omega, sigma0=sigma0)
+            except ValueError as exc:   # the parameters were checked up front: a failed draw
+                raise _DrawError(str(exc)) from exc
             counts, nev = count_impacts(row, t_transient + t_window, t_transient)
         except RuntimeError as exc:   # SimulationError and friends: record, never abort
             pipes[k] = sites[k] = impacts[k] = -1
-            failures.append((int(run), f"{type(exc).__name__}: {exc}"[:300]))
+            name = "draw" if isinstance(exc, _DrawError) else type(exc).__name__
+            failures.append((int(run), f"{name}: {exc}"[:300]))
             continue
         hit = counts > 0
         site_hits += hit
@@ -387,6 +395,10 @@ def ensemble(
         if not isinstance(w, type(SQRT2)):
             check_real(w, f"Omega[{i}]", low=0)
     args_common = (n, t_tr, t_w, seed_i, r, om, dd, Om)
+    # the model parameters (resonance, ...) are checked once here, so that a ValueError inside a
+    # run can only be a failed draw (recorded as a failed run)
+    PipeRow(1, restitution=r, omega=om, d=dd, Omega=Om, alpha=[[0.0] * len(Om)],
+            beta=[[0.0] * len(Om)], x0=[dd], v0=[0.0])
 
     # tasks in rounds (every sigma gets chunk k before any gets chunk k+1): partial results
     # stay balanced over sigma
