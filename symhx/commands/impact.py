@@ -84,14 +84,14 @@ def register(sub: Any) -> None:
     e.add_argument("--restitution", type=float, default=0.8, help="coefficient of restitution r")
     e.add_argument("--sigma0", type=float, default=None,
                    help="standard deviation of the initial-condition (free-oscillation) "
-                   "coefficients (default: sigma)")
+                   "coefficients; None: the same as sigma")
     e.add_argument("--seed", type=int, default=0, help="ensemble seed")
     e.add_argument("--chunk", type=int, default=50, help="runs per task")
     e.add_argument("--workers", type=int, default=os.cpu_count() or 1,
                    help="local worker processes (1: serial)")
     e.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="dask.distributed scheduler address, e.g. tcp://host:8786 (overrides "
-                   "--workers)")
+                   "--workers); None: run on this machine")
     e.add_argument("--paper", action="store_true",
                    help=f"the stored ensemble: {len(PAPER_SIGMAS)} sigmas in "
                    f"[{PAPER_SIGMAS[0]}, {PAPER_SIGMAS[-1]}] x {PAPER_RUNS} runs")
