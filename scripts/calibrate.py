@@ -68,7 +68,7 @@ def main() -> int:
             d = res.as_dict()
             d["label"] = label
             data["configs"][label] = d
-            args.out.write_text(json.dumps(data, indent=0) + "\n")
+            args.out.write_text(json.dumps(data, separators=(",", ":")) + "\n")
             print(f"{label:40s} {time.time() - t0:7.1f} s", file=sys.stderr, flush=True)
     return 0
 
