@@ -119,13 +119,24 @@ def test_reproducible_across_executors_and_chunking(serial):
     assert _key(other) != _key(serial)
 
 
-def test_dask_local_cluster_two_processes_gives_serial_numbers(serial):
+def test_dask_local_cluster_two_processes_gives_serial_numbers(serial, capsys):
     distributed = pytest.importorskip("distributed")
+    from symhx.cli import main
+
+    argv = ["ensemble", "--sigmas", "0.2", "0.3", "--runs", "6", "--pipes", "10",
+            "--t-transient", "10", "--t-window", "10", "--seed", "3", "--chunk", "2", "--json"]
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         res = ensemble(SIGMAS, 12, chunk=4, executor=client.get_executor(), **KW)
+        capsys.readouterr()
+        # the CLI pointed at the scheduler address
+        assert main([*argv, "--scheduler", cluster.scheduler_address]) == 0
+        via_cli = json.loads(capsys.readouterr().out)
     assert _key(res) == _key(serial)
+    assert main([*argv, "--workers", "1"]) == 0
+    here = json.loads(capsys.readouterr().out)
+    assert via_cli["per_sigma"] == here["per_sigma"]
 
 
 # ----------------------------------------------------------------- robustness
