@@ -501,7 +501,7 @@ def thresholds(res: EnsembleResult, *, level: int = 10, min_kept: int = 20, boot
     * ``mode``: the smallest sigma of the grid from which on the mode of the number of impacting
       pipes is ``>= level`` (the mode has left small values);
     * ``steep``: the midpoint of the grid interval where the mean number of impacting pipes
-      (figure 8) rises most.
+      (figure 8) rises steepest (largest difference quotient).
 
     Each is ``[estimate, low, high]``; the interval comes from ``boot`` multinomial resamples of
     every sigma's histogram (the grid spacing is a further resolution limit).
@@ -523,7 +523,7 @@ def thresholds(res: EnsembleResult, *, level: int = 10, min_kept: int = 20, boot
             m = float(sig[j])
         means = np.array([(h * np.arange(len(h))).sum() / h.sum() if k else np.nan
                           for h, k in zip(hs, ok, strict=True)])
-        diffs = np.diff(means)
+        diffs = np.diff(means) / np.diff(sig)      # slopes: the grid need not be uniform
         if len(diffs) == 0 or np.all(np.isnan(diffs)):
             return m, math.nan
         k = int(np.nanargmax(diffs))
