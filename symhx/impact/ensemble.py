@@ -1,9 +1,24 @@
 """Ensembles of random pipe rows: the statistics of figures 7 and 8 (section 7 of the paper).
 
 For each ``sigma`` every run draws a row with :meth:`PipeRow.random` (eqs. 17, 18, 20), simulates it
-with the float64 engine to ``t_transient + t_window`` and counts, in the window, the pipes that take
-part in an impact and the distinct impact sites (``0..n``; the paper's ``N = n + 1`` vertices).
-Runs without any impact in the window are excluded, as in the paper, and counted.
+with the float64 engine to ``t_transient + t_window`` and counts, in the window
+``t >= t_transient``, the impacts per site (gap) ``0..n`` (the paper's ``N = n + 1`` vertices).
+From them:
+
+* ``sites``: the number of distinct sites with at least one impact (the graph theory's ``X``);
+* ``pipes``: the number of pipes ``1..n`` touching such a site (figures 7 and 8 of the paper count
+  impacting pipes; a wall impact involves one pipe, a pipe-pipe impact two);
+* ``site_hits[i]``: in how many runs site ``i`` saw an impact (the measured per-gap impact rate,
+  to compare with eq. 27).
+
+Runs without any impact in the window are excluded from the ``pipes``/``sites`` statistics, as in
+the paper, and counted (``excluded``).  A run whose simulation raises ``RuntimeError`` (the
+engines' ``SimulationError``) is recorded as *failed* with its reason and counted (``failed``); it
+never aborts the ensemble.
+
+The stored form is compact: per ``sigma`` the histograms of ``pipes`` and ``sites``, the site hit
+counts and the failures (:meth:`EnsembleResult.as_dict`); every statistic (mean, standard error,
+mode, bootstrap percentile intervals) is computed from the histograms.
 
 Reproducibility: run ``k`` of ``sigmas[i]`` uses ``numpy.random.SeedSequence([seed, i, k])``, so
 the numbers do not depend on the executor, on the chunking or on the order of completion.  Any
@@ -13,30 +28,165 @@ the numbers do not depend on the executor, on the chunking or on the order of co
 
 from __future__ import annotations
 
+import json
 import math
+import os
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.fast import count_impacts
 from symhx.impact.model import SQRT2, PipeRow
+from symhx.validation import check_int, check_real, check_seed
 
-__all__ = ["EnsembleResult", "SigmaStats", "ensemble", "free_flight_closure_fraction", "run_chunk"]
+__all__ = [
+    "BOOTSTRAP",
+    "MAX_RUNS",
+    "EnsembleResult",
+    "SigmaStats",
+    "describe_histogram",
+    "ensemble",
+    "free_flight_closure_fraction",
+    "pipes_and_sites",
+    "run_chunk",
+    "site_transitions",
+    "thresholds",
+    "transition_dependence",
+    "window_counts",
+]
+
+#: bootstrap resamples (multinomial, from the histogram) behind every interval
+BOOTSTRAP = 2000
+#: documented work cap: ``len(sigmas) * runs`` above this is refused (10^8 runs of 100 pipes take
+#: about a core-week); split the work or raise the cap deliberately.
+MAX_RUNS = 10**8
+
+
+# --------------------------------------------------------------------------- one run
+def window_counts(row: PipeRow, t_transient: float, t_window: float) -> np.ndarray:
+    """Impacts per site ``0..n`` of ``row`` with ``t_transient <= t <= t_transient + t_window``
+    (float64 engine, :func:`symhx.impact.fast.count_impacts`).
+
+    >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
+    >>> window_counts(row, 5.0, 5.0).tolist()
+    [3, 2]
+    """
+    counts, _ = count_impacts(row, float(t_transient) + float(t_window), float(t_transient))
+    return counts
+
+
+def pipes_and_sites(counts: Any) -> tuple[int, int]:
+    """``(pipes, sites)`` from impacts per site ``0..n``: distinct sites with an impact, and pipes
+    ``1..n`` touching one (pipe ``j`` touches sites ``j - 1`` and ``j``; the walls are not pipes).
+
+    >>> pipes_and_sites([1, 0, 0, 4])    # wall impact of pipe 1, pipe 3 against the right wall
+    (2, 2)
+    >>> pipes_and_sites([0, 2, 5, 0])    # pipes 1-2 and 2-3 collide: 3 pipes, 2 sites
+    (3, 2)
+    """
+    hit = np.asarray(counts) > 0
+    return int((hit[:-1] | hit[1:]).sum()), int(hit.sum())
+
+
+class _DrawError(RuntimeError):
+    """A run whose random row could not be drawn (e.g. overlapping pipes with ``sigma0 = 0``)."""
+
+
+def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transient: float,
+              t_window: float, seed: int, restitution: float, omega: float, d: float,
+              Omega: tuple, sigma0: float | None = None) -> dict[str, Any]:
+    """Worker: simulate the given runs of one ``sigma``.
+
+    Returns a dict of per-run arrays ``pipes``, ``sites``, ``impacts`` (impacts in the window;
+    ``-1`` for a failed run), the sum ``site_hits`` over the runs of the hit indicator of each
+    site, the total number of ``events`` and the ``failures`` as ``(run, reason)`` pairs.
+
+    >>> out = run_chunk(0.05, 0, [0, 1], 10, 10.0, 10.0, 1, 0.8, 1.0, 1.0, (SQRT2,))
+    >>> out["pipes"].tolist(), out["sites"].tolist(), out["failures"]
+    ([0, 0], [0, 0], [])
+    """
+    m = len(runs)
+    pipes = np.zeros(m, dtype=np.int64)
+    sites = np.zeros(m, dtype=np.int64)
+    impacts = np.zeros(m, dtype=np.int64)
+    site_hits = np.zeros(n + 1, dtype=np.int64)
+    events = 0
+    failures: list[tuple[int, str]] = []
+    for k, run in enumerate(runs):
+        ss = np.random.SeedSequence([int(seed), int(i_sigma), int(run)])
+        try:
+            try:
+                row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, omega=omega,
+                                     d=d, Omega=Omega, sigma0=sigma0)
+            except ValueError as exc:   # the parameters were checked up front: a failed draw
+                raise _DrawError(str(exc)) from exc
+            counts, nev = count_impacts(row, t_transient + t_window, t_transient)
+        except RuntimeError as exc:   # SimulationError and friends: record, never abort
+            pipes[k] = sites[k] = impacts[k] = -1
+            name = "draw" if isinstance(exc, _DrawError) else type(exc).__name__
+            failures.append((int(run), f"{name}: {exc}"[:300]))
+            continue
+        hit = counts > 0
+        site_hits += hit
+        pipes[k], sites[k] = pipes_and_sites(counts)
+        impacts[k] = int(counts.sum())
+        events += int(nev)
+    return {"pipes": pipes, "sites": sites, "impacts": impacts, "site_hits": site_hits,
+            "events": events, "failures": failures}
+
+
+# --------------------------------------------------------------------------- statistics
+def describe_histogram(hist: Any, rng: np.random.Generator | None = None,
+                       boot: int = BOOTSTRAP) -> dict[str, Any]:
+    """Mean, standard error, mode and bootstrap percentile intervals from a histogram
+    (``hist[v]`` = number of runs with value ``v``).
+
+    ``mean_ci``/``mode_ci``: 2.5 and 97.5 percentiles of ``boot`` multinomial resamples of the
+    histogram (they never leave the observed range, so never go below 0); ``mode_se``: the
+    standard deviation of the resampled modes.  ``mode`` is the smallest most frequent value.
+
+    >>> st = describe_histogram([0, 3, 1], np.random.default_rng(0))
+    >>> st["mean"], st["mode"], st["count"]
+    (1.25, 1, 4)
+    """
+    h = np.asarray(hist, dtype=np.int64)
+    k = int(h.sum())
+    out: dict[str, Any] = {"count": k, "hist": h.tolist()}
+    if k == 0:
+        out.update(mean=math.nan, se=math.nan, mode=None, mode_se=math.nan,
+                   mean_ci=[math.nan, math.nan], mode_ci=[None, None])
+        return out
+    v = np.arange(len(h), dtype=float)
+    mean = float((h * v).sum() / k)
+    var = float((h * (v - mean) ** 2).sum() / (k - 1)) if k > 1 else math.nan
+    out.update(mean=mean, se=math.sqrt(var / k) if k > 1 else math.nan, mode=int(np.argmax(h)))
+    rng = rng if rng is not None else np.random.default_rng(0)
+    samples = rng.multinomial(k, h / k, size=boot)
+    bmeans = samples @ v / k
+    bmodes = np.argmax(samples, axis=1)
+    out["mean_ci"] = [float(x) for x in np.percentile(bmeans, [2.5, 97.5])]
+    out["mode_ci"] = [int(x) for x in np.percentile(bmodes, [2.5, 97.5], method="nearest")]
+    out["mode_se"] = float(np.std(bmodes, ddof=1))
+    return out
 
 
 @dataclass
 class SigmaStats:
-    """Statistics of one ``sigma``: per-run counts of impacting pipes and of distinct sites.
+    """Statistics of one ``sigma``.
 
-    ``pipes``/``sites``: counts of the runs with at least one impact in the window;
-    ``excluded``: runs without.  ``mean``, ``se`` (standard error of the mean), ``mode`` (smallest
-    most frequent value), ``mode_se`` (bootstrap standard error of the mode, 200 resamples seeded
-    from the ensemble seed) and ``hist`` (counts of the values ``0..n+1``).
+    ``runs``: runs attempted; ``failed``: runs whose simulation raised (``failures``: run index
+    and reason of each, at most 20 kept); ``excluded``: finished runs without an impact in the
+    window; ``pipes``/``sites``: per-run counts of the kept runs (empty when loaded from storage);
+    ``stats["pipes"]``, ``stats["sites"]``: :func:`describe_histogram` of the kept runs;
+    ``site_hits``: runs with an impact at each site ``0..n`` (over all finished runs);
+    ``impacts``: impacts in all windows; ``events``: all events of all runs.
     """
 
     sigma: float
@@ -45,28 +195,33 @@ class SigmaStats:
     pipes: np.ndarray
     sites: np.ndarray
     events: int = 0
+    failed: int = 0
+    failures: list[tuple[int, str]] = field(default_factory=list)
+    site_hits: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    impacts: int = 0
     stats: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    @property
+    def finished(self) -> int:
+        """Runs that did not fail."""
+        return self.runs - self.failed
+
+    def gap_rate(self, interior: bool = True) -> tuple[float, float]:
+        """Measured probability that a gap sees an impact in the window, with its binomial
+        standard error (over all finished runs, excluded ones included).  ``interior``: only
+        the pipe-pipe sites ``1..n-1`` (the walls excluded)."""
+        h = self.site_hits[1:-1] if interior else self.site_hits
+        trials = self.finished * len(h)
+        if trials == 0:
+            return math.nan, math.nan
+        q = float(h.sum()) / trials
+        return q, math.sqrt(q * (1 - q) / trials)
 
     def as_dict(self) -> dict[str, Any]:
         return {"sigma": self.sigma, "runs": self.runs, "excluded": self.excluded,
-                "events": self.events, **self.stats}
-
-
-def _describe(values: np.ndarray, size: int, rng: np.random.Generator) -> dict[str, Any]:
-    k = len(values)
-    hist = np.bincount(values, minlength=size + 1)[: size + 1] if k else np.zeros(size + 1, int)
-    if k == 0:
-        return {"mean": math.nan, "se": math.nan, "mode": None, "mode_se": math.nan,
-                "hist": hist.tolist()}
-    mean = float(np.mean(values))
-    se = float(np.std(values, ddof=1) / math.sqrt(k)) if k > 1 else math.nan
-    mode = int(np.argmax(hist))
-    boots = []
-    for _ in range(200):
-        sample = values[rng.integers(0, k, size=k)]
-        boots.append(int(np.argmax(np.bincount(sample, minlength=size + 1))))
-    return {"mean": mean, "se": se, "mode": mode, "mode_se": float(np.std(boots, ddof=1)),
-            "hist": hist.tolist()}
+                "failed": self.failed, "failures": [list(f) for f in self.failures],
+                "events": self.events, "impacts": self.impacts,
+                "site_hits": np.asarray(self.site_hits).tolist(), **self.stats}
 
 
 @dataclass
@@ -82,74 +237,71 @@ class EnsembleResult:
         return np.array([s.sigma for s in self.per_sigma])
 
     def column(self, what: str = "pipes", stat: str = "mean") -> np.ndarray:
-        """E.g. ``column("pipes", "mode")`` -> array over sigma (NaN where undefined)."""
-        return np.array([np.nan if s.stats[what][stat] is None else s.stats[what][stat]
-                         for s in self.per_sigma], dtype=float)
+        """E.g. ``column("pipes", "mode")`` -> array over sigma (NaN where undefined);
+        ``stat="mean_ci"``/``"mode_ci"`` give an array of shape ``(len(sigmas), 2)``."""
+        rows = [s.stats[what][stat] for s in self.per_sigma]
+        if stat.endswith("_ci"):
+            return np.array([[np.nan if x is None else x for x in r] for r in rows], dtype=float)
+        return np.array([np.nan if x is None else x for x in rows], dtype=float)
+
+    def gap_rates(self, interior: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        """Measured per-gap impact rate and its standard error, per sigma."""
+        out = np.array([s.gap_rate(interior) for s in self.per_sigma])
+        return out[:, 0], out[:, 1]
 
     def as_dict(self) -> dict[str, Any]:
         return {"params": self.params, "seconds": self.seconds,
                 "per_sigma": [s.as_dict() for s in self.per_sigma]}
 
+    def save(self, path: Any) -> None:
+        """Write :meth:`as_dict` as JSON atomically (a temporary file renamed into place)."""
+        path = Path(path)
+        tmp = path.with_name(path.name + ".tmp")
+        tmp.write_text(json.dumps(self.as_dict(), indent=1) + "\n")
+        os.replace(tmp, path)
+
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> EnsembleResult:
         per = []
+        n = int(data["params"]["n"])
         for s in data["per_sigma"]:
             st = SigmaStats(sigma=s["sigma"], runs=s["runs"], excluded=s["excluded"],
                             pipes=np.array([], int), sites=np.array([], int),
-                            events=s.get("events", 0))
+                            events=s.get("events", 0), failed=s.get("failed", 0),
+                            failures=[tuple(f) for f in s.get("failures", [])],
+                            site_hits=np.array(s.get("site_hits", [0] * (n + 1)), dtype=np.int64),
+                            impacts=s.get("impacts", 0))
             st.stats = {"pipes": s["pipes"], "sites": s["sites"]}
             per.append(st)
         return cls(params=data["params"], per_sigma=per, seconds=data.get("seconds", 0.0))
 
-
-def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transient: float,
-              t_window: float, seed: int, restitution: float, omega: float, d: float,
-              Omega: tuple) -> tuple[np.ndarray, np.ndarray, int]:
-    """Worker: simulate the given runs of one ``sigma``; returns (pipes, sites, events) per run.
-
-    >>> p, s, ev = run_chunk(0.05, 0, [0, 1], 10, 10.0, 10.0, 1, 0.8, 1.0, 1.0, (SQRT2,))
-    >>> p.tolist(), s.tolist()
-    ([0, 0], [0, 0])
-    """
-    pipes = np.zeros(len(runs), dtype=np.int64)
-    sites = np.zeros(len(runs), dtype=np.int64)
-    events = 0
-    for k, run in enumerate(runs):
-        ss = np.random.SeedSequence([int(seed), int(i_sigma), int(run)])
-        row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, omega=omega, d=d,
-                             Omega=Omega)
-        counts, nev = count_impacts(row, t_transient + t_window, t_transient)
-        hit = counts > 0
-        sites[k] = int(hit.sum())
-        pipes[k] = int((hit[:-1] | hit[1:]).sum())
-        events += nev
-    return pipes, sites, events
+    @classmethod
+    def load(cls, path: Any) -> EnsembleResult:
+        """Read a file written by :meth:`save`."""
+        return cls.from_dict(json.loads(Path(path).read_text()))
 
 
-class _Progress:
-    def __init__(self, total: int, enabled: bool, label: str = "ensemble") -> None:
-        self.total, self.enabled, self.done, self.t0 = total, enabled, 0, time.time()
-        self.label = label
-        self._draw()
+# --------------------------------------------------------------------------- the ensemble
+def _check_sigmas(sigmas: Any) -> list[float]:
+    if isinstance(sigmas, (str, bytes)) or not isinstance(sigmas, (Sequence, np.ndarray)):
+        raise TypeError(f"sigmas must be a sequence of numbers, got {type(sigmas).__name__} "
+                        f"{sigmas!r}")
+    if len(sigmas) == 0:
+        raise ValueError("sigmas must be a non-empty sequence of numbers >= 0, got []")
+    return [float(check_real(s, f"sigmas[{i}]", low=0)) for i, s in enumerate(sigmas)]
 
-    def update(self, k: int) -> None:
-        self.done += k
-        self._draw()
 
-    def _draw(self) -> None:
-        if not self.enabled:
-            return
-        frac = self.done / self.total if self.total else 1.0
-        bar = "#" * int(30 * frac)
-        el = time.time() - self.t0
-        sys.stderr.write(f"\r{self.label} [{bar:<30}] {self.done}/{self.total} runs {el:6.1f}s")
-        if self.done >= self.total:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+def _make_progress(total: int, progress: bool | None) -> Any:
+    """tqdm bar on stderr: ``None`` -> only when stderr is a terminal."""
+    enabled = sys.stderr.isatty() if progress is None else bool(progress)
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="run", desc="ensemble", file=sys.stderr, disable=not enabled,
+                dynamic_ncols=True)
 
 
 def ensemble(
-    sigmas: Sequence[float],
+    sigmas: Sequence[Any],
     runs: int,
     *,
     n: int = 100,
@@ -157,31 +309,49 @@ def ensemble(
     t_window: float = 100.0,
     seed: int = 0,
     executor: Executor | None = None,
-    progress: bool = True,
+    progress: bool | None = None,
     restitution: float = 0.8,
     omega: float = 1.0,
     d: float = 1.0,
     Omega: Sequence[Any] = (SQRT2,),
+    sigma0: Any = None,
     chunk: int = 50,
+    checkpoint: Any = None,
+    checkpoint_every: float = 60.0,
+    keep_runs: bool = True,
 ) -> EnsembleResult:
     """Figures 7 and 8: impacting pipes and distinct impact sites against ``sigma``.
 
     Parameters
     ----------
-    sigmas : forcing standard deviations (eq. 18; the free-oscillation coefficients too).
-    runs : runs per ``sigma``.
-    n : pipes per row (the paper: 100).
+    sigmas : forcing standard deviations (eq. 18; the free-oscillation coefficients too unless
+        ``sigma0`` is given).
+    runs : runs per ``sigma`` (``len(sigmas) * runs <= MAX_RUNS``).
+    n : pipes per row (the paper: 100; ``N = n + 1`` possible impacts).
     t_transient, t_window : impacts are counted in ``[t_transient, t_transient + t_window]``
         (the paper's values are not known; defaults 200 and 100, about 32 and 16 periods).
-    seed : integer seed; results are identical for any executor and ``chunk``.
+    seed : integer seed >= 0; results are identical for any executor and ``chunk``.
     executor : any ``concurrent.futures.Executor`` (``None``: serial in this process).
-    progress : draw a progress bar on stderr.
+    progress : tqdm bar on stderr; ``None`` (default): only when stderr is a terminal.
     restitution, omega, d, Omega : model parameters (:class:`PipeRow`; ``r = 0.8`` assumed).
+    sigma0 : standard deviation of the free-oscillation (initial-condition) coefficients:
+        ``None`` (the same as ``sigma``, :meth:`PipeRow.random`), one number for every sigma, or
+        one number per sigma.
     chunk : runs per task.
+    checkpoint : path; when given, the statistics of the completed runs are written there (JSON,
+        atomically) every ``checkpoint_every`` seconds and at the end.  A partial file holds, for
+        every ``sigma``, the runs ``0..K-1`` of the longest completed prefix (``runs = K``), so
+        it is an honest smaller ensemble.
+    keep_runs : keep the per-run arrays in memory (``SigmaStats.pipes``/``sites``).
 
     Returns
     -------
     EnsembleResult
+
+    Raises
+    ------
+    ValueError, TypeError : naming the argument, for bad input (NaN or infinite times, a float
+        seed, bools, an executor that is not a ``concurrent.futures.Executor``).
 
     >>> res = ensemble([0.05, 0.3], 4, n=10, t_transient=20, t_window=20, seed=1, progress=False)
     >>> [s.excluded for s in res.per_sigma]
@@ -189,57 +359,129 @@ def ensemble(
     >>> res.per_sigma[1].stats["sites"]["mean"] > 0
     True
     """
-    sig = [float(s) for s in sigmas]
-    if not sig or any(not math.isfinite(s) or s < 0 for s in sig):
-        raise ValueError("sigmas must be a non-empty sequence of finite numbers >= 0")
-    if int(runs) != runs or runs < 1:
-        raise ValueError(f"runs must be an integer >= 1, got {runs!r}")
-    if not (t_transient >= 0 and t_window > 0):
-        raise ValueError("t_transient must be >= 0 and t_window > 0")
-    if int(chunk) < 1:
-        raise ValueError("chunk must be >= 1")
-    runs = int(runs)
-    Om = tuple(Omega)
-    args_common = (n, float(t_transient), float(t_window), int(seed), float(restitution),
-                   float(omega), float(d), Om)
-    tasks = []
-    for i, s in enumerate(sig):
-        for start in range(0, runs, chunk):
-            tasks.append((s, i, list(range(start, min(start + chunk, runs)))))
-    pipes = [np.zeros(runs, dtype=np.int64) for _ in sig]
-    sites = [np.zeros(runs, dtype=np.int64) for _ in sig]
-    events = [0 for _ in sig]
-    bar = _Progress(len(sig) * runs, progress)
-    t0 = time.time()
-
-    def store(task: tuple, res: tuple) -> None:
-        _, i, rr = task
-        pipes[i][rr] = res[0]
-        sites[i][rr] = res[1]
-        events[i] += res[2]
-        bar.update(len(rr))
-
-    if executor is None:
-        for task in tasks:
-            store(task, run_chunk(task[0], task[1], task[2], *args_common))
+    sig = _check_sigmas(sigmas)
+    runs = check_int(runs, "runs", minimum=1)
+    if len(sig) * runs > MAX_RUNS:
+        raise ValueError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
+                         f"symhx.impact.ensemble.MAX_RUNS = {MAX_RUNS}")
+    n = check_int(n, "n", minimum=1)
+    t_tr = float(check_real(t_transient, "t_transient", low=0))
+    t_w = float(check_real(t_window, "t_window", low=0, low_open=True))
+    seed_i = check_seed(seed)
+    if seed_i is None:
+        raise TypeError("seed must be an int >= 0 (an ensemble needs a fixed seed), got None")
+    r = float(check_real(restitution, "restitution", low=0, high=1))
+    om = float(check_real(omega, "omega", low=0, low_open=True))
+    dd = float(check_real(d, "d", low=0, low_open=True))
+    if sigma0 is None or (isinstance(sigma0, (Sequence, np.ndarray))
+                          and not isinstance(sigma0, (str, bytes))):
+        s0s = [None] * len(sig) if sigma0 is None else [
+            float(check_real(v, f"sigma0[{i}]", low=0)) for i, v in enumerate(sigma0)]
+        if len(s0s) != len(sig):
+            raise ValueError(f"sigma0 must be None, a number or one number per sigma "
+                             f"({len(sig)}), got {len(s0s)} values")
     else:
-        futs = {executor.submit(run_chunk, t[0], t[1], t[2], *args_common): t for t in tasks}
-        for f in as_completed(futs):
-            store(futs[f], f.result())
-    rng = np.random.default_rng(np.random.SeedSequence([int(seed), 10**6]))
-    per = []
-    for i, s in enumerate(sig):
-        keep = sites[i] > 0
-        st = SigmaStats(sigma=s, runs=runs, excluded=int((~keep).sum()), pipes=pipes[i][keep],
-                        sites=sites[i][keep], events=events[i])
-        st.stats = {"pipes": _describe(pipes[i][keep], n, rng),
-                    "sites": _describe(sites[i][keep], n + 1, rng)}
-        per.append(st)
-    params = {"runs": runs, "n": n, "t_transient": float(t_transient),
-              "t_window": float(t_window), "seed": int(seed), "restitution": float(restitution),
-              "omega": float(omega), "d": float(d), "Omega": [repr(w) for w in Om],
+        s0s = [float(check_real(sigma0, "sigma0", low=0))] * len(sig)
+    chunk = check_int(chunk, "chunk", minimum=1)
+    if executor is not None and not isinstance(executor, Executor):
+        raise TypeError(f"executor must be a concurrent.futures.Executor or None, got "
+                        f"{type(executor).__name__} {executor!r}")
+    for name, flag in (("progress", progress), ("keep_runs", keep_runs)):
+        if flag is not None and not isinstance(flag, bool):
+            raise TypeError(f"{name} must be True, False or None, got {flag!r}")
+    every = float(check_real(checkpoint_every, "checkpoint_every", low=0))
+    Om = tuple(Omega) if isinstance(Omega, (Sequence, np.ndarray)) else (Omega,)
+    for i, w in enumerate(Om):
+        if not isinstance(w, type(SQRT2)):
+            check_real(w, f"Omega[{i}]", low=0)
+    args_common = (n, t_tr, t_w, seed_i, r, om, dd, Om)
+    # the model parameters (resonance, ...) are checked once here, so that a ValueError inside a
+    # run can only be a failed draw (recorded as a failed run)
+    PipeRow(1, restitution=r, omega=om, d=dd, Omega=Om, alpha=[[0.0] * len(Om)],
+            beta=[[0.0] * len(Om)], x0=[dd], v0=[0.0])
+
+    # tasks in rounds (every sigma gets chunk k before any gets chunk k+1): partial results
+    # stay balanced over sigma
+    nchunks = (runs + chunk - 1) // chunk
+    tasks = [(i, c) for c in range(nchunks) for i in range(len(sig))]
+    done: list[dict[int, dict[str, Any]]] = [{} for _ in sig]
+
+    params = {"runs": runs, "n": n, "t_transient": t_tr, "t_window": t_w, "seed": seed_i,
+              "restitution": r, "omega": om, "d": dd, "Omega": [repr(w) for w in Om],
+              "sigma0": "sigma" if sigma0 is None else s0s, "chunk": chunk,
               "engine": "float64 C" if _c_available() else "float64 python"}
-    return EnsembleResult(params=params, per_sigma=per, seconds=time.time() - t0)
+    bar = _make_progress(len(sig) * runs, progress)
+    t0 = time.time()
+    last = [t0]
+
+    def snapshot(final: bool) -> EnsembleResult:
+        per = []
+        for i, s in enumerate(sig):
+            k = 0
+            while k in done[i]:
+                k += 1
+            parts = [done[i][c] for c in range(k)]
+            per.append(_combine(s, i, parts, n, seed_i, keep_runs))
+        p = dict(params)
+        if not final:
+            p["partial"] = True
+            p["runs"] = min(st.runs for st in per)
+        return EnsembleResult(params=p, per_sigma=per, seconds=time.time() - t0)
+
+    def store(task: tuple[int, int], out: dict[str, Any]) -> None:
+        done[task[0]][task[1]] = out
+        bar.update(len(out["pipes"]))
+        if checkpoint is not None and time.time() - last[0] >= every:
+            snapshot(False).save(checkpoint)
+            last[0] = time.time()
+
+    def submit_args(task: tuple[int, int]) -> tuple:
+        i, c = task
+        return (sig[i], i, list(range(c * chunk, min((c + 1) * chunk, runs))), *args_common,
+                s0s[i])
+
+    try:
+        if executor is None:
+            for task in tasks:
+                store(task, run_chunk(*submit_args(task)))
+        else:
+            futs = {executor.submit(run_chunk, *submit_args(t)): t for t in tasks}
+            for f in as_completed(futs):
+                store(futs[f], f.result())
+    finally:
+        bar.close()
+    res = snapshot(True)
+    if checkpoint is not None:
+        res.save(checkpoint)
+    return res
+
+
+def _combine(sigma: float, i: int, parts: list[dict[str, Any]], n: int, seed: int,
+             keep_runs: bool) -> SigmaStats:
+    """Merge the chunks ``0..K-1`` of one sigma into its :class:`SigmaStats`."""
+    def cat(key: str) -> np.ndarray:
+        return (np.concatenate([p[key] for p in parts]) if parts
+                else np.zeros(0, dtype=np.int64))
+
+    pipes, sites, impacts = cat("pipes"), cat("sites"), cat("impacts")
+    ok = impacts >= 0
+    keep = ok & (sites > 0)
+    failures = [f for p in parts for f in p["failures"]]
+    hits = (np.sum([p["site_hits"] for p in parts], axis=0) if parts
+            else np.zeros(n + 1, dtype=np.int64))
+    st = SigmaStats(sigma=sigma, runs=len(pipes), excluded=int((ok & (sites == 0)).sum()),
+                    pipes=pipes[keep] if keep_runs else np.zeros(0, dtype=np.int64),
+                    sites=sites[keep] if keep_runs else np.zeros(0, dtype=np.int64),
+                    events=int(sum(p["events"] for p in parts)), failed=len(failures),
+                    failures=failures[:20], site_hits=np.asarray(hits, dtype=np.int64),
+                    impacts=int(impacts[ok].sum()))
+    # the bootstrap stream depends only on (seed, sigma index): identical for any executor
+    rng = np.random.default_rng(np.random.SeedSequence([seed, 10**6, i]))
+    st.stats = {
+        "pipes": describe_histogram(np.bincount(pipes[keep], minlength=n + 1)[: n + 1], rng),
+        "sites": describe_histogram(np.bincount(sites[keep], minlength=n + 2)[: n + 2], rng),
+    }
+    return st
 
 
 def _c_available() -> bool:
@@ -248,6 +490,163 @@ def _c_available() -> bool:
     return available()
 
 
+# --------------------------------------------------------------------------- thresholds
+def thresholds(res: EnsembleResult, *, level: int = 10, min_kept: int = 20, boot: int = 400,
+               seed: int = 0) -> dict[str, list[float]]:
+    """The simulated threshold of an ensemble, two ways, with bootstrap 16-84 % intervals.
+
+    Only sigmas with at least ``min_kept`` runs with an impact are used (the statistics of the
+    paper's figures 7 and 8 exclude runs without impact).
+
+    * ``mode``: the smallest sigma of the grid from which on the mode of the number of impacting
+      pipes is ``>= level`` (the mode has left small values);
+    * ``steep``: the midpoint of the grid interval where the mean number of impacting pipes
+      (figure 8) rises steepest (largest difference quotient).
+
+    Each is ``[estimate, low, high]``; the interval comes from ``boot`` multinomial resamples of
+    every sigma's histogram (the grid spacing is a further resolution limit).
+
+    >>> res = ensemble([0.1, 0.2, 0.3], 30, n=10, t_transient=20, t_window=20, progress=False)
+    >>> thresholds(res, level=5, min_kept=5, boot=20)["mode"][0]
+    0.2
+    """
+    sig = res.sigmas
+    hists = [np.array(s.stats["pipes"]["hist"], dtype=float) for s in res.per_sigma]
+    rng = np.random.default_rng(seed)
+
+    def est(hs: list[np.ndarray]) -> tuple[float, float]:
+        ok = [h.sum() >= min_kept for h in hs]
+        m = math.nan
+        for j in range(len(sig) - 1, -1, -1):
+            if not ok[j] or int(np.argmax(hs[j])) < level:
+                break
+            m = float(sig[j])
+        means = np.array([(h * np.arange(len(h))).sum() / h.sum() if k else np.nan
+                          for h, k in zip(hs, ok, strict=True)])
+        diffs = np.diff(means) / np.diff(sig)      # slopes: the grid need not be uniform
+        if len(diffs) == 0 or np.all(np.isnan(diffs)):
+            return m, math.nan
+        k = int(np.nanargmax(diffs))
+        return m, float((sig[k] + sig[k + 1]) / 2)
+
+    m0, s0 = est(hists)
+    bm, bs = [], []
+    for _ in range(boot):
+        hb = [rng.multinomial(int(h.sum()), h / h.sum()).astype(float) if h.sum() else h
+              for h in hists]
+        a, b = est(hb)
+        bm.append(a)
+        bs.append(b)
+
+    def q(x: list[float]) -> list[float]:
+        x = [v for v in x if not math.isnan(v)]
+        return [float(v) for v in np.percentile(x, [16, 84])] if x else [math.nan, math.nan]
+
+    return {"mode": [m0, *q(bm)], "steep": [s0, *q(bs)]}
+
+
+# --------------------------------------------------------------------------- assumptions
+def site_transitions(
+    sigma: float,
+    runs: int,
+    *,
+    n: int = 100,
+    t_transient: float = 200.0,
+    t_window: float = 100.0,
+    seed: int = 0,
+    restitution: float = 0.8,
+    sigma0: float | None = None,
+    i_sigma: int = 0,
+) -> list[np.ndarray]:
+    """Sequences of impact sites in the window (section 4's independence assumption).
+
+    Runs ``k = 0..runs-1`` draw the same rows as :func:`ensemble` (``SeedSequence([seed,
+    i_sigma, k])``) and are simulated with :func:`symhx.impact.simulate` (float64); for each run
+    the sites of the impacts (kinds ``impact`` and ``stick``, as counted by the ensemble) with
+    ``t >= t_transient``, in time order.  Failed
+    runs give an empty sequence.
+
+    >>> seqs = site_transitions(0.3, 2, n=6, t_transient=5, t_window=5, seed=1)
+    >>> len(seqs), all(s.min() >= 0 and s.max() <= 6 for s in seqs if len(s))
+    (2, True)
+    """
+    from symhx.impact.simulate import simulate
+
+    runs = check_int(runs, "runs", minimum=1)
+    t_tr = float(check_real(t_transient, "t_transient", low=0))
+    t_w = float(check_real(t_window, "t_window", low=0, low_open=True))
+    out = []
+    for k in range(runs):
+        ss = np.random.SeedSequence([int(seed), int(i_sigma), k])
+        row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, sigma0=sigma0)
+        try:
+            h = simulate(row, t_tr + t_w)
+        except RuntimeError:
+            out.append(np.zeros(0, dtype=np.int64))
+            continue
+        times = np.asarray(h.times, dtype=float)
+        sel = np.isin(np.asarray(h.kinds), (IMPACT, STICK)) & (times >= t_tr)
+        out.append(np.asarray(h.sites, dtype=np.int64)[sel])
+    return out
+
+
+def transition_dependence(seqs: Sequence[np.ndarray], size: int, *, shuffles: int = 50,
+                          seed: int = 0,
+                          stat: Callable[[np.ndarray, np.ndarray], float] | None = None
+                          ) -> dict[str, float]:
+    """Dependence of the next impact site on the last one, against independence.
+
+    Statistic (default): the mutual information (nats) of the pooled pairs (last, next).  The
+    null: each run's sequence randomly permuted (keeps each run's site frequencies, destroys the
+    order), ``shuffles`` times.  Also ``same``/``adjacent``: the fraction of pairs with
+    ``next == last`` / ``|next - last| == 1``, observed and under the null.
+
+    >>> rng = np.random.default_rng(1)
+    >>> alt = [np.tile([3, 7], 200)]           # strictly alternating: fully dependent
+    >>> transition_dependence(alt, 10, shuffles=20)["z"] > 10
+    True
+    """
+    rng = np.random.default_rng(seed)
+    stat = stat or _mutual_information_pairs(size)
+
+    def pairs(ss: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+        a = [s[:-1] for s in ss if len(s) > 1]
+        b = [s[1:] for s in ss if len(s) > 1]
+        if not a:
+            return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+        return np.concatenate(a), np.concatenate(b)
+
+    a, b = pairs(seqs)
+    obs = stat(a, b)
+    null, same0, adj0 = [], [], []
+    for _ in range(shuffles):
+        sa, sb = pairs([rng.permutation(s) for s in seqs])
+        null.append(stat(sa, sb))
+        same0.append(float(np.mean(sa == sb)) if len(sa) else math.nan)
+        adj0.append(float(np.mean(np.abs(sa - sb) == 1)) if len(sa) else math.nan)
+    mu, sd = float(np.mean(null)), float(np.std(null, ddof=1))
+    return {"pairs": len(a), "mi": obs, "mi_null": mu, "mi_null_sd": sd,
+            "z": (obs - mu) / sd if sd > 0 else math.nan,
+            "same": float(np.mean(a == b)) if len(a) else math.nan,
+            "same_null": float(np.mean(same0)),
+            "adjacent": float(np.mean(np.abs(a - b) == 1)) if len(a) else math.nan,
+            "adjacent_null": float(np.mean(adj0))}
+
+
+def _mutual_information_pairs(size: int) -> Callable[[np.ndarray, np.ndarray], float]:
+    def mi(a: np.ndarray, b: np.ndarray) -> float:
+        if len(a) == 0:
+            return math.nan
+        joint = np.zeros((size, size))
+        np.add.at(joint, (a, b), 1.0)
+        joint /= joint.sum()
+        pa, pb = joint.sum(1), joint.sum(0)
+        nz = joint > 0
+        return float((joint[nz] * np.log(joint[nz] / np.outer(pa, pb)[nz])).sum())
+    return mi
+
+
+# --------------------------------------------------------------------------- eq. 27 check
 def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 400.0,
                                  seed: int = 0, omega: float = 1.0, d: float = 1.0,
                                  Omega: float = math.sqrt(2)) -> float:

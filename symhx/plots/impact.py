@@ -1,4 +1,5 @@
-"""Figures 7 and 8 (simulation statistics against sigma) and gap time series of a small row."""
+"""Figures 7, 8 (simulation statistics against sigma), 10 and 13 (theory against simulation through
+p) and gap time series of a small row."""
 
 from __future__ import annotations
 
@@ -7,7 +8,8 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
-__all__ = ["plot_gaps", "plot_mean_vs_sigma", "plot_mode_vs_sigma"]
+__all__ = ["plot_gaps", "plot_mean_vs_sigma", "plot_mode_vs_sigma", "plot_theory_vs_simulation",
+           "theory_means"]
 
 
 def _ax(ax: Any) -> tuple[Any, Any]:
@@ -23,35 +25,101 @@ def _title(res: Any, what: str) -> str:
             f"window [{p['t_transient']:g}, {p['t_transient'] + p['t_window']:g}]")
 
 
-def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
-    """Figure 7: most likely number of impacting pipes (or sites) against σ, bootstrap error bars.
+def _yerr(res: Any, what: str, stat: str) -> tuple[np.ndarray, np.ndarray]:
+    """Asymmetric error bars from the stored 95 % bootstrap percentile interval."""
+    centre = res.column(what, stat)
+    ci = res.column(what, f"{stat}_ci")
+    return centre, np.vstack([centre - ci[:, 0], ci[:, 1] - centre])
 
-    ``res``: an :class:`symhx.impact.EnsembleResult`.  Returns the Figure.
+
+def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
+    """Figure 7: most likely number of impacting pipes (or sites) against σ.
+
+    Error bars: 95 % bootstrap percentile interval of the mode (resampling the runs; they stay
+    inside the observed values, never below 0).  ``res``: an
+    :class:`symhx.impact.EnsembleResult`.  Returns the Figure.
     """
     fig, ax = _ax(ax)
     s = res.sigmas
-    ax.errorbar(s, res.column(what, "mode"), yerr=res.column(what, "mode_se"), fmt="o-", ms=4,
-                capsize=2, label=f"mode ({what})")
+    mode, err = _yerr(res, what, "mode")
+    ax.errorbar(s, mode, yerr=err, fmt="o-", ms=4, capsize=2,
+                label=f"mode of impacting {what} (95 % bootstrap interval)")
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
     ax.set_ylabel(f"most likely number of impacting {what}")
     ax.set_title(_title(res, "Fig. 7"), fontsize=8)
+    ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right")
     return fig
 
 
 def plot_mean_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
-    """Figure 8: expected number of impacting pipes (or sites) against σ, ±1 standard error.
+    """Figure 8: expected number of impacting pipes (or sites) against σ, runs without impact
+    excluded; error bars: 95 % bootstrap percentile interval of the mean.
 
     ``res``: an :class:`symhx.impact.EnsembleResult`.  Returns the Figure.
     """
     fig, ax = _ax(ax)
     s = res.sigmas
-    ax.errorbar(s, res.column(what, "mean"), yerr=res.column(what, "se"), fmt="s-", ms=4,
-                capsize=2, label=f"mean ({what})")
+    mean, err = _yerr(res, what, "mean")
+    ax.errorbar(s, mean, yerr=err, fmt="s-", ms=4, capsize=2,
+                label=f"mean impacting {what} (95 % bootstrap interval)")
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
     ax.set_ylabel(f"expected number of impacting {what}")
     ax.set_title(_title(res, "Fig. 8"), fontsize=8)
+    ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right")
+    return fig
+
+
+def theory_means(p: Any, N: int, space: str = "simple", dps: int = 20) -> np.ndarray:
+    """``E[X]`` of the graph model (``symhx.mean``) at each impact probability ``p`` (float64)."""
+    import symhx
+
+    return np.array([float(symhx.mean(N, float(q), space=space, dps=dps)) for q in p])
+
+
+def plot_theory_vs_simulation(res: Any, *, spaces: Any = ("simple",), measured: bool = True,
+                              title: str = "Fig. 10", p_grid: Any = None, ax: Any = None) -> Any:
+    """Figures 10 and 13: ``E[X]`` against the impact probability ``p``, graph theory against the
+    simulation.
+
+    Theory: ``symhx.mean(N, p, space)`` for each sample space, ``N = n + 1``.  Simulation: the
+    mean number of distinct impact sites of the runs with an impact (95 % bootstrap interval),
+    placed at ``p(σ)`` of eq. (27) (crosses, as in the paper) and, with ``measured``, at the
+    per-gap impact rate measured in the window (circles; horizontal bars: ±2 standard errors).
+
+    ``res``: an :class:`symhx.impact.EnsembleResult`.  Returns the Figure.
+    """
+    import symhx
+
+    fig, ax = _ax(ax)
+    N = int(res.params["n"]) + 1
+    sig = res.sigmas
+    p_eq27 = np.asarray(symhx.impact_probability(sig), dtype=float)
+    rate, rate_se = res.gap_rates()
+    mean, err = _yerr(res, "sites", "mean")
+    xs = [q for q in list(p_eq27) + (list(rate) if measured else []) if q > 0]
+    lo = max(min(xs) / 2, 1e-6) if xs else 1e-4
+    grid = np.logspace(np.log10(lo), np.log10(0.9), 60) if p_grid is None else np.asarray(p_grid)
+    for space in spaces:
+        ax.plot(grid, theory_means(grid, N, space), lw=1.5, label=f"theory E[X], space {space}")
+    ok = p_eq27 > 0
+    ax.errorbar(p_eq27[ok], mean[ok], yerr=err[:, ok], fmt="kx", ms=6, capsize=2,
+                label="simulation at p(σ) of eq. 27")
+    if measured:
+        okm = rate > 0
+        ax.errorbar(rate[okm], mean[okm], xerr=2 * rate_se[okm], yerr=err[:, okm], fmt="o",
+                    mfc="none", color="tab:red", ms=5, capsize=2,
+                    label="simulation at the measured per-gap rate")
+    ax.set_xscale("log")
+    ax.set_xlabel("impact probability p")
+    ax.set_ylabel("expected number of distinct impacts E[X]")
+    ax.set_ylim(bottom=0)
+    ax.set_title(f"{title}: N = {N}; simulation: {_title(res, '')[2:]}", fontsize=7)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
     return fig
 
 
