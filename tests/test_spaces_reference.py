@@ -161,7 +161,7 @@ def test_shapes_up_to_counts_partitions():
         assert all(list(s) == sorted(s, reverse=True) and min(s, default=2) >= 2
                    for s in shapes)
         assert all(shape_excess(s) <= m for s in shapes)
-    with pytest.raises(ValueError, match="maximum excess must be >= 0, got -1"):
+    with pytest.raises(ValueError, match="maximum excess m must be >= 0, got -1"):
         shapes_up_to(-1)
 
 
