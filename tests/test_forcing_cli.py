@@ -29,10 +29,10 @@ def test_json_is_strict_for_underflow():
 
 
 def test_dps_values_match_api_and_logs_keep_relative_accuracy():
-    r = run("0.05", "8", "--dps", "25", "--json")
+    r = run("0.05", "1000", "--dps", "25", "--json")  # 1 - p ~ 1e-13 at sigma = 1000
     assert r.returncode == 0, r.stderr
     rows = json.loads(r.stdout)
-    for row, s in zip(rows, ("0.05", "8"), strict=True):
+    for row, s in zip(rows, ("0.05", "1000"), strict=True):
         with mpmath.workdps(40):
             for key, fn in (("p", F.impact_probability), ("one_minus_p", F.no_impact_probability),
                             ("log_p", F.log_impact_probability),

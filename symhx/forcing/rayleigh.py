@@ -478,12 +478,22 @@ class RayleighSum:
                 raise TypeError("x must be a scalar here (use sf/cdf for arrays)")
             val, err = _float_with_error(self._float_scales(), xa.reshape(1), kind)
             return RayleighSumResult(float(val[0]), float(err[0]), method)
-        with mpmath.workdps(dps + 15):
+        with mpmath.workdps(dps + 15 + self._exp_digits(x)):
             xm = _mp_x(x)
             val, err = _mp_with_error([mpf_of(s) for s in self._exact], xm, kind, dps)
         return RayleighSumResult(val, err, method)
 
     # ---- internals
+    def _exp_digits(self, x: Any) -> int:
+        """Extra digits for ``exp(-E)``, ``E ~ x**2/(2 sum s**2)``, to keep its relative
+        accuracy (E ~ 1e6 costs 6 digits)."""
+        with mpmath.workprec(53):
+            fr = to_rational(x, "x")
+            xm = mpmath.mpf(fr.numerator) / fr.denominator if fr is not None else mpmath.mpf(0)
+            var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
+            e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
+            return int(mpmath.log10(e)) + 1 if e > 1 else 0
+
     def _float_scales(self) -> list[float]:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
         if bad.any():
@@ -506,7 +516,7 @@ class RayleighSum:
             for idx in np.ndindex(xs.shape):
                 out[idx] = self._eval(xs[idx], kind, dps)
             return out
-        with mpmath.workdps(dps + 15):
+        with mpmath.workdps(dps + 15 + self._exp_digits(x)):
             xm = _mp_x(x)
             scales = [mpf_of(s) for s in self._exact]
             if kind in ("sf", "cdf", "pdf"):
