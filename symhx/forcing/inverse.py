@@ -95,7 +95,7 @@ def sigma_for_impact_probability(
         fr = _target(pv)
         with mpmath.workdps(dps + 15):
             pm = mpf_of(fr)
-        return _inverse_mp(pm, fp, dps)
+        return _inverse_mp(pm, fp, dps, fr)
 
     if is_array(p):
         pa = np.asarray(p, dtype=object)
@@ -152,7 +152,9 @@ def _inverse_float(p: float, fp: ForcingParams) -> float:
     return math.exp(ls)
 
 
-def _inverse_mp(p: mpmath.mpf, fp: ForcingParams, dps: int) -> mpmath.mpf:
+def _inverse_mp(p: mpmath.mpf, fp: ForcingParams, dps: int, exact: Fraction) -> mpmath.mpf:
+    """Secant polish at ``dps + 15`` digits; the target's log (or log of ``1 - p``) is taken
+    from the exact ``Fraction``, so ``1 - p`` keeps its relative accuracy for ``p`` near 1."""
     try:
         s0 = _inverse_float(float(p), fp) if 1e-300 < p < 1 - 1e-16 else None
     except (ValueError, OverflowError):
@@ -160,12 +162,12 @@ def _inverse_mp(p: mpmath.mpf, fp: ForcingParams, dps: int) -> mpmath.mpf:
     work = dps + 15
     with mpmath.workdps(work):
         if p <= 0.5:
-            lt = mpmath.log(p)
+            lt = mpmath.log(mpf_of(exact))
 
             def f(ls: mpmath.mpf) -> mpmath.mpf:
                 return evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logp") - lt
         else:
-            lt = mpmath.log1p(-p)
+            lt = mpmath.log(mpf_of(1 - exact))
 
             def f(ls: mpmath.mpf) -> mpmath.mpf:
                 return lt - evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logq")
