@@ -104,6 +104,7 @@ def dp_dsigma(
     float, ndarray or mpf
         ``dp/dsigma``; ``|d ln p/d ln sigma| = sigma dp/dsigma / p`` is the condition number.
 
+    >>> from symhx.forcing import impact_probability
     >>> h = 1e-6
     >>> fd = (impact_probability(0.3 + h) - impact_probability(0.3 - h)) / (2 * h)
     >>> abs(dp_dsigma(0.3) / fd - 1) < 1e-8

@@ -183,6 +183,7 @@ def impact_probability(
 
     Examples
     --------
+    >>> import numpy as np
     >>> p = impact_probability(0.12)           # the paper's parameters
     >>> abs(p + no_impact_probability(0.12) - 1) < 1e-15
     True
