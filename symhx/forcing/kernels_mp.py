@@ -1,0 +1,153 @@
+"""mpmath kernels of one forcing component: p, 1 - p and log p from ``x = d**2/(2 s_0**2)``,
+``y = d**2/(2 s_1**2)`` (eq. 27 in closed form), cheap float estimates that size the guard
+digits, and the positive integrals of the derivative in closed form.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+
+from symhx.forcing.arguments import mp_arg
+from symhx.forcing.kernels_float import SQRT_PI
+
+__all__ = [
+    "estimate",
+    "estimate_float",
+    "guard_digits",
+    "mp_i2",
+    "mp_i3",
+    "mp_logp_from_xy",
+    "mp_p_from_xy",
+    "mp_q_from_xy",
+    "mp_xy_forcing",
+]
+
+
+def mp_p_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
+    r = mpmath.sqrt(x + y)
+    u = x / r
+    v = y / r
+    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+    return mpmath.exp(-u * v) * b / r
+
+
+def mp_logp_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
+    r = mpmath.sqrt(x + y)
+    u = x / r
+    v = y / r
+    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+    return -u * v + mpmath.log(b / r)
+
+
+def mp_q_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
+    """``1 - p`` at the current precision, raising the precision by the digits that cancel.
+
+    The cancellation in ``1 - p`` is known a priori: ``1 - p ~ x y / 6`` for small ``x + y``;
+    the result is checked a posteriori and recomputed if more digits cancelled than planned.
+    """
+    prec = mpmath.mp.prec
+    p = mp_p_from_xy(x, y)
+    if p <= 0.5:
+        return 1 - p
+    extra = max(0, -mpmath.log(x * y / 7, 2)) + 20
+    for _ in range(8):
+        with mpmath.workprec(prec + int(extra)):
+            q = 1 - mp_p_from_xy(x, y)
+            lost = -mpmath.log(q, 2) if q > 0 else mpmath.inf
+        if lost + 10 <= extra:
+            return +q
+        extra = 2 * extra if not mpmath.isfinite(lost) else lost + 30
+    raise ArithmeticError("1 - p: cancellation could not be resolved")  # pragma: no cover
+
+
+def mp_xy_forcing(sigma, sigma1, omega, Omega, d) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """``x = d**2/(4 sigma0**2)``, ``y = d**2 (omega**2 - Omega**2)**2 / (4 sigma1**2)``."""
+    s0 = mp_arg("sigma", sigma)
+    s1 = s0 if sigma1 is None else mp_arg("sigma1", sigma1)
+    om = mp_arg("omega", omega)
+    dd = mp_arg("d", d)
+    om2 = 2 if Omega is None else mp_arg("Omega", Omega) ** 2
+    delta = om * om - om2
+    if delta == 0:
+        raise ValueError("Omega: resonance Omega == omega (infinite forced amplitude)")
+    return dd * dd / (4 * s0 * s0), (dd * delta) ** 2 / (4 * s1 * s1)
+
+
+def estimate(x: mpmath.mpf, y: mpmath.mpf) -> tuple[float, float, float]:
+    """Rough ``(uv, x*y, p)`` in float64 (mpf exponents keep huge/tiny values in range)."""
+    lx = float(mpmath.log(x)) if x > 0 else -1e300
+    ly = float(mpmath.log(y)) if y > 0 else -1e300
+    lxy = lx + ly
+    ls = max(lx, ly) + math.log1p(math.exp(-abs(lx - ly)))
+    le = lxy - ls
+    e = math.exp(min(le, 700.0))
+    if e > 50.0:
+        return e, math.exp(min(lxy, 700.0)), 0.0
+    if abs(lx - ly) > 60.0 or not -600.0 < lx < 600.0 or not -600.0 < ly < 600.0:
+        # scales far apart (p ~ exp(-min(x, y))) or both far above d (p ~ 1)
+        return e, math.exp(min(lxy, 700.0)), math.exp(-e)
+    xf, yf = math.exp(lx), math.exp(ly)
+    r = math.sqrt(xf + yf)
+    u, v = xf / r, yf / r
+    b = v * math.exp(-u * u) + u * math.exp(-v * v) + SQRT_PI * u * v * (math.erf(u) + math.erf(v))
+    return e, math.exp(min(lxy, 700.0)), math.exp(-e) * b / r
+
+
+def estimate_float(sigma, sigma1, omega, Omega, d) -> tuple[float, float, float] | None:
+    """:func:`estimate` with Python floats when every input converts to a normal float."""
+    try:
+        s0 = float(sigma)
+        s1 = s0 if sigma1 is None else float(sigma1)
+        om = float(omega)
+        om2 = 2.0 if Omega is None else float(Omega) ** 2
+        dd = float(d)
+        x = (dd / (2 * s0)) ** 2
+        y = (dd * (om * om - om2) / (2 * s1)) ** 2
+    except (TypeError, ValueError, OverflowError, ZeroDivisionError):
+        return None
+    if not (1e-150 < x < 1e150 and 1e-150 < y < 1e150 and s0 > 0 and s1 > 0 and dd > 0):
+        return None
+    e = x * y / (x + y)
+    if e > 50.0:
+        return e, x * y, 0.0
+    r = math.sqrt(x + y)
+    u, v = x / r, y / r
+    b = v * math.exp(-u * u) + u * math.exp(-v * v) + SQRT_PI * u * v * (math.erf(u) + math.erf(v))
+    return e, x * y, math.exp(-e) * b / r
+
+
+def guard_digits(e: float) -> int:
+    """Extra digits so that ``exp(-uv)`` keeps its relative accuracy (uv ~ 1e6 costs 6)."""
+    return 12 + (int(math.log10(e)) + 1 if e > 1 else 0)
+
+
+
+# ---- mpmath groups
+def mp_i2(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
+    """``int_{-v}^{u} (v+z)(u-z) exp(-z**2) dz`` in closed form, extra digits for cancellation."""
+    r = u + v
+    extra = 10 + (int(-mpmath.log10(r**2 / 3)) if r < 1 else 0)
+    with mpmath.workdps(mpmath.mp.dps + extra):
+        k0 = mpmath.sqrt(mpmath.pi) / 2 * (mpmath.erf(u) + mpmath.erf(v))
+        val = (u * v - mpmath.mpf(1) / 2) * k0
+        val += (u * mpmath.exp(-v * v) + v * mpmath.exp(-u * u)) / 2
+    return +val
+
+
+def mp_i3(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
+    """``int_{-v}^{u} (v+z)**2 (u-z) exp(-z**2) dz`` (closed form, extra digits as it cancels)."""
+    r = u + v
+    extra = 10 + (int(-mpmath.log10(r**4 / 12)) if r < 1 else 0)
+    with mpmath.workdps(mpmath.mp.dps + extra):
+        eu, ev = mpmath.exp(-u * u), mpmath.exp(-v * v)
+        k0 = mpmath.sqrt(mpmath.pi) / 2 * (mpmath.erf(u) + mpmath.erf(v))
+        k1 = (ev - eu) / 2
+        k2 = k0 / 2 - (u * eu + v * ev) / 2
+        k3 = ((v * v + 1) * ev - (u * u + 1) * eu) / 2
+        val = u * v * v * k0 + (2 * u * v - v * v) * k1 + (u - 2 * v) * k2 - k3
+    return +val
+

@@ -1,0 +1,85 @@
+"""The ``symhx p-sigma`` command: strict JSON, one evaluation per sigma, clear errors."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import mpmath
+import pytest
+
+from symhx import forcing as F
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "symhx.cli", "p-sigma", *args],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_json_is_strict_for_underflow():
+    r = run("1e-200", "--json")
+    assert r.returncode == 0, r.stderr
+    assert "Infinity" not in r.stdout and "NaN" not in r.stdout
+    row = json.loads(r.stdout)[0]
+    assert row["log_p"] == "-inf" and row["p"] == 0.0
+    # the documented string round-trips to the float value
+    assert float(row["log_p"]) == F.log_impact_probability(1e-200)
+
+
+def test_dps_values_match_api_and_logs_keep_relative_accuracy():
+    r = run("0.05", "1000", "--dps", "25", "--json")  # 1 - p ~ 1e-13 at sigma = 1000
+    assert r.returncode == 0, r.stderr
+    rows = json.loads(r.stdout)
+    for row, s in zip(rows, ("0.05", "1000"), strict=True):
+        with mpmath.workdps(40):
+            for key, fn in (("p", F.impact_probability), ("one_minus_p", F.no_impact_probability),
+                            ("log_p", F.log_impact_probability),
+                            ("log_one_minus_p", F.log_no_impact_probability)):
+                ref = fn(s, dps=35)
+                assert abs(mpmath.mpf(row[key]) / ref - 1) < mpmath.mpf(10) ** -24, (s, key)
+
+
+def test_float_rows_match_api():
+    r = run("0.12", "--grid", "0.01", "100", "5", "--json")
+    rows = json.loads(r.stdout)
+    assert len(rows) == 6
+    for row in rows:
+        assert row["p"] == F.impact_probability(row["sigma"])
+        assert row["one_minus_p"] == F.no_impact_probability(row["sigma"])
+
+
+@pytest.mark.parametrize("args, word", [(["0.1", "--omega", "abc"], "omega"),
+                                        (["0.1", "--d", "x"], "d"),
+                                        (["0.1", "--Omega", "1,zz"], "Omega"),
+                                        (["0.1", "--d", "1,2"], "--d"),
+                                        (["--grid", "a", "1", "3"], "--grid"),
+                                        (["-1"], "sigma")])
+def test_bad_options_one_line_error(args, word):
+    r = run(*args)
+    assert r.returncode != 0
+    assert "Traceback" not in r.stderr
+    assert word in r.stderr
+
+
+def test_paths_evaluated_once_per_sigma(monkeypatch):
+    """mpmath: p and 1 - p once each per sigma (the logs are derived), no log kernels."""
+    import argparse
+
+    from symhx.commands import forcing as C
+    from symhx.forcing import probability as P
+
+    calls = []
+    orig = P.evaluate
+
+    def spy(fp, dps, want):
+        calls.append(want)
+        return orig(fp, dps, want)
+
+    monkeypatch.setattr(P, "evaluate", spy)
+    ns = argparse.Namespace(sigma=["0.1", "0.2"], grid=None, dps=20, sigma1=None, omega="1",
+                            Omega=None, d="1", inverse=False)
+    rows = C._rows(C._values(ns), ns)
+    assert sorted(calls) == ["p", "p", "q", "q"]
+    assert math.isclose(float(rows[0]["log_p"]), F.log_impact_probability(0.1), rel_tol=1e-14)

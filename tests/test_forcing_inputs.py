@@ -1,0 +1,103 @@
+"""Hostile inputs to the forcing functions: a correct value or a clear ValueError/TypeError."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+import pytest
+
+from symhx import forcing as F
+
+FUNCS = [F.impact_probability, F.no_impact_probability, F.log_impact_probability,
+         F.log_no_impact_probability, F.dp_dsigma]
+
+
+@pytest.mark.parametrize("fn", FUNCS)
+@pytest.mark.parametrize("dps", [None, 20])
+@pytest.mark.parametrize("arg", ["sigma", "sigma1", "omega", "Omega", "d"])
+@pytest.mark.parametrize("bad, exc, msg", [
+    (True, TypeError, "bool"), (float("nan"), ValueError, "finite"),
+    (float("inf"), ValueError, "finite"), (-1.0, ValueError, "> 0"), (0, ValueError, "> 0"),
+    ("abc", ValueError, ""), (1 + 2j, TypeError, "real"),
+])
+def test_bad_scalars_name_the_argument(fn, dps, arg, bad, exc, msg):
+    kw = {"sigma": 0.3, arg: bad}
+    sigma = kw.pop("sigma")
+    with pytest.raises(exc, match=arg) as info:
+        fn(sigma, **kw, dps=dps)
+    assert msg in str(info.value)
+
+
+@pytest.mark.parametrize("fn", FUNCS)
+def test_arrays_report_first_bad_index(fn):
+    with pytest.raises(ValueError, match=r"sigma.*index \(?2"):
+        fn(np.array([0.1, 0.2, -1.0, -2.0]))
+    with pytest.raises(ValueError, match=r"d.*index \(1, 0\)"):
+        fn(0.3, d=np.array([[1.0, 2.0], [0.0, 1.0]]))
+    with pytest.raises(ValueError, match=r"sigma.*index 1"):
+        fn(["0.1", "-0.2"], dps=15)
+
+
+@pytest.mark.parametrize("fn", FUNCS)
+@pytest.mark.parametrize("dps", [True, 0, -1, 2.5, "20", 10**6])
+def test_bad_dps(fn, dps):
+    with pytest.raises((TypeError, ValueError), match="dps"):
+        fn(0.3, dps=dps)
+
+
+@pytest.mark.parametrize("fn", FUNCS)
+def test_empty_in_empty_out(fn):
+    out = fn(np.array([]))
+    assert isinstance(out, np.ndarray) and out.shape == (0,)
+    assert fn(np.empty((0, 3))).shape == (0, 3)
+
+
+def test_decimal_strings_are_exact_and_floats_binary():
+    # "0.1" is exactly 1/10; the float 0.1 is 0.1000000000000000055...
+    a = F.impact_probability("0.1", dps=40)
+    b = F.impact_probability(Fraction(1, 10), dps=40)
+    c = F.impact_probability(0.1, dps=40)
+    assert a == b and a != c
+    with mpmath.workdps(60):
+        ref = F.impact_probability(mpmath.mpf(1) / 10, dps=50)
+        assert abs(a / ref - 1) < mpmath.mpf(10) ** -40
+    # float64 path: a string is the correctly rounded float
+    assert F.impact_probability("0.1") == F.impact_probability(0.1)
+    with pytest.raises(ValueError, match="float64 range"):
+        F.impact_probability("1e400")
+    assert F.log_impact_probability("1e-400", dps=15) < mpmath.mpf("-1e790")
+
+
+def test_resonance_and_components():
+    with pytest.raises(ValueError, match="resonance"):
+        F.impact_probability(0.3, Omega=1.0)
+    with pytest.raises(ValueError, match=r"Omega\[1\]: resonance"):
+        F.impact_probability(0.3, Omega=[1.5, 1.0])
+    with pytest.raises(ValueError, match="sigma1: 3 values for 2"):
+        F.impact_probability(0.3, Omega=[1.5, 2.5], sigma1=[0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="empty"):
+        F.impact_probability(0.3, Omega=[])
+
+
+def test_inverse_bad_targets():
+    for p in (0, 1, -0.5, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="p"):
+            F.sigma_for_impact_probability(p)
+    with pytest.raises(ValueError, match=r"p must be in \(0, 1\).*index 1"):
+        F.sigma_for_impact_probability([0.5, 1.0])
+    with pytest.raises(TypeError, match="p"):
+        F.sigma_for_impact_probability(True)
+    with pytest.raises(ValueError, match="rounds to"):
+        F.sigma_for_impact_probability("1e-400")
+
+
+def test_global_precision_untouched():
+    before = mpmath.mp.dps
+    F.impact_probability(0.2, dps=60)
+    F.no_impact_probability(50.0, dps=60)
+    F.rayleigh_sum_probability([0.5, 0.3, 0.2], 1.0, dps=25)
+    F.sigma_for_impact_probability("0.25", dps=30)
+    assert mpmath.mp.dps == before
+
