@@ -82,6 +82,8 @@ _EXPORTS: dict[str, str] = {
     "rayleigh_scales": "forcing",
     "rayleigh_sum_probability": "forcing",
     "RayleighSumResult": "forcing",
+    "RayleighSum": "forcing",
+    "ForcingParams": "forcing",
     "theory_curve": "forcing",
     "TheoryCurve": "forcing",
     # impact simulation (eqs. 17-21)

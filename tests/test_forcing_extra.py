@@ -192,7 +192,7 @@ def test_inverse_fixed_sigma1_and_components():
 
 # ----------------------------------------------------------------------------- theory chain
 def test_theory_curve_is_the_composition():
-    from symhx.distribution import mean, mode
+    from symhx.api import mean, mode
 
     tc = F.theory_curve([0.06, 0.12, 0.2], N=101, dps=20)
     for s, p, m, k in zip(tc.sigma, tc.p, tc.mean, tc.mode, strict=True):
