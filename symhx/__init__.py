@@ -23,7 +23,7 @@ matplotlib.
 import importlib as _importlib
 from typing import Any as _Any
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 # public name -> module that defines it
 _EXPORTS: dict[str, str] = {
