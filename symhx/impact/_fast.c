@@ -36,6 +36,7 @@ typedef struct {
     double *F2, *F3;          /* F_m^2, F_m^3 */
     double *tc;               /* trig cache: 2 slots of [cos(F_m t)..., sin(F_m t)...] */
     double tc_t[2], pin;      /* slot times; slot 0 holds the pinned (current event) time */
+    double plastic_at;        /* instant at which the cascade backstop is active (else NAN) */
     int err;
     char errmsg[200];
 } Eng;
@@ -403,7 +404,10 @@ static void gap_poly(const Eng *E, int i, double *out) {
  * re-searched sites move in it: O(log n) per event instead of a scan of all n + 1 sites. */
 static inline int hless(const Eng *E, int a, int b) {
     double ta = E->nt[a], tb = E->nt[b];
-    return ta < tb || (ta == tb && a < b);
+    if (ta != tb) return ta < tb;
+    /* one instant: free gaps (impacts) before stuck ones (releases), then the smallest site */
+    if (E->stuck[a] != E->stuck[b]) return E->stuck[a] < E->stuck[b];
+    return a < b;
 }
 
 /* move site i to its place after its key changed: sift up or down through a hole (the moved
@@ -462,6 +466,7 @@ static void stick(Eng *E, int i, int lo, int hi, double t, double u, double A, i
         Vel = (mL * vL + mR * vR) / (double)(mL + mR);
     }
     E->stuck[i] = 1;
+    hfix(E, i);
     set_motion(E, lo, hi, t, X, Vel);
     record_event(E, t, i, K_STICK, -u, 0.0, aux);
 }
@@ -479,7 +484,8 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi) {
     int wallL = (lo == 0), wallR = (hi == E->n + 1);
     int mL = i - lo + 1, mR = hi - i;
     double r = E->r;
-    if (fabs(u) <= E->vstick && compressive) {
+    int plastic = (r == 0.0) || (t == E->plastic_at);
+    if (fabs(u) <= E->vstick) {   /* below the chatter threshold: the bodies move together */
         stick(E, i, lo, hi, t, r * fabs(u), A, mL, mR);
         return;
     }
@@ -494,7 +500,7 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi) {
     if (!wallL) kick(E, lo, i, t, dvL);
     if (!wallR) kick(E, i + 1, hi, t, dvR);
     record_event(E, t, i, K_IMPACT, u, u1, 0.0);
-    if (u1 <= E->vstick && compressive) stick(E, i, lo, hi, t, fabs(u1), A, mL, mR);
+    if (plastic || (u1 <= E->vstick && compressive)) stick(E, i, lo, hi, t, fabs(u1), A, mL, mR);
 }
 
 static void run(Eng *E) {
@@ -513,10 +519,13 @@ static void run(Eng *E) {
         if (!(te <= E->tend)) break;
         int code = E->nk[i];
         if (te == last_t) {
-            if (++same > 20L * (n + 1) + 100) {
+            long bound = 20L * (n + 1) + 100;   /* engine.cascade_bound */
+            if (++same == bound) E->plastic_at = te;   /* backstop: rest of the instant plastic */
+            else if (same > 2 * bound) {
                 E->err = 1;
                 snprintf(E->errmsg, sizeof E->errmsg,
-                         "too many events at t=%.17g: degenerate contact configuration", te);
+                         "more than %ld events at t=%.17g even with plastic impacts: degenerate "
+                         "contact configuration", same, te);
                 break;
             }
         } else { same = 0; last_t = te; }
@@ -537,6 +546,7 @@ static void run(Eng *E) {
             double X = 0, Vel = 0;
             if (lo != 0) pos_vel(E, lo, t, &X, &Vel);
             E->stuck[i] = 0;
+            hfix(E, i);
             set_motion(E, lo, i, t, X, Vel);
             set_motion(E, i + 1, hi, t, X, Vel);
             record_event(E, t, i, K_RELEASE, 0.0, 0.0, t);
@@ -593,6 +603,7 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
     E.tc = malloc(4 * E.nf * sizeof(double));
     E.tc_t[0] = E.tc_t[1] = NAN;
     E.pin = 0.0;
+    E.plastic_at = NAN;
     for (int m = 0; m < E.nf; m++) {
         E.F2[m] = E.F[m] * E.F[m];
         E.F3[m] = E.F2[m] * E.F[m];

@@ -51,19 +51,77 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_right
+from dataclasses import dataclass
+from enum import IntEnum
 from typing import Any
 
 import mpmath
+import numpy as np
 
-from symhx.impact.model import PipeRow
+from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 
-IMPACT, GRAZE, STICK, RELEASE = 0, 1, 2, 3
+__all__ = ["GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine", "EventKind", "EventLog",
+           "FloatContext", "MPContext", "Outcome", "RowArrays", "default_v_stick", "row_arrays",
+           "work_dps"]
+
+
+class EventKind(IntEnum):
+    """Kinds of recorded events (the values are those stored in :attr:`History.kinds`)."""
+
+    IMPACT = 0    #: Newton restitution at a closing contact
+    GRAZE = 1     #: tangential touch: zero relative velocity, nothing changes
+    STICK = 2     #: the two bodies merge (chatter ended, or a plastic impact)
+    RELEASE = 3   #: a stuck contact opens (its contact force turned tensile)
+
+
+IMPACT, GRAZE, STICK, RELEASE = (EventKind.IMPACT, EventKind.GRAZE, EventKind.STICK,
+                                 EventKind.RELEASE)
 KIND_NAMES = ("impact", "graze", "stick", "release")
 
-# search outcome codes
-_NONE, _CONT, _ROOT, _GRAZE, _NOW = 0, 1, 2, 3, 4
+
+class Outcome(IntEnum):
+    """Outcome of the certified search of one site (:meth:`Engine.search`)."""
+
+    NONE = 0    #: never closes (time is inf)
+    CONT = 1    #: no root before the returned time (certified up to it): resume there
+    ROOT = 2    #: a crossing (impact) at the returned time
+    GRAZE = 3   #: a tangential touch at the returned time
+    NOW = 4     #: at contact and approaching at the start time
+
+
+# private aliases (older names, still imported by symhx.impact.ensemble)
+_NONE, _CONT, _ROOT, _GRAZE, _NOW = (Outcome.NONE, Outcome.CONT, Outcome.ROOT, Outcome.GRAZE,
+                                     Outcome.NOW)
 _TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
 _MAXIT = 1_000_000
+
+
+def work_dps(dps: int) -> int:
+    """Working precision of the reference engine for ``dps`` wanted digits: ``2 dps + 10``.
+
+    Doubling makes grazing-type contacts (whose velocity is the square root of the gap's
+    rounding) accurate to ``dps`` digits too.
+
+    >>> work_dps(30)
+    70
+    """
+    return 2 * dps + 10
+
+
+def default_v_stick(row: PipeRow, dps: int | None) -> float:
+    """Relative speed below which a contact sticks (chatter ends): ``omega d 10**(-dps/2 - 1)``.
+
+    The position error of sticking at speed ``u`` instead of completing the chatter is
+    ``u**2 / |Delta''| ~ 10**-dps``.  Float64 uses ``dps = 10`` (``1e-6 omega d``): slower
+    bounces last ``2u/|Delta''|`` and their roots are below the rounding of the gap, so float64
+    cannot resolve them anyway.
+
+    >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[0.0])
+    >>> default_v_stick(row, None), default_v_stick(row, 20)
+    (1e-06, 1e-11)
+    """
+    digits = 10 if dps is None else dps
+    return row.omega * row.d * 10.0 ** (-digits / 2 - 1)
 
 
 def _cos_sin(x: float) -> tuple[float, float]:
@@ -99,7 +157,9 @@ def _cos_sin(x: float) -> tuple[float, float]:
     return sv, -cv
 
 
-class _FloatCtx:
+class FloatContext:
+    """Float64 arithmetic for :class:`Engine` (``num`` rounds an exact value to float64)."""
+
     is_mp = False
     eps = 2.0**-52
     inf = math.inf
@@ -115,7 +175,10 @@ class _FloatCtx:
     cos_sin = staticmethod(_cos_sin)
 
 
-class _MPCtx:
+class MPContext:
+    """mpmath arithmetic at the current precision (create and use inside ``workdps``); ``num``
+    rounds an exact value (``Fraction``, :data:`~symhx.impact.SQRT2`, ...) correctly."""
+
     is_mp = True
 
     def __init__(self) -> None:  # call inside workdps
@@ -124,7 +187,7 @@ class _MPCtx:
 
     @staticmethod
     def num(x: Any) -> mpmath.mpf:
-        return mpmath.mpf(x)
+        return exact_to_mpf(x)
 
     cos = staticmethod(mpmath.cos)
     sin = staticmethod(mpmath.sin)
@@ -132,67 +195,176 @@ class _MPCtx:
     cos_sin = staticmethod(mpmath.cos_sin)
 
 
-class _Engine:
+_FloatCtx, _MPCtx = FloatContext, MPContext   # older private names (imported by ensemble.py)
+
+
+@dataclass
+class RowArrays:
+    """The closed-form data of a row in one arithmetic (the only row-to-arrays conversion).
+
+    ``F``: frequencies ``(omega, Omega_1, ...)``; ``coef``, ``forced``, ``raw``: arrays of shape
+    ``(n + 2, L)`` (``L = 3 + 2 K``, rows ``0`` and ``n + 1`` are the walls) holding each pipe's
+    motion ``[c0, a_0, b_0, a_1, b_1, ...]`` at ``t = 0`` (eq. 21), its forced particular solution
+    and the raw force amplitudes ``alpha_ij, beta_ij`` (eq. 20); ``chunk``: search horizon.
+    """
+
+    F: np.ndarray
+    coef: np.ndarray
+    forced: np.ndarray
+    raw: np.ndarray
+    chunk: Any
+
+
+def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
+    """Closed-form arrays of ``row`` in the arithmetic ``ctx`` (float64 arrays for
+    :class:`FloatContext`; object arrays of mpf from the row's *exact* inputs for
+    :class:`MPContext`, inside the caller's ``workdps``).
+
+    Both engines use it: the float64 arrays are bit-identical whatever engine asks.
+
+    >>> row = PipeRow.random(3, 0.1, seed=3, Omega=(0.37, 2.1), d=1.7)
+    >>> ra = row_arrays(row, FloatContext())
+    >>> ra.coef.shape, float(ra.coef[4, 0]) == 4 * 1.7
+    ((5, 7), True)
+    """
+    n, K = row.n, len(row.Omega)
+    if ctx.is_mp:
+        num = ctx.num
+        dtype: Any = object
+        om, d = num(row.exact("omega")), num(row.exact("d"))
+        F = np.array([om] + [num(w) for w in row.exact("Omega")], dtype=object)
+        alpha = np.vectorize(num, otypes=[object])(row.exact("alpha"))
+        beta = np.vectorize(num, otypes=[object])(row.exact("beta"))
+        x0 = np.vectorize(num, otypes=[object])(row.exact("x0"))
+        v0 = np.vectorize(num, otypes=[object])(row.exact("v0"))
+        zero = num(0)
+    else:
+        dtype = np.float64
+        om, d = float(row.omega), float(row.d)
+        F = np.array([om] + [float(w) for w in row.Omega])
+        alpha, beta = row.alpha, row.beta
+        x0, v0 = row.x0, row.v0
+        zero = 0.0
+    L = 3 + 2 * K
+    om2 = om * om
+    forced = np.full((n + 2, L), zero, dtype=dtype)
+    raw = np.full((n + 2, L), zero, dtype=dtype)
+    coef = np.full((n + 2, L), zero, dtype=dtype)
+    fx: Any = 0
+    fv: Any = 0
+    for m in range(K):
+        a = alpha[:, m]
+        b = beta[:, m]
+        den = om2 - F[m + 1] ** 2
+        fa = a / den
+        fb = b / den
+        forced[1:n + 1, 3 + 2 * m] = fa
+        forced[1:n + 1, 4 + 2 * m] = fb
+        raw[1:n + 1, 3 + 2 * m] = a
+        raw[1:n + 1, 4 + 2 * m] = b
+        fx = fa if m == 0 else fx + fa
+        fv = fb * F[m + 1] if m == 0 else fv + fb * F[m + 1]
+    jd = np.arange(1, n + 1, dtype=dtype) * d
+    coef[1:n + 1] = forced[1:n + 1]
+    coef[1:n + 1, 0] = jd
+    coef[1:n + 1, 1] = x0 - jd - fx
+    coef[1:n + 1, 2] = (v0 - fv) / om
+    coef[n + 1, 0] = (n + 1) * d
+    return RowArrays(F=F, coef=coef, forced=forced, raw=raw, chunk=2 / om)
+
+
+class EventLog:
+    """The typed record of one run, filled by either engine through :meth:`add_event`,
+    :meth:`add_update` (one at a time) or :meth:`extend` (arrays from the C engine).
+
+    ``times, sites, kinds, u_before, u_after, aux``: one entry per event (``kinds`` are
+    :class:`EventKind`); ``upd_t[j], upd_c[j]``: the times from which pipe ``j`` follows each
+    closed-form coefficient vector (``upd_t[j][0] = 0``).
+    """
+
+    def __init__(self, coef0: Any) -> None:
+        self.times: list[Any] = []
+        self.sites: list[int] = []
+        self.kinds: list[int] = []
+        self.u_before: list[Any] = []
+        self.u_after: list[Any] = []
+        self.aux: list[Any] = []
+        zero = coef0[0][0] * 0
+        self.upd_t: list[list[Any]] = [[zero] for _ in range(len(coef0))]
+        self.upd_c: list[list[Any]] = [[list(c)] for c in coef0]
+
+    def __len__(self) -> int:
+        return len(self.times)
+
+    def add_event(self, t: Any, site: int, kind: EventKind, u_before: Any, u_after: Any,
+                  aux: Any) -> None:
+        """Append one event."""
+        self.times.append(t)
+        self.sites.append(site)
+        self.kinds.append(EventKind(kind))
+        self.u_before.append(u_before)
+        self.u_after.append(u_after)
+        self.aux.append(aux)
+
+    def add_update(self, j: int, t: Any, coef: Any) -> None:
+        """Pipe ``j`` follows the coefficient vector ``coef`` from time ``t`` on."""
+        self.upd_t[j].append(t)
+        self.upd_c[j].append(coef)
+
+    def extend(self, events: np.ndarray, updates: np.ndarray) -> None:
+        """Append the C engine's arrays: ``events`` rows ``(t, site, kind, u0, u1, aux)``,
+        ``updates`` rows ``(j, t, coef...)``."""
+        self.times.extend(events[:, 0].tolist())
+        self.sites.extend(events[:, 1].astype(np.int64).tolist())
+        self.kinds.extend(EventKind(int(k)) for k in events[:, 2])
+        self.u_before.extend(events[:, 3].tolist())
+        self.u_after.extend(events[:, 4].tolist())
+        self.aux.extend(events[:, 5].tolist())
+        for rec in updates:
+            self.add_update(int(rec[0]), float(rec[1]), rec[2:].copy())
+
+
+def cascade_bound(n: int) -> int:
+    """Events at one instant after which the rest of the instant is resolved plastically
+    (``20 (n + 1) + 100``; twice as many raise :class:`SimulationError`)."""
+    return 20 * (n + 1) + 100
+
+
+class Engine:
+    """The event-driven engine in the arithmetic ``ctx`` (:class:`FloatContext` or
+    :class:`MPContext`); :meth:`run` fills :attr:`log` (an :class:`EventLog`)."""
+
     def __init__(self, row: PipeRow, ctx: Any, *, v_stick: Any, chunk: float | None = None):
         self.row = row
         self.ctx = ctx
         num = ctx.num
         n = row.n
         self.n = n
-        self.r = num(row.restitution)
-        self.om = num(row.omega)
-        self.d = num(row.d)
-        self.F = [self.om] + [num(w) for w in row.Omega]
+        self.r = num(row.exact("restitution")) if ctx.is_mp else float(row.restitution)
+        ra = row_arrays(row, ctx)
+        self.om = ra.F[0]
+        self.d = num(row.exact("d")) if ctx.is_mp else float(row.d)
+        self.F = ra.F.tolist()
         K = len(row.Omega)
         self.K = K
         L = 3 + 2 * K
         self.L = L
-        om2 = self.om * self.om
         zero = num(0)
         self.zero = zero
-        # forced particular solution and raw force of each pipe (walls: zero)
-        self.forced = [[zero] * L for _ in range(n + 2)]
-        self.raw = [[zero] * L for _ in range(n + 2)]
-        for j in range(1, n + 1):
-            for m in range(K):
-                a = num(row.alpha[j - 1][m])
-                b = num(row.beta[j - 1][m])
-                den = om2 - self.F[m + 1] ** 2
-                self.forced[j][3 + 2 * m] = a / den
-                self.forced[j][4 + 2 * m] = b / den
-                self.raw[j][3 + 2 * m] = a
-                self.raw[j][4 + 2 * m] = b
-        self.coef: list[list[Any]] = [[zero] * L for _ in range(n + 2)]
-        self.coef[n + 1][0] = (n + 1) * self.d
-        for j in range(1, n + 1):
-            c = list(self.forced[j])
-            c[0] = j * self.d
-            x0 = num(row.x0[j - 1])
-            v0 = num(row.v0[j - 1])
-            # t = 0: cos = 1, sin = 0
-            fx = sum(c[3 + 2 * m] for m in range(K))
-            fv = sum(c[4 + 2 * m] * self.F[m + 1] for m in range(K))
-            c[1] = x0 - j * self.d - fx
-            c[2] = (v0 - fv) / self.om
-            self.coef[j] = c
+        self.forced = ra.forced.tolist()
+        self.raw = ra.raw.tolist()
+        self.coef: list[list[Any]] = ra.coef.tolist()
         self.stuck = [False] * (n + 1)
         self.v_stick = num(v_stick)
         # search horizon per (re)search: a gap is mostly re-searched (a neighbour's impact) about
         # every 1/omega to 3/omega at sigma = 0.3, so certifying further ahead is mostly wasted
         # (benchmarks/bench_impact.py: 2/omega is ~1.7x faster than 2 pi/omega)
-        self.chunk = num(chunk) if chunk is not None else 2 / self.om
-        # records
-        self.ev_t: list[Any] = []
-        self.ev_site: list[int] = []
-        self.ev_kind: list[int] = []
-        self.ev_u0: list[Any] = []
-        self.ev_u1: list[Any] = []
-        self.ev_aux: list[Any] = []
-        self.upd_t: list[list[Any]] = [[zero] for _ in range(n + 2)]
-        self.upd_c: list[list[list[Any]]] = [[list(self.coef[j])] for j in range(n + 2)]
+        self.chunk = num(chunk) if chunk is not None else ra.chunk
+        self.log = EventLog(self.coef)
+        self.plastic_at: Any = None   # instant at which the cascade backstop is active
 
     # ---------------------------------------------------------------- trig polynomials
-    def derivs(self, g: list[Any], t: Any) -> tuple[Any, Any, Any, Any]:
+    def derivs(self, g: Any, t: Any) -> tuple[Any, Any, Any, Any]:
         """g, g', g'', g''' at t."""
         D = g[0]
         V = A = J = self.zero
@@ -280,7 +452,7 @@ class _Engine:
                     elif J > tolJ:
                         h = 4 * (J - tolJ) / M4
                     else:
-                        raise RuntimeError(
+                        raise SimulationError(
                             f"degenerate contact at t={t}: value and three derivatives vanish")
                     t = t + h * 3 / 4
                     continue
@@ -312,7 +484,7 @@ class _Engine:
                 h = H
                 H = 2 * H
             t = t + h
-        raise RuntimeError(f"root search did not finish after {_MAXIT} steps (t={t})")
+        raise SimulationError(f"root search did not finish after {_MAXIT} steps (t={t})")
 
     def _graze(self, g: list[Any], t: Any, t0: Any, tolD: Any) -> tuple[Any, int]:
         eps = self.ctx.eps
@@ -404,8 +576,7 @@ class _Engine:
             c[2] = y * sn + yv * cs
         for j in range(max(lo, 1), min(hi, n) + 1):
             self.coef[j] = list(c)
-            self.upd_t[j].append(t)
-            self.upd_c[j].append(self.coef[j])
+            self.log.add_update(j, t, self.coef[j])
 
     def kick(self, lo: int, hi: int, t: Any, dv: Any) -> None:
         cs, sn = self.ctx.cos_sin(self.om * t)
@@ -414,8 +585,7 @@ class _Engine:
             c[1] -= dv * sn / self.om
             c[2] += dv * cs / self.om
             self.coef[j] = c
-            self.upd_t[j].append(t)
-            self.upd_c[j].append(c)
+            self.log.add_update(j, t, c)
 
     def contact_force(self, k: int) -> list[Any]:
         """Contact force at stuck gap ``k`` as a trig polynomial (per unit mass of one pipe)."""
@@ -473,17 +643,24 @@ class _Engine:
         last_t = None
         same = 0
         count = 0
+        bound = cascade_bound(n)
+        stuck = self.stuck
         while True:
-            i = min(range(n + 1), key=nt.__getitem__)   # ties: smallest site
+            # earliest event; at one instant the free gaps (impacts) before the stuck ones
+            # (releases), then the smallest site
+            i = min(range(n + 1), key=lambda k: (nt[k], stuck[k], k))
             te = nt[i]
             if te > t_end:
                 break
             code = nk[i]
             if te == last_t:
                 same += 1
-                if same > 20 * (n + 1) + 100:
-                    raise RuntimeError(
-                        f"more than {same} events at t={te}: degenerate contact configuration")
+                if same == bound:
+                    self.plastic_at = te      # backstop: the rest of this instant is plastic
+                elif same > 2 * bound:
+                    raise SimulationError(
+                        f"more than {same} events at t={te} even with plastic impacts: "
+                        "degenerate contact configuration")
             else:
                 same = 0
                 last_t = te
@@ -493,7 +670,7 @@ class _Engine:
                 continue
             count += 1
             if max_events is not None and count > max_events:
-                raise RuntimeError(f"more than max_events={max_events} events before t_end")
+                raise SimulationError(f"more than max_events={max_events} events before t_end")
             if self.stuck[i]:
                 if code == _GRAZE:           # contact force touches zero: stays stuck
                     schedule(i, t, graze_restart=True)
@@ -523,13 +700,8 @@ class _Engine:
         for g in range(max(lo - 1, 0), min(hi, self.n) + 1):
             schedule(g, t)
 
-    def _record(self, t: Any, site: int, kind: int, u0: Any, u1: Any, aux: Any) -> None:
-        self.ev_t.append(t)
-        self.ev_site.append(site)
-        self.ev_kind.append(kind)
-        self.ev_u0.append(u0)
-        self.ev_u1.append(u1)
-        self.ev_aux.append(aux)
+    def _record(self, t: Any, site: int, kind: EventKind, u0: Any, u1: Any, aux: Any) -> None:
+        self.log.add_event(t, site, kind, u0, u1, aux)
 
     def _impact(self, i: int, t: Any) -> tuple[int, int]:
         eps = self.ctx.eps
@@ -543,7 +715,8 @@ class _Engine:
         mL = self._mass(lo, i)
         mR = self._mass(i + 1, hi)
         r = self.r
-        if abs(u) <= self.v_stick and compressive:
+        plastic = not r or (self.plastic_at is not None and t == self.plastic_at)
+        if abs(u) <= self.v_stick:   # below the chatter threshold: the bodies move together
             self._stick(i, lo, hi, t, r * abs(u), A, mL, mR)
             return lo, hi
         if u >= 0:   # numerically zero relative velocity without compression: a touch
@@ -563,7 +736,7 @@ class _Engine:
         if mR is not None:
             self.kick(i + 1, hi, t, dvR)
         self._record(t, i, IMPACT, u, u1, self.zero)
-        if u1 <= self.v_stick and compressive:
+        if plastic or (u1 <= self.v_stick and compressive):
             self._stick(i, lo, hi, t, abs(u1), A, mL, mR)
         return lo, hi
 
@@ -591,8 +764,11 @@ class _Engine:
     def state(self, t: Any) -> tuple[list[Any], list[Any]]:
         xs, vs = [], []
         for j in range(1, self.n + 1):
-            k = bisect_right(self.upd_t[j], t) - 1
-            x, v, _, _ = self.derivs(self.upd_c[j][max(k, 0)], t)
+            k = bisect_right(self.log.upd_t[j], t) - 1
+            x, v, _, _ = self.derivs(self.log.upd_c[j][max(k, 0)], t)
             xs.append(x)
             vs.append(v)
         return xs, vs
+
+
+_Engine = Engine   # older private name (imported by symhx.impact.ensemble)

@@ -10,7 +10,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK
+from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventLog
 from symhx.impact.model import PipeRow
 
 __all__ = ["GRAZE", "IMPACT", "RELEASE", "STICK", "History"]
@@ -55,6 +55,23 @@ class History:
     _freqs: list[Any] = field(repr=False)
     _wdps: int | None = field(repr=False, default=None)
 
+    @classmethod
+    def from_log(cls, row: PipeRow, t_end: Any, dps: int | None, log: EventLog, freqs: Any,
+                 wdps: int | None = None) -> History:
+        """The history of a run from its :class:`~symhx.impact.engine.EventLog` (float64 arrays
+        when ``dps`` is None, arrays of mpf at working precision ``wdps`` otherwise)."""
+        dtype: Any = float if dps is None else object
+        return cls(
+            row=row, t_end=t_end, dps=dps,
+            times=np.array(log.times, dtype=dtype),
+            sites=np.array(log.sites, dtype=np.int64),
+            kinds=np.array(log.kinds, dtype=np.int8),
+            u_before=np.array(log.u_before, dtype=dtype),
+            u_after=np.array(log.u_after, dtype=dtype),
+            aux=np.array(log.aux, dtype=dtype),
+            _upd_t=log.upd_t, _upd_c=log.upd_c, _freqs=list(freqs), _wdps=wdps,
+        )
+
     def __len__(self) -> int:
         return len(self.times)
 
@@ -97,9 +114,16 @@ class History:
         >>> float(x[0]), float(v[0])
         (1.0, 1.0)
         """
+        from symhx.validation import to_rational
+
+        fr = to_rational(t, "t")
+        if fr is None:
+            raise TypeError(f"t must be a rational or float number, got {t!r}")
+        if not 0 <= fr <= to_rational(self.t_end, "t_end"):
+            raise ValueError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
         if self._wdps is not None:
             with mpmath.workdps(self._wdps):
-                t = mpmath.mpf(t)
+                t = mpmath.mpf(fr.numerator) / fr.denominator
                 return self._state(t, object)
         return self._state(float(t), float)
 
