@@ -275,53 +275,71 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
 
 class EventLog:
     """The typed record of one run, filled by either engine through :meth:`add_event`,
-    :meth:`add_update` (one at a time) or :meth:`extend` (arrays from the C engine).
+    :meth:`add_update` (one at a time, the Python engines) or :meth:`extend` (the arrays of the C
+    engine, kept as they are: no per-event Python work).
 
-    ``times, sites, kinds, u_before, u_after, aux``: one entry per event (``kinds`` are
-    :class:`EventKind`); ``upd_t[j], upd_c[j]``: the times from which pipe ``j`` follows each
-    closed-form coefficient vector (``upd_t[j][0] = 0``).
+    :meth:`event_arrays` gives ``times, sites, kinds, u_before, u_after, aux`` (one entry per
+    event; ``kinds`` are :class:`EventKind` values); :meth:`updates` gives, per pipe ``j``, the
+    times from which it follows each closed-form coefficient vector (the first is ``t = 0``).
     """
 
     def __init__(self, coef0: Any) -> None:
-        self.times: list[Any] = []
-        self.sites: list[int] = []
-        self.kinds: list[int] = []
-        self.u_before: list[Any] = []
-        self.u_after: list[Any] = []
-        self.aux: list[Any] = []
+        self._coef0 = coef0
+        self._events: list[tuple[Any, ...]] = []
         zero = coef0[0][0] * 0
-        self.upd_t: list[list[Any]] = [[zero] for _ in range(len(coef0))]
-        self.upd_c: list[list[Any]] = [[list(c)] for c in coef0]
+        self._upd_t: list[list[Any]] = [[zero] for _ in range(len(coef0))]
+        self._upd_c: list[list[Any]] = [[list(c)] for c in coef0]
+        self._ev_arr: np.ndarray | None = None
+        self._up_arr: np.ndarray | None = None
 
     def __len__(self) -> int:
-        return len(self.times)
+        return len(self._events) if self._ev_arr is None else len(self._ev_arr)
 
     def add_event(self, t: Any, site: int, kind: EventKind, u_before: Any, u_after: Any,
                   aux: Any) -> None:
         """Append one event."""
-        self.times.append(t)
-        self.sites.append(site)
-        self.kinds.append(EventKind(kind))
-        self.u_before.append(u_before)
-        self.u_after.append(u_after)
-        self.aux.append(aux)
+        self._events.append((t, site, EventKind(kind), u_before, u_after, aux))
 
     def add_update(self, j: int, t: Any, coef: Any) -> None:
         """Pipe ``j`` follows the coefficient vector ``coef`` from time ``t`` on."""
-        self.upd_t[j].append(t)
-        self.upd_c[j].append(coef)
+        self._upd_t[j].append(t)
+        self._upd_c[j].append(coef)
 
     def extend(self, events: np.ndarray, updates: np.ndarray) -> None:
-        """Append the C engine's arrays: ``events`` rows ``(t, site, kind, u0, u1, aux)``,
-        ``updates`` rows ``(j, t, coef...)``."""
-        self.times.extend(events[:, 0].tolist())
-        self.sites.extend(events[:, 1].astype(np.int64).tolist())
-        self.kinds.extend(EventKind(int(k)) for k in events[:, 2])
-        self.u_before.extend(events[:, 3].tolist())
-        self.u_after.extend(events[:, 4].tolist())
-        self.aux.extend(events[:, 5].tolist())
-        for rec in updates:
-            self.add_update(int(rec[0]), float(rec[1]), rec[2:].copy())
+        """Take the C engine's arrays (into an empty log): ``events`` rows ``(t, site, kind, u0,
+        u1, aux)``, ``updates`` rows ``(j, t, coef...)``."""
+        if self._events or self._ev_arr is not None or any(len(u) > 1 for u in self._upd_t):
+            raise ValueError("extend needs an empty EventLog")
+        self._ev_arr = events
+        self._up_arr = updates
+
+    def event_arrays(self, dtype: Any = float) -> tuple[np.ndarray, ...]:
+        """``(times, sites, kinds, u_before, u_after, aux)`` as arrays (``dtype`` for the real
+        columns: ``float`` or ``object`` for mpf; sites int64, kinds int8)."""
+        if self._ev_arr is not None:
+            ev = self._ev_arr
+            return (ev[:, 0], ev[:, 1].astype(np.int64), ev[:, 2].astype(np.int8), ev[:, 3],
+                    ev[:, 4], ev[:, 5])
+        cols = list(zip(*self._events, strict=True)) if self._events else [()] * 6
+        return (np.array(cols[0], dtype=dtype), np.array(cols[1], dtype=np.int64),
+                np.array(cols[2], dtype=np.int8), np.array(cols[3], dtype=dtype),
+                np.array(cols[4], dtype=dtype), np.array(cols[5], dtype=dtype))
+
+    def updates(self) -> tuple[list[list[Any]], list[Any]]:
+        """``(upd_t, upd_c)``: per pipe ``j = 0..n+1`` the start times and coefficient vectors
+        of its closed-form pieces (C logs: built on first use, then cached)."""
+        up = self._up_arr
+        if up is not None:
+            coef0 = np.asarray(self._coef0, dtype=float)
+            j = up[:, 0].astype(np.int64)
+            order = np.argsort(j, kind="stable")
+            cuts = np.searchsorted(j[order], np.arange(len(coef0) + 1))
+            for k in range(len(coef0)):
+                sel = order[cuts[k]:cuts[k + 1]]
+                self._upd_t[k] = [0.0] + up[sel, 1].tolist()
+                self._upd_c[k] = np.vstack((coef0[k:k + 1], up[sel, 2:]))  # type: ignore
+            self._up_arr = None
+        return self._upd_t, self._upd_c
 
 
 def cascade_bound(n: int) -> int:
@@ -764,8 +782,9 @@ class Engine:
     def state(self, t: Any) -> tuple[list[Any], list[Any]]:
         xs, vs = [], []
         for j in range(1, self.n + 1):
-            k = bisect_right(self.log.upd_t[j], t) - 1
-            x, v, _, _ = self.derivs(self.log.upd_c[j][max(k, 0)], t)
+            upd_t, upd_c = self.log.updates()
+            k = bisect_right(upd_t[j], t) - 1
+            x, v, _, _ = self.derivs(upd_c[j][max(k, 0)], t)
             xs.append(x)
             vs.append(v)
         return xs, vs

@@ -302,8 +302,9 @@ class PipeRow:
         Non-overlap rule (documented choice; the paper does not say): the forcing is drawn once;
         then pipe by pipe from the left, pipe ``j``'s ``(alpha_0j, beta_0j)`` are redrawn until
         ``x_{j-1}(0) < x_j(0) < (n + 1) d`` (the last pipe also needs room before the right wall).
-        Only when that fails 100 times (the forced displacements alone overlap, e.g. near
-        resonance) is the forcing drawn again, up to 100 times.
+        Only when that fails (100 passes or ``20 max_redraws`` draws in all: the forced
+        displacements alone overlap, e.g. near resonance) is the forcing drawn again, at most 10
+        times; then a ``ValueError`` says so (bounded work: about a second at worst).
         The draw is a pure function of ``seed`` (anything ``numpy.random.default_rng`` accepts).
 
         Parameters
@@ -355,17 +356,19 @@ class PipeRow:
         x0 = np.empty(n)
         v0 = np.empty(n)
         right = (n + 1) * d_f
-        for _forcing in range(100):
+        for _forcing in range(10):
             alpha = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
             beta = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
             f0 = (alpha / den).sum(axis=1)            # forced part at t = 0
             fv0 = (beta * Om / den).sum(axis=1)       # its velocity at t = 0
             ok = False
+            budget = 20 * max_redraws   # draws per forcing: bounded work (~0.2 s) on failure
             for _attempt in range(100):
                 prev = 0.0
                 ok = True
                 for j in range(n):
-                    for _ in range(max_redraws):
+                    for _ in range(min(max_redraws, budget)):
+                        budget -= 1
                         a0, b0 = (rng.normal(0.0, sig0, size=2) if sig0 > 0 else (0.0, 0.0))
                         xj = (j + 1) * d_f + a0 + f0[j]
                         if prev < xj < right:
