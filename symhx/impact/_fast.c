@@ -230,7 +230,7 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
         double tolA = TOLF * EPS * (M2 + M3 * at), tolJ = TOLF * EPS * (M3 + M4 * at);
         if (first) {
             first = 0;
-            if (D < -tolD) { *te = t; return S_NOW; }
+            if (D < -tolD && !(V > tolV)) { *te = t; return S_NOW; }   /* overlap, not opening */
             if (D <= tolD) {
                 double h;
                 if (graze_restart && V < 0) V = 0;

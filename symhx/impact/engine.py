@@ -336,7 +336,7 @@ class EventLog:
             cuts = np.searchsorted(j[order], np.arange(len(coef0) + 1))
             for k in range(len(coef0)):
                 sel = order[cuts[k]:cuts[k + 1]]
-                self._upd_t[k] = [0.0] + up[sel, 1].tolist()
+                self._upd_t[k] = [0.0, *up[sel, 1].tolist()]
                 self._upd_c[k] = np.vstack((coef0[k:k + 1], up[sel, 2:]))  # type: ignore
             self._up_arr = None
         return self._upd_t, self._upd_c
@@ -448,7 +448,7 @@ class Engine:
             tolJ = _TOL * eps * (M3 + M4 * at)
             if first:
                 first = False
-                if D < -tolD:
+                if D < -tolD and not V > tolV:   # overlapping (by rounding) and not opening
                     return t, _NOW
                 if D <= tolD:  # at contact: one-sided start
                     if graze_restart and V < 0:

@@ -10,10 +10,9 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.validation import check_array, to_rational
-
 from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventLog
 from symhx.impact.model import PipeRow
+from symhx.validation import check_array, to_rational
 
 __all__ = ["GRAZE", "IMPACT", "RELEASE", "STICK", "History"]
 
