@@ -23,7 +23,11 @@ def sweep_rows(count, seed):
 
 
 def check_row(k, r, sigma, omega, n, rng, engine="auto"):
-    row = PipeRow.random(n, sigma, seed=k, restitution=r, omega=omega)
+    try:
+        row = PipeRow.random(n, sigma, seed=k, restitution=r, omega=omega)
+    except ValueError as exc:   # near resonance no non-overlapping row exists: not a row
+        assert "could not draw non-overlapping" in str(exc)
+        return None
     t_end = 20.0 / min(omega, 1.0)    # at least ~3 periods of the slowest motion
     h = simulate(row, t_end, engine=engine)
     ts = rng.uniform(0.0, t_end, 1000)
@@ -42,14 +46,20 @@ def check_row(k, r, sigma, omega, n, rng, engine="auto"):
 def test_sweep_1000_random_rows_never_abort_never_overlap():
     t0 = time.perf_counter()
     events = 0
+    undrawable = 0
     failures = []
-    for k, r, sigma, omega, n, rng in sweep_rows(1000, 20261122):
+    for k, r, sigma, omega, n, rng in sweep_rows(1050, 20261122):
         try:
-            events += check_row(k, r, sigma, omega, n, rng)
+            m = check_row(k, r, sigma, omega, n, rng)
         except Exception as exc:  # collect them all, then report
             failures.append((k, r, sigma, omega, n, f"{type(exc).__name__}: {exc}"))
+            continue
+        if m is None:
+            undrawable += 1
+        else:
+            events += m
     assert failures == [], failures[:5]
-    assert events > 10**5
+    assert 1050 - undrawable >= 1000 and events > 10**6
     assert time.perf_counter() - t0 < 120
 
 

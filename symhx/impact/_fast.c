@@ -11,6 +11,7 @@
 #define TOLF 64.0
 #define EPS 2.220446049250313e-16
 #define MAXIT 1000000
+#define CRAWL 100000   /* engine._CRAWL */
 enum { S_NONE, S_CONT, S_ROOT, S_GRAZE, S_NOW };
 enum { K_IMPACT, K_GRAZE, K_STICK, K_RELEASE };
 
@@ -252,7 +253,7 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
                 t = t + h * 0.75;
                 continue;
             }
-        } else if (D <= tolD) {
+        } else if (D <= tolD || it == CRAWL) {   /* or hovering just above zero: a touch */
             if (V < -tolV && (A <= 0 || V * V > 8 * M2 * tolD)) {
                 *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
             }
@@ -511,8 +512,9 @@ static void run(Eng *E) {
         E->hpos[i] = i;
     }
     for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, 0);
-    double last_t = NAN;
+    double last_t = NAN, lg_t = NAN;
     long same = 0;
+    int lg_i = -1;
     while (!E->err) {
         int i = E->heap[0];
         double te = E->nt[i];
@@ -554,8 +556,16 @@ static void run(Eng *E) {
             double D, V, A, J;
             derivs(E, E->gc + (size_t)i * E->L, t, &D, &V, &A, &J);   /* cached gap_poly */
             record_event(E, t, i, K_GRAZE, V, V, D);
-            schedule(E, i, t, 1, 1);
-            continue;
+            if (t == lg_t && i == lg_i) {   /* the same touch again: the pair moves together */
+                int tmp;
+                body(E, i, &lo, &tmp);
+                body(E, i + 1, &tmp, &hi);
+                stick(E, i, lo, hi, t, 0.0, A, i - lo + 1, hi - i);
+            } else {
+                lg_t = t; lg_i = i;
+                schedule(E, i, t, 1, 1);
+                continue;
+            }
         } else {
             impact(E, i, t, &lo, &hi);
         }

@@ -94,6 +94,7 @@ _NONE, _CONT, _ROOT, _GRAZE, _NOW = (Outcome.NONE, Outcome.CONT, Outcome.ROOT, O
                                      Outcome.NOW)
 _TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
 _MAXIT = 1_000_000
+_CRAWL = 100_000   # search steps after which a gap hovering above zero is taken as a touch
 
 
 def work_dps(dps: int) -> int:
@@ -437,7 +438,7 @@ class Engine:
             return ctx.inf, _NONE
         t = t0
         first = True
-        for _ in range(_MAXIT):
+        for _it in range(_MAXIT):
             if t >= t_hi:   # certified up to t (>= t_hi): resume there, nothing is redone
                 return t, _CONT
             D, V, A, J = self.derivs(g, t)
@@ -474,8 +475,9 @@ class Engine:
                             f"degenerate contact at t={t}: value and three derivatives vanish")
                     t = t + h * 3 / 4
                     continue
-            elif D <= tolD:
-                # came within rounding of zero from above (all earlier steps were certified)
+            elif D <= tolD or _it == _CRAWL:
+                # came within rounding of zero from above (all earlier steps were certified), or
+                # crawled _CRAWL steps along a gap that stays just above it: a touch there
                 if V < -tolV and (A <= 0 or V * V > 8 * M2 * tolD):
                     return t + max(D, self.zero) / (-V), _ROOT
                 if A < -tolA and V <= tolV:   # compressed at zero speed: contact now
@@ -662,6 +664,7 @@ class Engine:
         same = 0
         count = 0
         bound = cascade_bound(n)
+        last_graze: tuple[Any, int] | None = None
         stuck = self.stuck
         while True:
             # earliest event; at one instant the free gaps (impacts) before the stuck ones
@@ -702,8 +705,16 @@ class Engine:
                 self._reschedule(lo, hi, t, schedule)
                 continue
             if code == _GRAZE:
-                D, V, _, _ = self.derivs(self.gap_poly(i), t)
+                D, V, A, _ = self.derivs(self.gap_poly(i), t)
                 self._record(t, i, GRAZE, V, V, D)
+                if last_graze == (t, i):   # the same touch again: value, slope and curvature
+                    lo, _ = self.body(i)   # are all rounding; the pair moves together
+                    _, hi = self.body(i + 1)
+                    self._stick(i, lo, hi, t, self.zero, A, self._mass(lo, i),
+                                self._mass(i + 1, hi))
+                    self._reschedule(lo, hi, t, schedule)
+                    continue
+                last_graze = (t, i)
                 schedule(i, t, graze_restart=True)
                 continue
             lo, hi = self._impact(i, t)
