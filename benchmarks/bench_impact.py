@@ -178,7 +178,8 @@ def heyoka_integrator(n: int, restitution: float, omega: float = 1.0, d: float =
     vs = hy.make_vars(*[f"v{j}" for j in range(n)])
     dyn = [(xs[j], vs[j]) for j in range(n)]
     for j in range(n):
-        force = hy.par[2 * j] * hy.cos(Omega * hy.time) + hy.par[2 * j + 1] * hy.sin(Omega * hy.time)
+        force = (hy.par[2 * j] * hy.cos(Omega * hy.time)
+                 + hy.par[2 * j + 1] * hy.sin(Omega * hy.time))
         dyn.append((vs[j], -omega**2 * (xs[j] - (j + 1) * d) + force))
     hits: list = []
     r = restitution

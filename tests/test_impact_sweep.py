@@ -79,3 +79,28 @@ def test_restitution_zero_rows_of_issue_13(seed):
     assert a.kinds.tolist() == b.kinds.tolist() and len(a) > 100
     x, _ = a.states(np.linspace(0, 30, 1001))
     assert np.diff(x, axis=1).min() > -1e-9 and x.min() > -1e-9 and x.max() < 11 + 1e-9
+
+
+@pytest.mark.skipif(not available(), reason="C extension not built")
+@pytest.mark.parametrize("k, r, sigma, omega, n, t_end", [
+    (135, 0.0, 2.4058180914369127, 0.013833246642786902, 65, 900.0),   # a graze repeated at one
+    (287, 0.5, 0.5315617588988469, 0.010694188137113982, 73, 1000.0),  # search crawling above 0
+    (52, 0.5, 0.8913344911888749, 0.0686940776652616, 9, 20.0),        # overlap, already opening
+])
+def test_rows_that_used_to_abort(k, r, sigma, omega, n, t_end):
+    row = PipeRow.random(n, sigma, seed=k, restitution=r, omega=omega)
+    h = simulate(row, t_end)
+    assert np.all(np.diff(h.times) >= 0) and len(h) > 100
+    x, _ = h.states(np.linspace(0.0, t_end, 2001))
+    assert np.diff(x, axis=1).min() > -1e-9 * (n + 1) and x.min() > -1e-9
+
+
+def test_states_vectorised_equals_state():
+    row = PipeRow.random(15, 0.5, seed=3, restitution=0.5, Omega=(0.37, 2.1))
+    h = simulate(row, 20.0)
+    ts = np.linspace(0.0, 20.0, 41)
+    x, v = h.states(ts)
+    for k, t in enumerate(ts):
+        xs, vs = h.state(t)
+        np.testing.assert_allclose(x[k], xs, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(v[k], vs, rtol=0, atol=1e-12)

@@ -512,9 +512,9 @@ static void run(Eng *E) {
         E->hpos[i] = i;
     }
     for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, 0);
-    double last_t = NAN, lg_t = NAN;
+    double last_t = NAN, lg_t = NAN, lm_t = NAN;
     long same = 0;
-    int lg_i = -1;
+    int lg_i = -1, lm_i = -1;
     while (!E->err) {
         int i = E->heap[0];
         double te = E->nt[i];
@@ -556,7 +556,15 @@ static void run(Eng *E) {
             double D, V, A, J;
             derivs(E, E->gc + (size_t)i * E->L, t, &D, &V, &A, &J);   /* cached gap_poly */
             record_event(E, t, i, K_GRAZE, V, V, D);
+            if (t == lm_t && i == lm_i) {   /* merged and released here already: step past */
+                const double *b = E->bc + (size_t)i * 6;   /* bounds of the cached gap_poly */
+                double tolD = TOLF * EPS * (fabs(b[0]) + b[1] + b[2] * fabs(t));
+                double h = b[4] > 0 ? pow(6 * tolD / b[4], 1.0 / 3.0) : E->chunk;   /* = engine.touch_step */
+                schedule(E, i, t + h, 1, 1);
+                continue;
+            }
             if (t == lg_t && i == lg_i) {   /* the same touch again: the pair moves together */
+                lm_t = t; lm_i = i;
                 int tmp;
                 body(E, i, &lo, &tmp);
                 body(E, i + 1, &tmp, &hi);

@@ -524,6 +524,15 @@ class Engine:
             return self.refine(g, t, tg), _ROOT
         return tg, _GRAZE
 
+    def touch_step(self, g: Any, t: Any) -> Any:
+        """``(6 tolD / M3)**(1/3)``: at a contact whose value, slope and curvature are all within
+        rounding, ``|g| <= tolD + M3 s**3 / 6 <= 2 tolD`` on ``[t, t + s]``: nothing there can be
+        told from the touch itself, so the search resumes after it."""
+        eps = self.ctx.eps
+        c0, S, M1, _, M3, _ = self.bounds(g)
+        tolD = _TOL * eps * (abs(c0) + S + M1 * abs(t))
+        return (6 * tolD / M3) ** (self.ctx.num(1) / 3) if M3 else self.chunk
+
     def refine(self, g: list[Any], lo: Any, hi: Any) -> Any:
         """Root of ``g`` in ``[lo, hi]`` where ``g(lo) > 0 > g(hi)`` and ``g`` is monotone.
 
@@ -665,6 +674,7 @@ class Engine:
         count = 0
         bound = cascade_bound(n)
         last_graze: tuple[Any, int] | None = None
+        last_merge: tuple[Any, int] | None = None
         stuck = self.stuck
         while True:
             # earliest event; at one instant the free gaps (impacts) before the stuck ones
@@ -707,7 +717,12 @@ class Engine:
             if code == _GRAZE:
                 D, V, A, _ = self.derivs(self.gap_poly(i), t)
                 self._record(t, i, GRAZE, V, V, D)
+                if last_merge == (t, i):   # merged and released at this instant already:
+                    g = self.gap_poly(i)   # step past the touch by the rounding time scale
+                    schedule(i, t + self.touch_step(g, t), graze_restart=True)
+                    continue
                 if last_graze == (t, i):   # the same touch again: value, slope and curvature
+                    last_merge = (t, i)
                     lo, _ = self.body(i)   # are all rounding; the pair moves together
                     _, hi = self.body(i + 1)
                     self._stick(i, lo, hi, t, self.zero, A, self._mass(lo, i),
