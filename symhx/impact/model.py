@@ -186,9 +186,10 @@ class PipeRow:
     >>> row.gap0()
     array([0.5, 1.5])
     >>> PipeRow(1, restitution=1, Omega=(1.0,), alpha=[[0.0]], beta=[[0.0]], x0=[1], v0=[0])
+    ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: Omega[0] = 1.0 equals omega = 1.0 (resonance): the forced response is unbounded
+    ValueError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... choose Omega[i] != omega
     """
 
     n: int
