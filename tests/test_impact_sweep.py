@@ -60,7 +60,7 @@ def test_sweep_1000_random_rows_never_abort_never_overlap():
             events += m
     assert failures == [], failures[:5]
     assert 1050 - undrawable >= 1000 and events > 10**6
-    assert time.perf_counter() - t0 < 120
+    assert time.perf_counter() - t0 < 240   # ~110 s measured on 2 shared cores
 
 
 @pytest.mark.parametrize("k", [0, 5, 10, 15, 20])   # r = 0 rows: the Python float engine too
