@@ -251,7 +251,7 @@ def test_bad_n_and_t_end():
     with pytest.raises(ValueError, match="t_end"):
         simulate(row, float("nan"))
     with pytest.raises(ValueError, match="dps"):
-        simulate(row, 1.0, dps=2)
+        simulate(row, 1.0, dps=0)
 
 
 def test_random_rows_reproducible_and_valid():

@@ -8,7 +8,7 @@
 * :class:`History` -- the events (impacts, grazes, sticking, release) and the state at any time.
 """
 
-from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK
+from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventKind
 from symhx.impact.ensemble import (
     EnsembleResult,
     SigmaStats,
@@ -16,7 +16,7 @@ from symhx.impact.ensemble import (
     free_flight_closure_fraction,
 )
 from symhx.impact.history import History
-from symhx.impact.model import SQRT2, PipeRow
+from symhx.impact.model import SQRT2, PipeRow, SimulationError
 from symhx.impact.simulate import default_v_stick, simulate, work_dps
 
 __all__ = [
@@ -27,9 +27,11 @@ __all__ = [
     "SQRT2",
     "STICK",
     "EnsembleResult",
+    "EventKind",
     "History",
     "PipeRow",
     "SigmaStats",
+    "SimulationError",
     "default_v_stick",
     "ensemble",
     "free_flight_closure_fraction",

@@ -11,6 +11,7 @@
 #define TOLF 64.0
 #define EPS 2.220446049250313e-16
 #define MAXIT 1000000
+#define CRAWL 100000   /* engine._CRAWL */
 enum { S_NONE, S_CONT, S_ROOT, S_GRAZE, S_NOW };
 enum { K_IMPACT, K_GRAZE, K_STICK, K_RELEASE };
 
@@ -36,6 +37,7 @@ typedef struct {
     double *F2, *F3;          /* F_m^2, F_m^3 */
     double *tc;               /* trig cache: 2 slots of [cos(F_m t)..., sin(F_m t)...] */
     double tc_t[2], pin;      /* slot times; slot 0 holds the pinned (current event) time */
+    double plastic_at;        /* instant at which the cascade backstop is active (else NAN) */
     int err;
     char errmsg[200];
 } Eng;
@@ -229,7 +231,7 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
         double tolA = TOLF * EPS * (M2 + M3 * at), tolJ = TOLF * EPS * (M3 + M4 * at);
         if (first) {
             first = 0;
-            if (D < -tolD) { *te = t; return S_NOW; }
+            if (D < -tolD && !(V > tolV)) { *te = t; return S_NOW; }   /* overlap, not opening */
             if (D <= tolD) {
                 double h;
                 if (graze_restart && V < 0) V = 0;
@@ -251,7 +253,7 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
                 t = t + h * 0.75;
                 continue;
             }
-        } else if (D <= tolD) {
+        } else if (D <= tolD || it == CRAWL) {   /* or hovering just above zero: a touch */
             if (V < -tolV && (A <= 0 || V * V > 8 * M2 * tolD)) {
                 *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
             }
@@ -403,7 +405,10 @@ static void gap_poly(const Eng *E, int i, double *out) {
  * re-searched sites move in it: O(log n) per event instead of a scan of all n + 1 sites. */
 static inline int hless(const Eng *E, int a, int b) {
     double ta = E->nt[a], tb = E->nt[b];
-    return ta < tb || (ta == tb && a < b);
+    if (ta != tb) return ta < tb;
+    /* one instant: free gaps (impacts) before stuck ones (releases), then the smallest site */
+    if (E->stuck[a] != E->stuck[b]) return E->stuck[a] < E->stuck[b];
+    return a < b;
 }
 
 /* move site i to its place after its key changed: sift up or down through a hole (the moved
@@ -462,6 +467,7 @@ static void stick(Eng *E, int i, int lo, int hi, double t, double u, double A, i
         Vel = (mL * vL + mR * vR) / (double)(mL + mR);
     }
     E->stuck[i] = 1;
+    hfix(E, i);
     set_motion(E, lo, hi, t, X, Vel);
     record_event(E, t, i, K_STICK, -u, 0.0, aux);
 }
@@ -479,7 +485,8 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi) {
     int wallL = (lo == 0), wallR = (hi == E->n + 1);
     int mL = i - lo + 1, mR = hi - i;
     double r = E->r;
-    if (fabs(u) <= E->vstick && compressive) {
+    int plastic = (r == 0.0) || (t == E->plastic_at);
+    if (fabs(u) <= E->vstick) {   /* below the chatter threshold: the bodies move together */
         stick(E, i, lo, hi, t, r * fabs(u), A, mL, mR);
         return;
     }
@@ -494,7 +501,7 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi) {
     if (!wallL) kick(E, lo, i, t, dvL);
     if (!wallR) kick(E, i + 1, hi, t, dvR);
     record_event(E, t, i, K_IMPACT, u, u1, 0.0);
-    if (u1 <= E->vstick && compressive) stick(E, i, lo, hi, t, fabs(u1), A, mL, mR);
+    if (plastic || (u1 <= E->vstick && compressive)) stick(E, i, lo, hi, t, fabs(u1), A, mL, mR);
 }
 
 static void run(Eng *E) {
@@ -505,18 +512,22 @@ static void run(Eng *E) {
         E->hpos[i] = i;
     }
     for (int i = 0; i <= n; i++) schedule(E, i, 0.0, 0, 0);
-    double last_t = NAN;
+    double last_t = NAN, lg_t = NAN, lm_t = NAN;
     long same = 0;
+    int lg_i = -1, lm_i = -1;
     while (!E->err) {
         int i = E->heap[0];
         double te = E->nt[i];
         if (!(te <= E->tend)) break;
         int code = E->nk[i];
         if (te == last_t) {
-            if (++same > 20L * (n + 1) + 100) {
+            long bound = 20L * (n + 1) + 100;   /* engine.cascade_bound */
+            if (++same == bound) E->plastic_at = te;   /* backstop: rest of the instant plastic */
+            else if (same > 2 * bound) {
                 E->err = 1;
                 snprintf(E->errmsg, sizeof E->errmsg,
-                         "too many events at t=%.17g: degenerate contact configuration", te);
+                         "more than %ld events at t=%.17g even with plastic impacts: degenerate "
+                         "contact configuration", same, te);
                 break;
             }
         } else { same = 0; last_t = te; }
@@ -537,6 +548,7 @@ static void run(Eng *E) {
             double X = 0, Vel = 0;
             if (lo != 0) pos_vel(E, lo, t, &X, &Vel);
             E->stuck[i] = 0;
+            hfix(E, i);
             set_motion(E, lo, i, t, X, Vel);
             set_motion(E, i + 1, hi, t, X, Vel);
             record_event(E, t, i, K_RELEASE, 0.0, 0.0, t);
@@ -544,8 +556,24 @@ static void run(Eng *E) {
             double D, V, A, J;
             derivs(E, E->gc + (size_t)i * E->L, t, &D, &V, &A, &J);   /* cached gap_poly */
             record_event(E, t, i, K_GRAZE, V, V, D);
-            schedule(E, i, t, 1, 1);
-            continue;
+            if (t == lm_t && i == lm_i) {   /* merged and released here already: step past */
+                const double *b = E->bc + (size_t)i * 6;   /* bounds of the cached gap_poly */
+                double tolD = TOLF * EPS * (fabs(b[0]) + b[1] + b[2] * fabs(t));
+                double h = b[4] > 0 ? pow(6 * tolD / b[4], 1.0 / 3.0) : E->chunk;   /* = engine.touch_step */
+                schedule(E, i, t + h, 1, 1);
+                continue;
+            }
+            if (t == lg_t && i == lg_i) {   /* the same touch again: the pair moves together */
+                lm_t = t; lm_i = i;
+                int tmp;
+                body(E, i, &lo, &tmp);
+                body(E, i + 1, &tmp, &hi);
+                stick(E, i, lo, hi, t, 0.0, A, i - lo + 1, hi - i);
+            } else {
+                lg_t = t; lg_i = i;
+                schedule(E, i, t, 1, 1);
+                continue;
+            }
         } else {
             impact(E, i, t, &lo, &hi);
         }
@@ -593,6 +621,7 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
     E.tc = malloc(4 * E.nf * sizeof(double));
     E.tc_t[0] = E.tc_t[1] = NAN;
     E.pin = 0.0;
+    E.plastic_at = NAN;
     for (int m = 0; m < E.nf; m++) {
         E.F2[m] = E.F[m] * E.F[m];
         E.F3[m] = E.F2[m] * E.F[m];

@@ -36,34 +36,116 @@ Events
 ------
 ``IMPACT``: Newton restitution ``u -> -r u`` between the two bodies (a body is a pipe or a stuck
 cluster; masses count pipes, walls are infinitely heavy).  ``GRAZE``: see above.  ``STICK``: chatter
-ends -- when the relative velocity at a contact is below ``v_stick`` while the free relative
-acceleration pushes the pair together, the two bodies merge (momentum kept) and move as one in
-closed form; the event's ``aux`` is the estimated accumulation time of the skipped impacts
-``t + 2 r |u| / (|Delta''| (1 - r))``.  ``RELEASE``: a stuck contact opens when its contact force
-(itself a trigonometric polynomial with the forcing frequencies only) crosses zero.
+ends -- when the relative velocity at a contact is below ``v_stick`` (after an impact: while the
+free relative acceleration pushes the pair together), the two bodies merge (momentum kept) and
+move as one in closed form; the event's ``aux`` is the estimated accumulation time of the skipped
+impacts ``t + 2 r |u| / (|Delta''| (1 - r))``.  ``RELEASE``: a stuck contact opens when its
+contact force (itself a trigonometric polynomial with the forcing frequencies only) crosses zero.
 
-Simultaneous events are processed in increasing time; exact ties in increasing site order, each
-pairwise; a contact left approaching by an earlier one fires at the same instant (sequential
-pairwise rule -- for ``r = 1`` and equal masses it reproduces Newton's cradle).
+Plastic and slow contacts: an impact slower than ``v_stick``, and every impact with ``r = 0``,
+merges the two bodies (``STICK``); the merged body's contact force then decides (``RELEASE`` as
+soon as it is tensile, possibly at the same instant), so an ``r = 0`` cascade through a chain of
+touching pipes is resolved in one merge per contact instead of a velocity halved forever.
+
+Simultaneous events are processed in increasing time; at one instant the free gaps (impacts)
+before the stuck ones (releases), then in increasing site order, each pairwise; a contact left
+approaching by an earlier one fires at the same instant (sequential pairwise rule -- for ``r = 1``
+and equal masses it reproduces Newton's cradle).
+
+Every cluster ends (bounds on the number of events)
+---------------------------------------------------
+* At one instant: after :func:`cascade_bound` ``= 20 (n + 1) + 100`` events every further impact
+  of that instant is plastic (merges two bodies: at most ``n + 1`` more, and a release leaves both
+  sides with the same velocity, so it creates no approaching pair); a touch (graze) repeated at
+  one site merges the pair once, and a second repetition resumes the search after
+  :meth:`Engine.touch_step`.  Twice the bound raises :class:`SimulationError` (never reached on
+  the 1050-row sweep of the tests).
+* Between instants, one site: after an impact the pair separates at ``|u'| > v_stick`` (slower
+  ones stick), and ``|Delta''| <= M2`` (the site's bound), so the same gap cannot close again
+  within ``2 v_stick / M2`` unless a neighbour's event changes it; a graze restart advances by at
+  least the touch step ``(6 tolD / M3)**(1/3)``; a search that crawls ``_CRAWL`` steps just
+  above zero is taken as a touch.  Hence an undisturbed site has at most
+  ``1 + T max(M2 / (2 v_stick), 1 / touch_step)`` events in a time ``T``; events forced by
+  neighbours are counted at the neighbours (a chain of them at one instant is the first case).
+  This is an argument, not a machine-checked proof, for the interplay of several sites.
 """
 
 from __future__ import annotations
 
 import math
 from bisect import bisect_right
+from dataclasses import dataclass
+from enum import IntEnum
 from typing import Any
 
 import mpmath
+import numpy as np
 
-from symhx.impact.model import PipeRow
+from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 
-IMPACT, GRAZE, STICK, RELEASE = 0, 1, 2, 3
+__all__ = ["GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine", "EventKind", "EventLog",
+           "FloatContext", "MPContext", "Outcome", "RowArrays", "default_v_stick", "row_arrays",
+           "work_dps"]
+
+
+class EventKind(IntEnum):
+    """Kinds of recorded events (the values are those stored in :attr:`History.kinds`)."""
+
+    IMPACT = 0    #: Newton restitution at a closing contact
+    GRAZE = 1     #: tangential touch: zero relative velocity, nothing changes
+    STICK = 2     #: the two bodies merge (chatter ended, or a plastic impact)
+    RELEASE = 3   #: a stuck contact opens (its contact force turned tensile)
+
+
+IMPACT, GRAZE, STICK, RELEASE = (EventKind.IMPACT, EventKind.GRAZE, EventKind.STICK,
+                                 EventKind.RELEASE)
 KIND_NAMES = ("impact", "graze", "stick", "release")
 
-# search outcome codes
-_NONE, _CONT, _ROOT, _GRAZE, _NOW = 0, 1, 2, 3, 4
+
+class Outcome(IntEnum):
+    """Outcome of the certified search of one site (:meth:`Engine.search`)."""
+
+    NONE = 0    #: never closes (time is inf)
+    CONT = 1    #: no root before the returned time (certified up to it): resume there
+    ROOT = 2    #: a crossing (impact) at the returned time
+    GRAZE = 3   #: a tangential touch at the returned time
+    NOW = 4     #: at contact and approaching at the start time
+
+
+# private aliases (older names, still imported by symhx.impact.ensemble)
+_NONE, _CONT, _ROOT, _GRAZE, _NOW = (Outcome.NONE, Outcome.CONT, Outcome.ROOT, Outcome.GRAZE,
+                                     Outcome.NOW)
 _TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
 _MAXIT = 1_000_000
+_CRAWL = 100_000   # search steps after which a gap hovering above zero is taken as a touch
+
+
+def work_dps(dps: int) -> int:
+    """Working precision of the reference engine for ``dps`` wanted digits: ``2 dps + 10``.
+
+    Doubling makes grazing-type contacts (whose velocity is the square root of the gap's
+    rounding) accurate to ``dps`` digits too.
+
+    >>> work_dps(30)
+    70
+    """
+    return 2 * dps + 10
+
+
+def default_v_stick(row: PipeRow, dps: int | None) -> float:
+    """Relative speed below which a contact sticks (chatter ends): ``omega d 10**(-dps/2 - 1)``.
+
+    The position error of sticking at speed ``u`` instead of completing the chatter is
+    ``u**2 / |Delta''| ~ 10**-dps``.  Float64 uses ``dps = 10`` (``1e-6 omega d``): slower
+    bounces last ``2u/|Delta''|`` and their roots are below the rounding of the gap, so float64
+    cannot resolve them anyway.
+
+    >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[0.0])
+    >>> default_v_stick(row, None), default_v_stick(row, 20)
+    (1e-06, 1e-11)
+    """
+    digits = 10 if dps is None else dps
+    return row.omega * row.d * 10.0 ** (-digits / 2 - 1)
 
 
 def _cos_sin(x: float) -> tuple[float, float]:
@@ -99,7 +181,9 @@ def _cos_sin(x: float) -> tuple[float, float]:
     return sv, -cv
 
 
-class _FloatCtx:
+class FloatContext:
+    """Float64 arithmetic for :class:`Engine` (``num`` rounds an exact value to float64)."""
+
     is_mp = False
     eps = 2.0**-52
     inf = math.inf
@@ -115,7 +199,10 @@ class _FloatCtx:
     cos_sin = staticmethod(_cos_sin)
 
 
-class _MPCtx:
+class MPContext:
+    """mpmath arithmetic at the current precision (create and use inside ``workdps``); ``num``
+    rounds an exact value (``Fraction``, :data:`~symhx.impact.SQRT2`, ...) correctly."""
+
     is_mp = True
 
     def __init__(self) -> None:  # call inside workdps
@@ -124,7 +211,7 @@ class _MPCtx:
 
     @staticmethod
     def num(x: Any) -> mpmath.mpf:
-        return mpmath.mpf(x)
+        return exact_to_mpf(x)
 
     cos = staticmethod(mpmath.cos)
     sin = staticmethod(mpmath.sin)
@@ -132,67 +219,194 @@ class _MPCtx:
     cos_sin = staticmethod(mpmath.cos_sin)
 
 
-class _Engine:
+_FloatCtx, _MPCtx = FloatContext, MPContext   # older private names (imported by ensemble.py)
+
+
+@dataclass
+class RowArrays:
+    """The closed-form data of a row in one arithmetic (the only row-to-arrays conversion).
+
+    ``F``: frequencies ``(omega, Omega_1, ...)``; ``coef``, ``forced``, ``raw``: arrays of shape
+    ``(n + 2, L)`` (``L = 3 + 2 K``, rows ``0`` and ``n + 1`` are the walls) holding each pipe's
+    motion ``[c0, a_0, b_0, a_1, b_1, ...]`` at ``t = 0`` (eq. 21), its forced particular solution
+    and the raw force amplitudes ``alpha_ij, beta_ij`` (eq. 20); ``chunk``: search horizon.
+    """
+
+    F: np.ndarray
+    coef: np.ndarray
+    forced: np.ndarray
+    raw: np.ndarray
+    chunk: Any
+
+
+def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
+    """Closed-form arrays of ``row`` in the arithmetic ``ctx`` (float64 arrays for
+    :class:`FloatContext`; object arrays of mpf from the row's *exact* inputs for
+    :class:`MPContext`, inside the caller's ``workdps``).
+
+    Both engines use it: the float64 arrays are bit-identical whatever engine asks.
+
+    >>> row = PipeRow.random(3, 0.1, seed=3, Omega=(0.37, 2.1), d=1.7)
+    >>> ra = row_arrays(row, FloatContext())
+    >>> ra.coef.shape, float(ra.coef[4, 0]) == 4 * 1.7
+    ((5, 7), True)
+    """
+    n, K = row.n, len(row.Omega)
+    if ctx.is_mp:
+        num = ctx.num
+        dtype: Any = object
+        om, d = num(row.exact("omega")), num(row.exact("d"))
+        F = np.array([om] + [num(w) for w in row.exact("Omega")], dtype=object)
+        alpha = np.vectorize(num, otypes=[object])(row.exact("alpha"))
+        beta = np.vectorize(num, otypes=[object])(row.exact("beta"))
+        x0 = np.vectorize(num, otypes=[object])(row.exact("x0"))
+        v0 = np.vectorize(num, otypes=[object])(row.exact("v0"))
+        zero = num(0)
+    else:
+        dtype = np.float64
+        om, d = float(row.omega), float(row.d)
+        F = np.array([om] + [float(w) for w in row.Omega])
+        alpha, beta = row.alpha, row.beta
+        x0, v0 = row.x0, row.v0
+        zero = 0.0
+    L = 3 + 2 * K
+    om2 = om * om
+    forced = np.full((n + 2, L), zero, dtype=dtype)
+    raw = np.full((n + 2, L), zero, dtype=dtype)
+    coef = np.full((n + 2, L), zero, dtype=dtype)
+    fx: Any = 0
+    fv: Any = 0
+    for m in range(K):
+        a = alpha[:, m]
+        b = beta[:, m]
+        den = om2 - F[m + 1] ** 2
+        fa = a / den
+        fb = b / den
+        forced[1:n + 1, 3 + 2 * m] = fa
+        forced[1:n + 1, 4 + 2 * m] = fb
+        raw[1:n + 1, 3 + 2 * m] = a
+        raw[1:n + 1, 4 + 2 * m] = b
+        fx = fa if m == 0 else fx + fa
+        fv = fb * F[m + 1] if m == 0 else fv + fb * F[m + 1]
+    jd = np.arange(1, n + 1, dtype=dtype) * d
+    coef[1:n + 1] = forced[1:n + 1]
+    coef[1:n + 1, 0] = jd
+    coef[1:n + 1, 1] = x0 - jd - fx
+    coef[1:n + 1, 2] = (v0 - fv) / om
+    coef[n + 1, 0] = (n + 1) * d
+    return RowArrays(F=F, coef=coef, forced=forced, raw=raw, chunk=2 / om)
+
+
+class EventLog:
+    """The typed record of one run, filled by either engine through :meth:`add_event`,
+    :meth:`add_update` (one at a time, the Python engines) or :meth:`extend` (the arrays of the C
+    engine, kept as they are: no per-event Python work).
+
+    :meth:`event_arrays` gives ``times, sites, kinds, u_before, u_after, aux`` (one entry per
+    event; ``kinds`` are :class:`EventKind` values); :meth:`updates` gives, per pipe ``j``, the
+    times from which it follows each closed-form coefficient vector (the first is ``t = 0``).
+    """
+
+    def __init__(self, coef0: Any) -> None:
+        self._coef0 = coef0
+        self._events: list[tuple[Any, ...]] = []
+        zero = coef0[0][0] * 0
+        self._upd_t: list[list[Any]] = [[zero] for _ in range(len(coef0))]
+        self._upd_c: list[list[Any]] = [[list(c)] for c in coef0]
+        self._ev_arr: np.ndarray | None = None
+        self._up_arr: np.ndarray | None = None
+
+    def __len__(self) -> int:
+        return len(self._events) if self._ev_arr is None else len(self._ev_arr)
+
+    def add_event(self, t: Any, site: int, kind: EventKind, u_before: Any, u_after: Any,
+                  aux: Any) -> None:
+        """Append one event."""
+        self._events.append((t, site, EventKind(kind), u_before, u_after, aux))
+
+    def add_update(self, j: int, t: Any, coef: Any) -> None:
+        """Pipe ``j`` follows the coefficient vector ``coef`` from time ``t`` on."""
+        self._upd_t[j].append(t)
+        self._upd_c[j].append(coef)
+
+    def extend(self, events: np.ndarray, updates: np.ndarray) -> None:
+        """Take the C engine's arrays (into an empty log): ``events`` rows ``(t, site, kind, u0,
+        u1, aux)``, ``updates`` rows ``(j, t, coef...)``."""
+        if self._events or self._ev_arr is not None or any(len(u) > 1 for u in self._upd_t):
+            raise ValueError("extend needs an empty EventLog")
+        self._ev_arr = events
+        self._up_arr = updates
+
+    def event_arrays(self, dtype: Any = float) -> tuple[np.ndarray, ...]:
+        """``(times, sites, kinds, u_before, u_after, aux)`` as arrays (``dtype`` for the real
+        columns: ``float`` or ``object`` for mpf; sites int64, kinds int8)."""
+        if self._ev_arr is not None:
+            ev = self._ev_arr
+            return (ev[:, 0], ev[:, 1].astype(np.int64), ev[:, 2].astype(np.int8), ev[:, 3],
+                    ev[:, 4], ev[:, 5])
+        cols = list(zip(*self._events, strict=True)) if self._events else [()] * 6
+        return (np.array(cols[0], dtype=dtype), np.array(cols[1], dtype=np.int64),
+                np.array(cols[2], dtype=np.int8), np.array(cols[3], dtype=dtype),
+                np.array(cols[4], dtype=dtype), np.array(cols[5], dtype=dtype))
+
+    def updates(self) -> tuple[list[list[Any]], list[Any]]:
+        """``(upd_t, upd_c)``: per pipe ``j = 0..n+1`` the start times and coefficient vectors
+        of its closed-form pieces (C logs: built on first use, then cached)."""
+        up = self._up_arr
+        if up is not None:
+            coef0 = np.asarray(self._coef0, dtype=float)
+            j = up[:, 0].astype(np.int64)
+            order = np.argsort(j, kind="stable")
+            cuts = np.searchsorted(j[order], np.arange(len(coef0) + 1))
+            for k in range(len(coef0)):
+                sel = order[cuts[k]:cuts[k + 1]]
+                self._upd_t[k] = [0.0, *up[sel, 1].tolist()]
+                self._upd_c[k] = np.vstack((coef0[k:k + 1], up[sel, 2:]))  # type: ignore
+            self._up_arr = None
+        return self._upd_t, self._upd_c
+
+
+def cascade_bound(n: int) -> int:
+    """Events at one instant after which the rest of the instant is resolved plastically
+    (``20 (n + 1) + 100``; twice as many raise :class:`SimulationError`)."""
+    return 20 * (n + 1) + 100
+
+
+class Engine:
+    """The event-driven engine in the arithmetic ``ctx`` (:class:`FloatContext` or
+    :class:`MPContext`); :meth:`run` fills :attr:`log` (an :class:`EventLog`)."""
+
     def __init__(self, row: PipeRow, ctx: Any, *, v_stick: Any, chunk: float | None = None):
         self.row = row
         self.ctx = ctx
         num = ctx.num
         n = row.n
         self.n = n
-        self.r = num(row.restitution)
-        self.om = num(row.omega)
-        self.d = num(row.d)
-        self.F = [self.om] + [num(w) for w in row.Omega]
+        self.r = num(row.exact("restitution")) if ctx.is_mp else float(row.restitution)
+        ra = row_arrays(row, ctx)
+        self.om = ra.F[0]
+        self.d = num(row.exact("d")) if ctx.is_mp else float(row.d)
+        self.F = ra.F.tolist()
         K = len(row.Omega)
         self.K = K
         L = 3 + 2 * K
         self.L = L
-        om2 = self.om * self.om
         zero = num(0)
         self.zero = zero
-        # forced particular solution and raw force of each pipe (walls: zero)
-        self.forced = [[zero] * L for _ in range(n + 2)]
-        self.raw = [[zero] * L for _ in range(n + 2)]
-        for j in range(1, n + 1):
-            for m in range(K):
-                a = num(row.alpha[j - 1][m])
-                b = num(row.beta[j - 1][m])
-                den = om2 - self.F[m + 1] ** 2
-                self.forced[j][3 + 2 * m] = a / den
-                self.forced[j][4 + 2 * m] = b / den
-                self.raw[j][3 + 2 * m] = a
-                self.raw[j][4 + 2 * m] = b
-        self.coef: list[list[Any]] = [[zero] * L for _ in range(n + 2)]
-        self.coef[n + 1][0] = (n + 1) * self.d
-        for j in range(1, n + 1):
-            c = list(self.forced[j])
-            c[0] = j * self.d
-            x0 = num(row.x0[j - 1])
-            v0 = num(row.v0[j - 1])
-            # t = 0: cos = 1, sin = 0
-            fx = sum(c[3 + 2 * m] for m in range(K))
-            fv = sum(c[4 + 2 * m] * self.F[m + 1] for m in range(K))
-            c[1] = x0 - j * self.d - fx
-            c[2] = (v0 - fv) / self.om
-            self.coef[j] = c
+        self.forced = ra.forced.tolist()
+        self.raw = ra.raw.tolist()
+        self.coef: list[list[Any]] = ra.coef.tolist()
         self.stuck = [False] * (n + 1)
         self.v_stick = num(v_stick)
         # search horizon per (re)search: a gap is mostly re-searched (a neighbour's impact) about
         # every 1/omega to 3/omega at sigma = 0.3, so certifying further ahead is mostly wasted
         # (benchmarks/bench_impact.py: 2/omega is ~1.7x faster than 2 pi/omega)
-        self.chunk = num(chunk) if chunk is not None else 2 / self.om
-        # records
-        self.ev_t: list[Any] = []
-        self.ev_site: list[int] = []
-        self.ev_kind: list[int] = []
-        self.ev_u0: list[Any] = []
-        self.ev_u1: list[Any] = []
-        self.ev_aux: list[Any] = []
-        self.upd_t: list[list[Any]] = [[zero] for _ in range(n + 2)]
-        self.upd_c: list[list[list[Any]]] = [[list(self.coef[j])] for j in range(n + 2)]
+        self.chunk = num(chunk) if chunk is not None else ra.chunk
+        self.log = EventLog(self.coef)
+        self.plastic_at: Any = None   # instant at which the cascade backstop is active
 
     # ---------------------------------------------------------------- trig polynomials
-    def derivs(self, g: list[Any], t: Any) -> tuple[Any, Any, Any, Any]:
+    def derivs(self, g: Any, t: Any) -> tuple[Any, Any, Any, Any]:
         """g, g', g'', g''' at t."""
         D = g[0]
         V = A = J = self.zero
@@ -247,7 +461,7 @@ class _Engine:
             return ctx.inf, _NONE
         t = t0
         first = True
-        for _ in range(_MAXIT):
+        for _it in range(_MAXIT):
             if t >= t_hi:   # certified up to t (>= t_hi): resume there, nothing is redone
                 return t, _CONT
             D, V, A, J = self.derivs(g, t)
@@ -258,7 +472,7 @@ class _Engine:
             tolJ = _TOL * eps * (M3 + M4 * at)
             if first:
                 first = False
-                if D < -tolD:
+                if D < -tolD and not V > tolV:   # overlapping (by rounding) and not opening
                     return t, _NOW
                 if D <= tolD:  # at contact: one-sided start
                     if graze_restart and V < 0:
@@ -280,12 +494,13 @@ class _Engine:
                     elif J > tolJ:
                         h = 4 * (J - tolJ) / M4
                     else:
-                        raise RuntimeError(
+                        raise SimulationError(
                             f"degenerate contact at t={t}: value and three derivatives vanish")
                     t = t + h * 3 / 4
                     continue
-            elif D <= tolD:
-                # came within rounding of zero from above (all earlier steps were certified)
+            elif D <= tolD or _it == _CRAWL:
+                # came within rounding of zero from above (all earlier steps were certified), or
+                # crawled _CRAWL steps along a gap that stays just above it: a touch there
                 if V < -tolV and (A <= 0 or V * V > 8 * M2 * tolD):
                     return t + max(D, self.zero) / (-V), _ROOT
                 if A < -tolA and V <= tolV:   # compressed at zero speed: contact now
@@ -312,7 +527,7 @@ class _Engine:
                 h = H
                 H = 2 * H
             t = t + h
-        raise RuntimeError(f"root search did not finish after {_MAXIT} steps (t={t})")
+        raise SimulationError(f"root search did not finish after {_MAXIT} steps (t={t})")
 
     def _graze(self, g: list[Any], t: Any, t0: Any, tolD: Any) -> tuple[Any, int]:
         eps = self.ctx.eps
@@ -331,6 +546,15 @@ class _Engine:
         if Dg < -tolD and tg > t:
             return self.refine(g, t, tg), _ROOT
         return tg, _GRAZE
+
+    def touch_step(self, g: Any, t: Any) -> Any:
+        """``(6 tolD / M3)**(1/3)``: at a contact whose value, slope and curvature are all within
+        rounding, ``|g| <= tolD + M3 s**3 / 6 <= 2 tolD`` on ``[t, t + s]``: nothing there can be
+        told from the touch itself, so the search resumes after it."""
+        eps = self.ctx.eps
+        c0, S, M1, _, M3, _ = self.bounds(g)
+        tolD = _TOL * eps * (abs(c0) + S + M1 * abs(t))
+        return (6 * tolD / M3) ** (self.ctx.num(1) / 3) if M3 else self.chunk
 
     def refine(self, g: list[Any], lo: Any, hi: Any) -> Any:
         """Root of ``g`` in ``[lo, hi]`` where ``g(lo) > 0 > g(hi)`` and ``g`` is monotone.
@@ -404,8 +628,7 @@ class _Engine:
             c[2] = y * sn + yv * cs
         for j in range(max(lo, 1), min(hi, n) + 1):
             self.coef[j] = list(c)
-            self.upd_t[j].append(t)
-            self.upd_c[j].append(self.coef[j])
+            self.log.add_update(j, t, self.coef[j])
 
     def kick(self, lo: int, hi: int, t: Any, dv: Any) -> None:
         cs, sn = self.ctx.cos_sin(self.om * t)
@@ -414,8 +637,7 @@ class _Engine:
             c[1] -= dv * sn / self.om
             c[2] += dv * cs / self.om
             self.coef[j] = c
-            self.upd_t[j].append(t)
-            self.upd_c[j].append(c)
+            self.log.add_update(j, t, c)
 
     def contact_force(self, k: int) -> list[Any]:
         """Contact force at stuck gap ``k`` as a trig polynomial (per unit mass of one pipe)."""
@@ -473,17 +695,26 @@ class _Engine:
         last_t = None
         same = 0
         count = 0
+        bound = cascade_bound(n)
+        last_graze: tuple[Any, int] | None = None
+        last_merge: tuple[Any, int] | None = None
+        stuck = self.stuck
         while True:
-            i = min(range(n + 1), key=nt.__getitem__)   # ties: smallest site
+            # earliest event; at one instant the free gaps (impacts) before the stuck ones
+            # (releases), then the smallest site
+            i = min(range(n + 1), key=lambda k: (nt[k], stuck[k], k))
             te = nt[i]
             if te > t_end:
                 break
             code = nk[i]
             if te == last_t:
                 same += 1
-                if same > 20 * (n + 1) + 100:
-                    raise RuntimeError(
-                        f"more than {same} events at t={te}: degenerate contact configuration")
+                if same == bound:
+                    self.plastic_at = te      # backstop: the rest of this instant is plastic
+                elif same > 2 * bound:
+                    raise SimulationError(
+                        f"more than {same} events at t={te} even with plastic impacts: "
+                        "degenerate contact configuration")
             else:
                 same = 0
                 last_t = te
@@ -493,7 +724,7 @@ class _Engine:
                 continue
             count += 1
             if max_events is not None and count > max_events:
-                raise RuntimeError(f"more than max_events={max_events} events before t_end")
+                raise SimulationError(f"more than max_events={max_events} events before t_end")
             if self.stuck[i]:
                 if code == _GRAZE:           # contact force touches zero: stays stuck
                     schedule(i, t, graze_restart=True)
@@ -507,8 +738,21 @@ class _Engine:
                 self._reschedule(lo, hi, t, schedule)
                 continue
             if code == _GRAZE:
-                D, V, _, _ = self.derivs(self.gap_poly(i), t)
+                D, V, A, _ = self.derivs(self.gap_poly(i), t)
                 self._record(t, i, GRAZE, V, V, D)
+                if last_merge == (t, i):   # merged and released at this instant already:
+                    g = self.gap_poly(i)   # step past the touch by the rounding time scale
+                    schedule(i, t + self.touch_step(g, t), graze_restart=True)
+                    continue
+                if last_graze == (t, i):   # the same touch again: value, slope and curvature
+                    last_merge = (t, i)
+                    lo, _ = self.body(i)   # are all rounding; the pair moves together
+                    _, hi = self.body(i + 1)
+                    self._stick(i, lo, hi, t, self.zero, A, self._mass(lo, i),
+                                self._mass(i + 1, hi))
+                    self._reschedule(lo, hi, t, schedule)
+                    continue
+                last_graze = (t, i)
                 schedule(i, t, graze_restart=True)
                 continue
             lo, hi = self._impact(i, t)
@@ -523,13 +767,8 @@ class _Engine:
         for g in range(max(lo - 1, 0), min(hi, self.n) + 1):
             schedule(g, t)
 
-    def _record(self, t: Any, site: int, kind: int, u0: Any, u1: Any, aux: Any) -> None:
-        self.ev_t.append(t)
-        self.ev_site.append(site)
-        self.ev_kind.append(kind)
-        self.ev_u0.append(u0)
-        self.ev_u1.append(u1)
-        self.ev_aux.append(aux)
+    def _record(self, t: Any, site: int, kind: EventKind, u0: Any, u1: Any, aux: Any) -> None:
+        self.log.add_event(t, site, kind, u0, u1, aux)
 
     def _impact(self, i: int, t: Any) -> tuple[int, int]:
         eps = self.ctx.eps
@@ -543,7 +782,8 @@ class _Engine:
         mL = self._mass(lo, i)
         mR = self._mass(i + 1, hi)
         r = self.r
-        if abs(u) <= self.v_stick and compressive:
+        plastic = not r or (self.plastic_at is not None and t == self.plastic_at)
+        if abs(u) <= self.v_stick:   # below the chatter threshold: the bodies move together
             self._stick(i, lo, hi, t, r * abs(u), A, mL, mR)
             return lo, hi
         if u >= 0:   # numerically zero relative velocity without compression: a touch
@@ -563,7 +803,7 @@ class _Engine:
         if mR is not None:
             self.kick(i + 1, hi, t, dvR)
         self._record(t, i, IMPACT, u, u1, self.zero)
-        if u1 <= self.v_stick and compressive:
+        if plastic or (u1 <= self.v_stick and compressive):
             self._stick(i, lo, hi, t, abs(u1), A, mL, mR)
         return lo, hi
 
@@ -591,8 +831,12 @@ class _Engine:
     def state(self, t: Any) -> tuple[list[Any], list[Any]]:
         xs, vs = [], []
         for j in range(1, self.n + 1):
-            k = bisect_right(self.upd_t[j], t) - 1
-            x, v, _, _ = self.derivs(self.upd_c[j][max(k, 0)], t)
+            upd_t, upd_c = self.log.updates()
+            k = bisect_right(upd_t[j], t) - 1
+            x, v, _, _ = self.derivs(upd_c[j][max(k, 0)], t)
             xs.append(x)
             vs.append(v)
         return xs, vs
+
+
+_Engine = Engine   # older private name (imported by symhx.impact.ensemble)

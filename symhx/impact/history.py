@@ -10,8 +10,9 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK
+from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventLog
 from symhx.impact.model import PipeRow
+from symhx.validation import check_array, to_rational
 
 __all__ = ["GRAZE", "IMPACT", "RELEASE", "STICK", "History"]
 
@@ -50,10 +51,18 @@ class History:
     u_before: np.ndarray
     u_after: np.ndarray
     aux: np.ndarray
-    _upd_t: list[Any] = field(repr=False)
-    _upd_c: list[Any] = field(repr=False)
+    _log: EventLog = field(repr=False)
     _freqs: list[Any] = field(repr=False)
     _wdps: int | None = field(repr=False, default=None)
+
+    @classmethod
+    def from_log(cls, row: PipeRow, t_end: Any, dps: int | None, log: EventLog, freqs: Any,
+                 wdps: int | None = None) -> History:
+        """The history of a run from its :class:`~symhx.impact.engine.EventLog` (float64 arrays
+        when ``dps`` is None, arrays of mpf at working precision ``wdps`` otherwise)."""
+        times, sites, kinds, u0, u1, aux = log.event_arrays(float if dps is None else object)
+        return cls(row=row, t_end=t_end, dps=dps, times=times, sites=sites, kinds=kinds,
+                   u_before=u0, u_after=u1, aux=aux, _log=log, _freqs=list(freqs), _wdps=wdps)
 
     def __len__(self) -> int:
         return len(self.times)
@@ -97,9 +106,14 @@ class History:
         >>> float(x[0]), float(v[0])
         (1.0, 1.0)
         """
+        fr = to_rational(t, "t")
+        if fr is None:
+            raise TypeError(f"t must be a rational or float number, got {t!r}")
+        if not 0 <= fr <= to_rational(self.t_end, "t_end"):
+            raise ValueError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
         if self._wdps is not None:
             with mpmath.workdps(self._wdps):
-                t = mpmath.mpf(t)
+                t = mpmath.mpf(fr.numerator) / fr.denominator
                 return self._state(t, object)
         return self._state(float(t), float)
 
@@ -107,9 +121,46 @@ class History:
         n = self.row.n
         xs = np.empty(n, dtype=dtype)
         vs = np.empty(n, dtype=dtype)
+        upd_t, upd_c = self._log.updates()
         for j in range(1, n + 1):
-            k = max(bisect_right(self._upd_t[j], t) - 1, 0)
-            xs[j - 1], vs[j - 1] = self._eval(self._upd_c[j][k], t)
+            k = max(bisect_right(upd_t[j], t) - 1, 0)
+            xs[j - 1], vs[j - 1] = self._eval(upd_c[j][k], t)
+        return xs, vs
+
+    def states(self, times: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Positions and velocities at many times at once: arrays of shape ``(len(times), n)``
+        (vectorised for the float64 engine; the mpmath engine loops over :meth:`state`).
+
+        >>> from symhx.impact import PipeRow, simulate
+        >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[1.0])
+        >>> x, v = simulate(row, 2.0).states([0.0, 0.5])
+        >>> x.shape, float(x[0, 0])
+        ((2, 1), 1.0)
+        """
+        ts = check_array(times, "times", nonnegative=True, allow_empty=True).ravel()
+        if ts.size and ts.max() > float(self.t_end):
+            raise ValueError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {ts.max()!r}")
+        n = self.row.n
+        if self.dps is not None:
+            xs = np.empty((ts.size, n), dtype=object)
+            vs = np.empty((ts.size, n), dtype=object)
+            for k, t in enumerate(ts):
+                xs[k], vs[k] = self.state(float(t))
+            return xs, vs
+        F = np.asarray(self._freqs, dtype=float)
+        arg = np.outer(ts, F)
+        cs, sn = np.cos(arg), np.sin(arg)
+        xs = np.empty((ts.size, n))
+        vs = np.empty((ts.size, n))
+        upd_t, upd_c = self._log.updates()
+        for j in range(1, n + 1):
+            C = np.asarray(upd_c[j], dtype=float)
+            k = np.maximum(np.searchsorted(np.asarray(upd_t[j], dtype=float), ts,
+                                           side="right") - 1, 0)
+            c = C[k]
+            a, b = c[:, 1::2], c[:, 2::2]
+            xs[:, j - 1] = c[:, 0] + np.sum(a * cs + b * sn, axis=1)
+            vs[:, j - 1] = np.sum(F * (b * cs - a * sn), axis=1)
         return xs, vs
 
     def gaps(self, t: Any) -> np.ndarray:

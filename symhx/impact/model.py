@@ -21,15 +21,17 @@ so every gap is a trigonometric polynomial in ``t`` with the frequencies ``omega
 from __future__ import annotations
 
 import math
-import operator
 from collections.abc import Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import mpmath
 import numpy as np
 
-__all__ = ["SQRT2", "PipeRow"]
+from symhx.validation import check_int, check_real, to_rational
+
+__all__ = ["SQRT2", "PipeRow", "SimulationError", "exact_to_mpf"]
 
 
 class _Sqrt2:
@@ -60,40 +62,91 @@ class _Sqrt2:
 SQRT2 = _Sqrt2()
 
 
-def _finite_float(value: Any, name: str) -> float:
+class SimulationError(RuntimeError):
+    """A run of the impact engines could not proceed; the message says why (and at which time).
+
+    Raised instead of a bare ``RuntimeError`` so that ensembles can record the run as failed and
+    go on.  ``max_events`` overruns raise it too.
+    """
+
+
+def _is_irrational(x: Any) -> bool:
+    """Exact irrational inputs kept as objects: :data:`SQRT2`, or sympy real irrationals."""
+    if isinstance(x, _Sqrt2):
+        return True
     try:
-        v = float(value)
+        return to_rational(x, "x") is None
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return v
+        return False
 
 
-def _matrix(value: Any, name: str, n: int, k: int) -> np.ndarray:
+def _scalar(value: Any, name: str) -> tuple[float, Any]:
+    """``(float64 value, exact value)`` of a scalar input: the exact value is a ``Fraction``
+    (ints, decimal strings, Fractions, floats and mpf at their binary value, sympy Rationals) or
+    the object itself for :data:`SQRT2` and sympy irrationals."""
+    if isinstance(value, _Sqrt2):
+        return float(value), value
+    fr = to_rational(value, name)
+    if fr is None:   # sympy irrational: its own evaluation (duck-typed; sympy is not imported)
+        f = float(value)
+        if not math.isfinite(f):
+            raise ValueError(f"{name} must be finite, got {value!r}")
+        return f, value
+    f = float(fr)
+    if not math.isfinite(f):
+        raise ValueError(f"{name} = {value!r} is beyond the float64 range")
+    return f, fr
+
+
+def exact_to_mpf(x: Any) -> mpmath.mpf:
+    """An exact value (``Fraction``, float, int, :data:`SQRT2`, sympy number) as an mpf correctly
+    rounded at the current mpmath precision (call inside ``workdps``).
+
+    >>> from fractions import Fraction
+    >>> with mpmath.workdps(30):
+    ...     print(exact_to_mpf(Fraction(1, 3)))
+    0.333333333333333333333333333333
+    """
+    if isinstance(x, Fraction):
+        return mpmath.mpf(x.numerator) / x.denominator
+    if isinstance(x, (float, int, mpmath.mpf)) or hasattr(x, "_mpmath_"):
+        return mpmath.mpf(x)
+    if hasattr(x, "evalf"):   # a sympy number (kept as the user gave it)
+        return +mpmath.mpf(x.evalf(mpmath.mp.dps + 10))
+    return mpmath.mpf(x)
+
+
+def _array(value: Any, name: str, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray | None]:
+    """``(float64 array, exact object array or None)``; ``None`` when the float64 array is the
+    exact input (a float or int numpy array: the common, fast path)."""
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise TypeError(f"{name} must be an array of real numbers, got {value!r}")
+    if isinstance(value, np.ndarray) and value.dtype.kind in "fiu":
+        arr = np.array(value, dtype=np.float64)
+        if arr.ndim == 1 and len(shape) == 2 and shape[1] == 1 and arr.shape == (shape[0],):
+            arr = arr.reshape(shape)
+        if arr.shape != shape:
+            raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            idx = tuple(int(i) for i in np.argwhere(~np.isfinite(arr))[0])
+            raise ValueError(f"{name} must be finite, got {arr[idx]!r} at index {idx}")
+        if value.dtype.kind in "iu" and np.any(np.abs(value) > 2**53):
+            return arr, np.vectorize(Fraction, otypes=[object])(value)
+        return arr, None
     try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
-    if arr.ndim == 1 and k == 1 and arr.shape[0] == n:
-        arr = arr.reshape(n, 1)
-    if arr.shape != (n, k):
-        raise ValueError(f"{name} must have shape (n, len(Omega)) = ({n}, {k}), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite")
-    return arr
-
-
-def _vector(value: Any, name: str, n: int) -> np.ndarray:
-    try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
-    if arr.shape != (n,):
-        raise ValueError(f"{name} must have length n = {n}, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite")
-    return arr
+        obj = np.empty(shape, dtype=object)
+        src = np.array(value, dtype=object)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be an array of real numbers ({exc})") from None
+    if src.ndim == 1 and len(shape) == 2 and shape[1] == 1 and src.shape == (shape[0],):
+        src = src.reshape(shape)
+    if src.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}, got {src.shape}")
+    arr = np.empty(shape, dtype=np.float64)
+    for idx in np.ndindex(*shape):
+        label = name + "".join(f"[{i}]" for i in idx)
+        arr[idx], obj[idx] = _scalar(src[idx], label)
+    return arr, obj
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,9 +186,10 @@ class PipeRow:
     >>> row.gap0()
     array([0.5, 1.5])
     >>> PipeRow(1, restitution=1, Omega=(1.0,), alpha=[[0.0]], beta=[[0.0]], x0=[1], v0=[0])
+    ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: Omega[0] = 1.0 equals omega = 1.0 (resonance): the forced response is unbounded
+    ValueError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... choose Omega[i] != omega
     """
 
     n: int
@@ -147,80 +201,97 @@ class PipeRow:
     omega: float = 1.0
     d: float = 1.0
     Omega: tuple = (SQRT2,)
+    _exact: dict = None  # type: ignore[assignment]
 
     def __init__(
         self,
         n: int,
         *,
-        omega: float = 1.0,
-        d: float = 1.0,
-        restitution: float,
+        omega: Any = 1.0,
+        d: Any = 1.0,
+        restitution: Any,
         Omega: Sequence[Any] = (SQRT2,),
         alpha: Any,
         beta: Any,
         x0: Any,
         v0: Any,
     ) -> None:
-        try:
-            n = operator.index(n)
-        except TypeError:
-            raise ValueError(f"n must be an integer, got {n!r}") from None
-        if n < 1:
-            raise ValueError(f"n must be >= 1, got {n}")
-        omega_f = _finite_float(omega, "omega")
-        if omega_f <= 0:
+        n = check_int(n, "n", minimum=1)
+        omega_f, omega_x = _scalar(omega, "omega")
+        if not omega_f > 0:
             raise ValueError(f"omega must be > 0, got {omega!r}")
-        d_f = _finite_float(d, "d")
-        if d_f <= 0:
+        d_f, d_x = _scalar(d, "d")
+        if not d_f > 0:
             raise ValueError(f"d must be > 0, got {d!r}")
-        r = _finite_float(restitution, "restitution")
-        if not 0.0 <= r <= 1.0:
+        r, r_x = _scalar(restitution, "restitution")
+        if (isinstance(r_x, Fraction) and not 0 <= r_x <= 1) or not 0.0 <= r <= 1.0:
             raise ValueError(f"restitution must lie in [0, 1], got {restitution!r}")
-        if isinstance(Omega, (str, bytes)) or not isinstance(Omega, Sequence):
+        if isinstance(Omega, (str, bytes)) or not isinstance(Omega, (Sequence, np.ndarray)):
             Omega = (Omega,)
         Omega = tuple(Omega)
         if len(Omega) < 1:
             raise ValueError("Omega must hold at least one forcing frequency")
+        Omega_x = []
         for i, w in enumerate(Omega):
-            wf = _finite_float(w, f"Omega[{i}]")
+            wf, wx = _scalar(w, f"Omega[{i}]")
             if wf < 0:
                 raise ValueError(f"Omega[{i}] must be >= 0, got {w!r}")
-            if abs(wf * wf - omega_f * omega_f) <= 1e-12 * omega_f * omega_f:
+            if wx == omega_x or abs(wf * wf - omega_f * omega_f) <= 1e-12 * omega_f * omega_f:
                 raise ValueError(
                     f"Omega[{i}] = {wf!r} equals omega = {omega_f!r} (resonance): the forced "
-                    "response is unbounded"
+                    "response is unbounded; choose Omega[i] != omega"
                 )
+            Omega_x.append(wx)
         k = len(Omega)
-        a = _matrix(alpha, "alpha", n, k)
-        b = _matrix(beta, "beta", n, k)
-        x = _vector(x0, "x0", n)
-        v = _vector(v0, "v0", n)
+        a, a_x = _array(alpha, "alpha", (n, k))
+        b, b_x = _array(beta, "beta", (n, k))
+        x, x_x = _array(x0, "x0", (n,))
+        v, v_x = _array(v0, "v0", (n,))
         walls = np.concatenate(([0.0], x, [(n + 1) * d_f]))
         if not np.all(np.diff(walls) > 0):
             bad = int(np.argmin(np.diff(walls)))
             raise ValueError(
-                f"x0 must be strictly increasing inside (0, {(n + 1) * d_f!r}): pipes overlap at "
-                f"site {bad}"
+                f"x0 must be strictly increasing inside (0, (n + 1) d) = (0, {(n + 1) * d_f!r}): "
+                f"pipes overlap at site {bad}"
             )
         for name, val in (("n", n), ("omega", omega_f), ("d", d_f), ("restitution", r),
                           ("Omega", Omega), ("alpha", a), ("beta", b), ("x0", x), ("v0", v)):
             object.__setattr__(self, name, val)
         for arr in (a, b, x, v):
             arr.setflags(write=False)
+        object.__setattr__(self, "_exact", {
+            "omega": omega_x, "d": d_x, "restitution": r_x, "Omega": tuple(Omega_x),
+            "alpha": a_x, "beta": b_x, "x0": x_x, "v0": v_x})
+
+    def exact(self, name: str) -> Any:
+        """The exact value of parameter ``name`` as the user gave it: a ``Fraction`` (ints,
+        decimal strings, floats and mpf at their binary value), :data:`SQRT2` or a sympy
+        irrational; arrays come back as object arrays (the float64 arrays when those are exact).
+
+        >>> row = PipeRow(1, restitution="0.5", alpha=[["0.1"]], beta=[[0]], x0=["0.3"], v0=[0])
+        >>> row.exact("restitution"), row.exact("x0")[0], row.restitution
+        (Fraction(1, 2), Fraction(3, 10), 0.5)
+        """
+        if name not in self._exact:
+            raise ValueError(f"name must be one of {sorted(self._exact)}, got {name!r}")
+        val = self._exact[name]
+        if val is None:
+            return getattr(self, name)
+        return val
 
     # ------------------------------------------------------------------ constructors
     @classmethod
     def random(
         cls,
         n: int,
-        sigma: float,
+        sigma: Any,
         *,
         seed: Any = None,
-        restitution: float = 0.8,
-        omega: float = 1.0,
-        d: float = 1.0,
+        restitution: Any = 0.8,
+        omega: Any = 1.0,
+        d: Any = 1.0,
         Omega: Sequence[Any] = (SQRT2,),
-        sigma0: float | None = None,
+        sigma0: Any = None,
         max_redraws: int = 10_000,
     ) -> PipeRow:
         """A random row as in section 7: ``alpha_ij, beta_ij ~ N(0, sigma**2)`` independent.
@@ -232,6 +303,9 @@ class PipeRow:
         Non-overlap rule (documented choice; the paper does not say): the forcing is drawn once;
         then pipe by pipe from the left, pipe ``j``'s ``(alpha_0j, beta_0j)`` are redrawn until
         ``x_{j-1}(0) < x_j(0) < (n + 1) d`` (the last pipe also needs room before the right wall).
+        Only when that fails (100 passes or ``20 max_redraws`` draws in all: the forced
+        displacements alone overlap, e.g. near resonance) is the forcing drawn again, at most 10
+        times; then a ``ValueError`` says so (bounded work: about a second at worst).
         The draw is a pure function of ``seed`` (anything ``numpy.random.default_rng`` accepts).
 
         Parameters
@@ -245,54 +319,78 @@ class PipeRow:
         -------
         PipeRow
 
+        Raises
+        ------
+        ValueError
+            for bad parameters, or when no non-overlapping row could be drawn (the message gives
+            the displacement scale against ``d``).
+
         >>> row = PipeRow.random(5, 0.2, seed=1)
         >>> row.n, row.alpha.shape, bool(np.all(row.gap0() > 0))
         (5, (5, 1), True)
         """
-        sig = _finite_float(sigma, "sigma")
-        if sig < 0:
-            raise ValueError(f"sigma must be >= 0, got {sigma!r}")
-        sig0 = sig if sigma0 is None else _finite_float(sigma0, "sigma0")
-        if sig0 < 0:
-            raise ValueError(f"sigma0 must be >= 0, got {sigma0!r}")
-        if isinstance(Omega, (str, bytes)) or not isinstance(Omega, Sequence):
+        n = check_int(n, "n", minimum=1)
+        sig = float(check_real(sigma, "sigma", low=0))
+        sig0 = sig if sigma0 is None else float(check_real(sigma0, "sigma0", low=0))
+        if not (math.isfinite(sig) and math.isfinite(sig0)):
+            raise ValueError(f"sigma and sigma0 must be finite, got {sigma!r}, {sigma0!r}")
+        max_redraws = check_int(max_redraws, "max_redraws", minimum=1)
+        if isinstance(Omega, (str, bytes)) or not isinstance(Omega, (Sequence, np.ndarray)):
             Omega = (Omega,)
-        n = operator.index(n)
-        if n < 1:
-            raise ValueError(f"n must be >= 1, got {n}")
-        rng = np.random.default_rng(seed)
-        k = len(Omega)
-        alpha = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
-        beta = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
-        om = float(omega)
-        Om = np.array([float(w) for w in Omega])
+        Omega = tuple(Omega)
+        om, _ = _scalar(omega, "omega")
+        d_f, _ = _scalar(d, "d")
+        if not om > 0:
+            raise ValueError(f"omega must be > 0, got {omega!r}")
+        if not d_f > 0:
+            raise ValueError(f"d must be > 0, got {d!r}")
+        if len(Omega) < 1:
+            raise ValueError("Omega must hold at least one forcing frequency")
+        Om = np.array([_scalar(w, f"Omega[{i}]")[0] for i, w in enumerate(Omega)])
         den = om * om - Om * Om
         if np.any(np.abs(den) <= 1e-12 * om * om):
-            raise ValueError("Omega equals omega (resonance)")
-        f0 = (alpha / den).sum(axis=1)            # forced part at t = 0
-        fv0 = (beta * Om / den).sum(axis=1)       # its velocity at t = 0
+            i = int(np.argmin(np.abs(den)))
+            raise ValueError(f"Omega[{i}] = {Om[i]!r} equals omega = {om!r} (resonance): the "
+                             "forced response is unbounded; choose Omega[i] != omega")
+        rng = np.random.default_rng(seed)
+        k = len(Omega)
         x0 = np.empty(n)
         v0 = np.empty(n)
-        right = (n + 1) * float(d)
-        for _attempt in range(100):
-            prev = 0.0
-            ok = True
-            for j in range(n):
-                for _ in range(max_redraws):
-                    a0, b0 = (rng.normal(0.0, sig0, size=2) if sig0 > 0 else (0.0, 0.0))
-                    xj = (j + 1) * float(d) + a0 + f0[j]
-                    if prev < xj < right:
+        right = (n + 1) * d_f
+        for _forcing in range(10):
+            alpha = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
+            beta = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
+            f0 = (alpha / den).sum(axis=1)            # forced part at t = 0
+            fv0 = (beta * Om / den).sum(axis=1)       # its velocity at t = 0
+            ok = False
+            budget = 20 * max_redraws   # draws per forcing: bounded work (~0.2 s) on failure
+            for _attempt in range(100):
+                prev = 0.0
+                ok = True
+                for j in range(n):
+                    for _ in range(min(max_redraws, budget)):
+                        budget -= 1
+                        a0, b0 = (rng.normal(0.0, sig0, size=2) if sig0 > 0 else (0.0, 0.0))
+                        xj = (j + 1) * d_f + a0 + f0[j]
+                        if prev < xj < right:
+                            break
+                    else:
+                        ok = False
                         break
-                else:
-                    ok = False
+                    x0[j] = xj
+                    v0[j] = om * b0 + fv0[j]
+                    prev = xj
+                if ok:
                     break
-                x0[j] = xj
-                v0[j] = om * b0 + fv0[j]
-                prev = xj
             if ok:
                 break
-        else:  # pragma: no cover - needs absurd sigma
-            raise ValueError(f"could not draw non-overlapping initial positions for sigma={sigma}")
+        else:
+            scale = sig * float(np.sum(1 / np.abs(den))) + sig0
+            raise ValueError(
+                f"could not draw non-overlapping initial positions: with sigma={sigma!r}, "
+                f"sigma0={sigma0!r}, omega={omega!r}, Omega={Omega!r} the random displacements "
+                f"(scale ~{scale:.3g}) are too large for the spacing d={d!r}; use a smaller "
+                "sigma/sigma0, a larger d, or Omega further from omega")
         return cls(n, omega=omega, d=d, restitution=restitution, Omega=Omega, alpha=alpha,
                    beta=beta, x0=x0, v0=v0)
 
