@@ -41,6 +41,16 @@ def rows() -> list[tuple[str, str, str]]:
                             f"{a['time'] * 1e3:.1f} ms, rel. error {a['error']:.0e}",
                             f"mpmath scan of all k: {b['time'] * 1e3:.0f} ms, "
                             f"error {b['error']:.0e}"))
+        speed = core.get("speed")
+        if speed:
+            t = {r["N"]: r["time"] for r in speed["rows"]
+                 if r["call"].startswith("critical_point(")}
+            scan = [r["time"] for r in speed["rows"] if r["call"].startswith("exhaustive")]
+            out.append(("critical_point(N, dps=50), certified (Arb)",
+                        f"N = 10^4: {t['1e4'] * 1e3:.2f} ms; 10^100: {t['1e100'] * 1e3:.2f} ms; "
+                        f"10^1000: {t['1e1000'] * 1e3:.0f} ms",
+                        f"exhaustive mpmath scan, N = 10^4: {scan[0] * 1e3:.0f} ms "
+                        f"({speed['scan_over_symhx_N1e4']:.0f}× slower)"))
         a = pick("mean", "symhx.mean (log space)", 10**4, 50)
         b = pick("mean", "naive mpmath full sum", 10**4, 50)
         if a and b:
@@ -78,6 +88,26 @@ def rows() -> list[tuple[str, str, str]]:
                     f" {wp['symhx']['missed']} missed",
                     f"solve_ivp DOP853 best: {best['seconds'] * 1e3:.0f} ms, error "
                     f"{best['error']:.0e} (rtol {best['rtol']:g}); up to {missed} missed"))
+    hey = _load("impact_vs_heyoka")
+    if hey:
+        for n in sorted({r["n"] for r in hey["per_run"]}):
+            rs = [r for r in hey["per_run"] if r["n"] == n]
+            out.append((f"impact run vs heyoka, {n} pipes, t ≤ {rs[0]['t_end']:g}, "
+                        f"{len(rs)} seeds",
+                        f"{min(r['symhx_s'] for r in rs) * 1e6:.0f}–"
+                        f"{max(r['symhx_s'] for r in rs) * 1e6:.0f} µs, error ≤ "
+                        f"{max(r['symhx_error'] for r in rs):.0e}",
+                        f"heyoka (tol 1e-15, same sites): "
+                        f"{min(r['heyoka_s'] for r in rs) * 1e6:.0f}–"
+                        f"{max(r['heyoka_s'] for r in rs) * 1e6:.0f} µs; symhx "
+                        f"{min(r['speedup'] for r in rs):.1f}–{max(r['speedup'] for r in rs):.1f}× "
+                        f"faster"))
+        ens = hey.get("ensemble")
+        if isinstance(ens, dict) and "symhx_runs_per_s_2_processes" in ens:
+            out.append((f"figures 7–8 runs ({ens['n']} pipes, t ≤ {ens['t_end']:g}), 2 workers",
+                        f"{ens['symhx_runs_per_s_2_processes']:.0f} runs/s",
+                        f"heyoka ensemble propagation: "
+                        f"{ens['heyoka_runs_per_s_ensemble_2_threads']:.1f} runs/s"))
     spaces = _load("spaces")
     if spaces:
         for r in spaces["rows"]:

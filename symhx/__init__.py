@@ -93,6 +93,7 @@ _EXPORTS: dict[str, str] = {
     "EnsembleResult": "impact",
     "History": "impact",
     "free_flight_closure_fraction": "impact",
+    "SimulationError": "impact",
     # higher-order sample spaces (section 8)
     "class_count": "spaces",
     "class_decomposition": "spaces",

@@ -13,7 +13,7 @@ Every pipe ``j = 0..n+1`` (``0`` and ``n + 1`` are the walls) moves as a trigono
 stored as the vector ``[c0, a_0, b_0, a_1, b_1, ...]`` in absolute time (eq. 21 for a free pipe).
 A gap ``Delta_i = x_{i+1} - x_i`` is the difference of two such vectors.
 
-Certified first-root search (:meth:`_Engine.search`)
+Certified first-root search (:meth:`Engine.search`)
 ---------------------------------------------------
 For ``g(t) = c0 + sum_m (a_m cos + b_m sin)`` put ``c_m = |(a_m, b_m)|`` and
 ``M_k = sum_m c_m F_m**k`` so that ``|g^(k)| <= M_k``.
@@ -219,7 +219,6 @@ class MPContext:
     cos_sin = staticmethod(mpmath.cos_sin)
 
 
-_FloatCtx, _MPCtx = FloatContext, MPContext   # older private names (imported by ensemble.py)
 
 
 @dataclass
@@ -839,4 +838,3 @@ class Engine:
         return xs, vs
 
 
-_Engine = Engine   # older private name (imported by symhx.impact.ensemble)

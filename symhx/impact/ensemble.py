@@ -659,17 +659,17 @@ def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 40
     >>> free_flight_closure_fraction(0.01, 10, horizon=50.0)
     0.0
     """
-    from symhx.impact.engine import _NONE, _Engine, _FloatCtx
+    from symhx.impact.engine import Engine, FloatContext, Outcome
 
     rng = np.random.default_rng(seed)
     row = PipeRow(1, restitution=1.0, omega=omega, d=d, Omega=(Omega,), alpha=[[0.0]],
                   beta=[[0.0]], x0=[d], v0=[0.0])
-    eng = _Engine(row, _FloatCtx(), v_stick=0.0)
+    eng = Engine(row, FloatContext(), v_stick=0.0)
     den = omega**2 - Omega**2
     closed = 0
     for _ in range(gaps):
         a0, b0, a1, b1 = rng.normal(0.0, sigma, size=(4, 2)) @ np.array([1.0, -1.0])
         g = [d, a0, b0, a1 / den, b1 / den]
         _, code = eng.search(g, 0.0, float(horizon))
-        closed += code not in (_NONE, 1)
+        closed += code not in (Outcome.NONE, Outcome.CONT)
     return closed / gaps
