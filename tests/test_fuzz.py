@@ -149,6 +149,13 @@ REJECT: dict[str, set[str]] = {
     "row": set(HOSTILE),
     "bool": set(HOSTILE) - {"True", "False", "np.True_"},
 }
+# Vectorised arguments (float64 paths) broadcast like numpy/scipy: an empty array in gives an
+# empty array out (documented), so the empties are not refused there.
+_EMPTIES = {"[]", "np.array([])"}
+for _role in ("p", "nonneg", "positive", "positive?", "p01"):
+    REJECT[_role + "[]"] = REJECT[_role] - _EMPTIES
+# a restitution coefficient in [0, 1] (0: plastic impacts, supported by both engines)
+REJECT["restitution0"] = REJECT["restitution"] - _ZERO
 
 
 @dataclass(frozen=True)
@@ -166,8 +173,8 @@ def _row() -> Any:
 
 
 _FORCING = {"sigma": 0.3, "sigma1": None, "omega": 1, "Omega": None, "d": 1, "dps": None}
-_FORCING_ROLES = {"sigma": "nonneg", "sigma1": "positive?", "omega": "positive",
-                  "Omega": "positive?", "d": "positive", "dps": "dps?"}
+_FORCING_ROLES = {"sigma": "nonneg[]", "sigma1": "positive?[]", "omega": "positive[]",
+                  "Omega": "positive?", "d": "positive[]", "dps": "dps?"}
 
 
 def _entries() -> list[Entry]:
@@ -191,11 +198,11 @@ def _entries() -> list[Entry]:
           {"N": 20, "ms": (0, 1), "ps": ("0.01",), "dps": 15, "extra": (), "weighting": "length"},
           {"N": "N", "ms": "ints", "ps": "array+", "dps": "dps", "weighting": "choice"}),
         E("critical_point", s.critical_point, {"N": 20, "dps": 20, "space": "simple"},
-          {"N": "N", "dps": "dps", "space": "choice"}),
+          {"N": "N", "dps": "dps?", "space": "choice"}),
         E("discriminant_root", s.discriminant_root, {"N": 20, "dps": 20},
           {"N": "N", "dps": "dps"}),
         E("distribution_of", s.distribution_of, {"N": 20, "p": "0.1", "space": "simple", "dps": 20},
-          {"N": "N", "p": "p", "space": "choice", "dps": "dps"}),
+          {"N": "N", "p": "p", "space": "choice", "dps": "dps?"}),
         E("enumerate_circuits", s.enumerate_circuits, {"N": 3, "L": 3}, {"N": "N", "L": "N"}),
         E("eq41_terms", s.eq41_terms, {"N": 10, "k": 3}, {"N": "N", "k": "int"}),
         E("error_table", s.error_table,
@@ -211,11 +218,11 @@ def _entries() -> list[Entry]:
           {"sigma": "positive", "gaps": "N", "horizon": "positive", "seed": "seed"}),
         E("log_phi", s.log_phi, {"N": 10, "k": 3, "dps": 20}, {"N": "N", "k": "N", "dps": "dps"}),
         E("logpmf", s.logpmf, {"N": 10, "p": "0.1", "k": 3, "space": "simple", "dps": 20},
-          {"N": "N", "p": "p", "k": "int", "space": "choice", "dps": "dps"}),
+          {"N": "N", "p": "p[]", "k": "int", "space": "choice", "dps": "dps?"}),
         E("mode", s.mode, {"N": 10, "p": "0.1", "space": "simple"},
-          {"N": "N", "p": "p", "space": "choice"}),
+          {"N": "N", "p": "p[]", "space": "choice"}),
         E("modes", s.modes, {"N": 10, "p": "0.1", "space": "simple"},
-          {"N": "N", "p": "p", "space": "choice"}),
+          {"N": "N", "p": "p[]", "space": "choice"}),
         E("mode_path", s.mode_path, {"N": 10, "p_max": 1, "dps": 20},
           {"N": "N", "p_max": "p", "dps": "dps"}),
         E("naive_impact_probability", s.naive_impact_probability,
@@ -229,7 +236,7 @@ def _entries() -> list[Entry]:
           {"N": "N", "n_terms": "N", "dps": "dps"}),
         E("phi", s.phi, {"N": 10, "k": 3}, {"N": "N", "k": "int"}),
         E("pmf", s.pmf, {"N": 10, "p": "0.1", "k": 3, "space": "simple", "dps": 20},
-          {"N": "N", "p": "p", "k": "int", "space": "choice", "dps": "dps"}),
+          {"N": "N", "p": "p[]", "k": "int", "space": "choice", "dps": "dps?"}),
         E("rayleigh_scales", s.rayleigh_scales,
           {k: v for k, v in _FORCING.items() if k != "d"},
           {k: v for k, v in _FORCING_ROLES.items() if k != "d"}),
@@ -238,7 +245,7 @@ def _entries() -> list[Entry]:
           {"scales": "array+", "d": "positive", "tail": "choice", "dps": "dps?"}),
         E("sigma_for_impact_probability", s.sigma_for_impact_probability,
           {**{k: v for k, v in _FORCING.items() if k != "sigma"}, "p": 0.1},
-          {**{k: v for k, v in _FORCING_ROLES.items() if k != "sigma"}, "p": "p01"}),
+          {**{k: v for k, v in _FORCING_ROLES.items() if k != "sigma"}, "p": "p01[]"}),
         E("simulate", s.simulate,
           {"row": "ROW", "t_end": 5.0, "dps": None, "v_stick": None, "max_events": None,
            "engine": "auto"},
@@ -246,14 +253,14 @@ def _entries() -> list[Entry]:
            "max_events": "int?", "engine": "choice"}),
         E("theory_curve", s.theory_curve,
           {"sigma": [0.2, 0.3], "N": 11, "space": "simple", "dps": 15},
-          {"sigma": "array+", "N": "N", "space": "choice", "dps": "dps"}),
+          {"sigma": "positive[]", "N": "N", "space": "choice", "dps": "dps"}),
         E("total_simple_circuits", s.total_simple_circuits, {"N": 10}, {"N": "N"}),
         E("vertices_lattice", s.vertices_lattice, {"m": 3}, {"m": "N"}),
         E("vertices_row", s.vertices_row, {"n": 3}, {"n": "N"}),
         E("impacts_from_pipes", s.impacts_from_pipes, {"n": 3}, {"n": "N"}),
         E("PipeRow.random", s.PipeRow.random,
           {"n": 3, "sigma": 0.3, "seed": 1, "restitution": 0.8, "omega": 1.0, "d": 1.0},
-          {"n": "N", "sigma": "nonneg", "seed": "seed", "restitution": "restitution",
+          {"n": "N", "sigma": "nonneg", "seed": "seed", "restitution": "restitution0",
            "omega": "positive", "d": "positive"}),
         E("impact.default_v_stick", symhx.impact.default_v_stick, {"row": "ROW", "dps": None},
           {"row": "row", "dps": "dps?"}),
@@ -264,7 +271,7 @@ def _entries() -> list[Entry]:
         out.append(E(name, getattr(s, name), dict(_FORCING), dict(_FORCING_ROLES)))
     for name in ("mean", "variance", "normaliser"):
         out.append(E(name, getattr(s, name), {"N": 10, "p": "0.1", "space": "simple", "dps": 20},
-                     {"N": "N", "p": "p", "space": "choice", "dps": "dps"}))
+                     {"N": "N", "p": "p[]", "space": "choice", "dps": "dps?"}))
     return out
 
 
@@ -559,9 +566,9 @@ CLI: dict[str, tuple[list[str], dict[str, str]]] = {
     "p-sigma --json": (["p-sigma", "{sigma}", "--json"], {"sigma": "nonneg"}),
     "p-sigma --inverse": (["p-sigma", "{sigma}", "--inverse"], {"sigma": "p01"}),
     "p-sigma --csv": (["p-sigma", "0.3", "--csv", "{path}"], {"path": "path"}),
-    "simulate": (["simulate", "--n", "{n}", "--sigma", "{sigma}", "--t-end", "{t}", "--seed",
+    "simulate": (["simulate", "--pipes", "{n}", "--sigma", "{sigma}", "--t-end", "{t}", "--seed",
                   "{seed}"], {"n": "N", "sigma": "nonneg", "t": "positive", "seed": "seed"}),
-    "ensemble": (["ensemble", "--sigmas", "{sigma}", "--runs", "{runs}", "--n", "{n}",
+    "ensemble": (["ensemble", "--sigmas", "{sigma}", "--runs", "{runs}", "--pipes", "{n}",
                   "--t-transient", "{tt}", "--t-window", "{tw}", "--workers", "1"],
                  {"sigma": "positive", "runs": "N", "n": "N", "tt": "nonneg", "tw": "positive"}),
     "spaces": (["spaces", "{N}", "{p}", "--space", "{space}", "--dps", "{dps}"],
