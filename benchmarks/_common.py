@@ -1,4 +1,4 @@
-"""Shared helpers for the work-precision benchmarks (DESIGN.md §8)."""
+"""Shared helpers for the work-precision benchmarks (achieved error against time, both log scale)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Section 8 of the paper: higher-order circuits, eqs. (29)-(41), from one general count.
 
-The paper counts each class by hand and its formulas fail at the boundary lengths (DESIGN.md
-section 3). Here every class is a special case of one derived count (key ``"37"``): for a circuit of
+The paper counts each class by hand and its formulas fail at the boundary lengths (see the
+book's errata chapter). Here every class is a special case of one derived count (key ``"37"``): for a circuit of
 length ``k`` whose repeated vertices have multiplicities ``m_1, ..., m_r`` (total ``M``) and whose
 other ``k - M`` vertices are visited once,
 
@@ -555,7 +555,7 @@ def _d41() -> list[Derivation]:
         if weighted:
             label, name = "41-weighted", "W_{N,p}"
             desc = ("Weight p^length of the eq. (41) sample space with k distinct impacts "
-                    "(unnormalised pmf; DESIGN.md default)")
+                    "(unnormalised pmf; the default weighting)")
         else:
             label, name = "41", "n_{N}"
             desc = ("Circuits with k distinct impacts in the eq. (41) sample space (five "
