@@ -167,7 +167,7 @@ def test_failed_runs_are_counted_not_fatal(monkeypatch):
 def test_failed_draws_are_counted():
     # sigma0 = 0: the pipes start at j d + forced(0); with strong forcing some rows overlap and
     # cannot be drawn: failed runs with the reason "draw", the others counted as usual
-    res = ensemble([0.3], 12, **{**KW, "sigma0": 0.0})
+    res = ensemble([0.5], 12, **{**KW, "sigma0": 0.0})   # 2 of these 12 rows cannot be drawn
     st = res.per_sigma[0]
     assert 0 < st.failed < 12 and st.failures[0][1].startswith("draw: could not draw")
     assert st.failed + st.excluded + len(st.sites) == 12
@@ -213,7 +213,9 @@ def test_bad_sigmas_and_runs():
     with pytest.raises(TypeError, match="runs"):
         ensemble([0.1], 2.0, **KW)
     with pytest.raises(ValueError, match="MAX_RUNS"):
-        ensemble([0.1, 0.2], E.MAX_RUNS, **KW)
+        ensemble([0.1, 0.2], E.MAX_RUNS + 1, **KW)
+    with pytest.raises(ValueError, match="MAX_TOTAL_RUNS"):
+        ensemble([0.1] * (E.MAX_TOTAL_RUNS // E.MAX_RUNS + 1), E.MAX_RUNS, **KW)
 
 
 # ----------------------------------------------------------------- statistics
@@ -236,7 +238,9 @@ def test_describe_histogram_against_numpy():
     # ties: the smallest most frequent value, as in the paper's k* = min argmax
     assert describe_histogram([0, 3, 1, 3], np.random.default_rng(0))["mode"] == 1
     empty = describe_histogram([0, 0, 0])
-    assert empty["mode"] is None and math.isnan(empty["mean"])
+    assert empty["mode"] is None and empty["mean"] is None and empty["mean_ci"] == [None, None]
+    one = describe_histogram([0, 1])   # a single run: no spread, so no standard errors
+    assert one["mean"] == 1 and one["se"] is None and one["mode_se"] is None
 
 
 def test_statistics_match_per_run_arrays(serial):
