@@ -708,7 +708,7 @@ def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 40
     if gaps > MAX_GAPS:
         raise ValueError(f"gaps must be <= {MAX_GAPS} (the work cap "
                          f"symhx.impact.ensemble.MAX_GAPS), got {gaps}")
-    seed = check_seed(seed)
+    seed_i = check_seed(seed)
     om = _float(check_real(omega, "omega", low=0, low_open=True), "omega")
     dd = _float(check_real(d, "d", low=0, low_open=True), "d")
     Om = _float(check_real(Omega, "Omega", low=0), "Omega")
@@ -724,7 +724,7 @@ def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 40
     if not ok:
         raise ValueError(f"sigma = {sigma!r} is too large for the float64 engine (the "
                          "amplitudes overflow); use a smaller sigma")
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(seed_i)
     eng = Engine(row, FloatContext(), v_stick=0.0)
     closed = 0
     for _ in range(gaps):
