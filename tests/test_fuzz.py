@@ -156,6 +156,8 @@ for _role in ("p", "nonneg", "positive", "positive?", "p01"):
     REJECT[_role + "[]"] = REJECT[_role] - _EMPTIES
 # a restitution coefficient in [0, 1] (0: plastic impacts, supported by both engines)
 REJECT["restitution0"] = REJECT["restitution"] - _ZERO
+# a flag that may also be None (ensemble's progress: None = only when stderr is a terminal)
+REJECT["bool?"] = REJECT["bool"] - {"None"}
 
 
 @dataclass(frozen=True)
@@ -212,7 +214,7 @@ def _entries() -> list[Entry]:
           {"sigmas": [0.5], "runs": 2, "n": 3, "t_transient": 20.0, "t_window": 20.0, "seed": 0,
            "progress": False},
           {"sigmas": "array+", "runs": "N", "n": "N", "t_transient": "nonneg",
-           "t_window": "positive", "seed": "seed", "progress": "bool"}),
+           "t_window": "positive", "seed": "seed", "progress": "bool?"}),
         E("free_flight_closure_fraction", s.free_flight_closure_fraction,
           {"sigma": 0.3, "gaps": 3, "horizon": 10.0, "seed": 0},
           {"sigma": "positive", "gaps": "N", "horizon": "positive", "seed": "seed"}),
@@ -296,6 +298,8 @@ NOT_CALLABLE = {
     "SQRT2": "constant",
     "STICK": "constant",
     "default_v_stick": "fuzzed as impact.default_v_stick",
+    "EventKind": "enum of event kinds (IMPACT, GRAZE, STICK, RELEASE), a class",
+    "SimulationError": "exception class raised by the impact engines",
     "work_dps": "fuzzed as impact.work_dps",
 }
 
@@ -570,7 +574,7 @@ CLI: dict[str, tuple[list[str], dict[str, str]]] = {
                   "{seed}"], {"n": "N", "sigma": "nonneg", "t": "positive", "seed": "seed"}),
     "ensemble": (["ensemble", "--sigmas", "{sigma}", "--runs", "{runs}", "--pipes", "{n}",
                   "--t-transient", "{tt}", "--t-window", "{tw}", "--workers", "1"],
-                 {"sigma": "positive", "runs": "N", "n": "N", "tt": "nonneg", "tw": "positive"}),
+                 {"sigma": "nonneg", "runs": "N", "n": "N", "tt": "nonneg", "tw": "positive"}),
     "spaces": (["spaces", "{N}", "{p}", "--space", "{space}", "--dps", "{dps}"],
                {"N": "N", "p": "p", "space": "choice", "dps": "dps"}),
     "convergence": (["convergence", "{N}", "--max-m", "{m}", "--dps", "{dps}"],
@@ -657,8 +661,13 @@ def _cli_result(argv: list[str], cwd: str) -> Callable[[], Any]:
 
     def thunk() -> Any:
         r = inner()
-        # summarised in the child: the parent only gets this tuple back through repr()
-        return (r["rc"], _stderr_problem(r["stderr"], r["rc"]), _stdout_problem(r["stdout"]))
+        # summarised in the child: the parent only gets this tuple back through repr(), cut at
+        # 120 characters by _one_call, so the problems are shortened until the repr fits (a cut
+        # repr is no Python literal: ast.literal_eval raised SyntaxError)
+        out = (r["rc"], _stderr_problem(r["stderr"], r["rc"]), _stdout_problem(r["stdout"]))
+        while len(repr(out)) > 110:
+            out = (out[0], out[1][:max(len(out[1]) - 10, 0)], out[2][:max(len(out[2]) - 10, 0)])
+        return out
 
     return thunk
 

@@ -139,3 +139,83 @@ def test_mpmath_global_precision_untouched():
     before = mpmath.mp.dps
     simulate(PipeRow.random(3, 0.3, seed=2), 3.0, dps=25).state(1.0)
     assert mpmath.mp.dps == before
+
+
+# ----------------------------------------------------------------- fuzz round (issue 12)
+def test_scale_invariance_and_scale_cap():
+    # the model is linear in lengths: a row scaled by k has the same event times; rows beyond
+    # MAX_SCALE are refused (a row scaled by 1e160 used to lose every impact silently)
+    from symhx.impact.model import MAX_SCALE
+
+    ref = simulate(PipeRow.random(3, 1.0, seed=3), 50.0)
+    assert len(ref) > 20
+    for k in (1e-90, 1e90):
+        h = simulate(PipeRow.random(3, 1.0 * k, d=k, seed=3), 50.0, v_stick=1e-6 * k)
+        assert h.sites.tolist() == ref.sites.tolist()
+        assert np.allclose(np.asarray(h.times, float), np.asarray(ref.times, float), rtol=1e-9)
+    for k in (MAX_SCALE * 10, 1 / MAX_SCALE / 10):
+        with pytest.raises(ValueError, match="MAX_SCALE"):
+            PipeRow.random(3, 1.0 * k, d=k, seed=3)
+
+
+def test_v_stick_zero_and_huge():
+    row = _chatter_row()
+    with pytest.raises(ValueError, match="v_stick must be > 0"):
+        simulate(row, 10.0, v_stick=0)
+    with pytest.raises(ValueError, match="v_stick"):
+        simulate(row, 10.0, v_stick=10**1000)          # beyond float64: no OverflowError
+    h = simulate(row, 10.0, v_stick=10**1000, dps=15)  # exact in mpmath: the first contact sticks
+    assert [int(k) for k in h.kinds] == [STICK]
+
+
+def test_horizon_and_event_caps():
+    from symhx.impact.model import MAX_EVENTS, MAX_HORIZON
+
+    row = PipeRow.random(2, 0.1, seed=0, omega=2)
+    assert len(simulate(row, MAX_HORIZON / 2)) >= 0             # omega * t_end == cap: allowed
+    for t_end in (MAX_HORIZON / 2 * (1 + 1e-9), 1e308, 10**1000):
+        with pytest.raises(ValueError, match="MAX_HORIZON"):
+            simulate(row, t_end)
+    with pytest.raises(ValueError, match="MAX_EVENTS"):
+        simulate(row, 1.0, max_events=MAX_EVENTS + 1)
+    with pytest.raises(ValueError, match="max_events"):
+        simulate(row, 1.0, max_events=10**1000)
+
+
+def test_default_v_stick_and_work_dps_validate():
+    from symhx.impact import default_v_stick, work_dps
+
+    row = PipeRow.random(2, 0.1, seed=0, d=2)
+    with pytest.raises(TypeError, match="row must be a PipeRow"):
+        default_v_stick(3.0, None)
+    for bad in (0, -1, 2.5, True, float("nan"), 10**6):
+        with pytest.raises((ValueError, TypeError), match="dps"):
+            default_v_stick(row, bad)
+        with pytest.raises((ValueError, TypeError), match="dps"):
+            work_dps(bad)
+    # far below the float64 range at MAX_DPS, and still the documented omega d 10**(-dps/2 - 1)
+    with mpmath.workdps(30):
+        ref = 2 * mpmath.mpf(10) ** -2501
+        assert abs(default_v_stick(row, 5000) / ref - 1) < mpmath.mpf(10) ** -18
+    assert default_v_stick(row, None) == 2e-6
+
+
+def test_random_row_seed_and_hopeless_draws():
+    import time
+
+    from symhx.impact.model import MAX_PIPES
+
+    a = PipeRow.random(4, 0.3, seed=5)
+    b = PipeRow.random(4, 0.3, seed=np.random.SeedSequence(5))   # numpy: the same stream
+    assert np.array_equal(a.x0, b.x0) and np.array_equal(a.alpha, b.alpha)
+    for seed in (True, [], -1, 2.5):
+        with pytest.raises((ValueError, TypeError), match="seed"):
+            PipeRow.random(3, 0.3, seed=seed)
+    t0 = time.perf_counter()
+    for kw in (dict(sigma=1e6), dict(sigma=1e308), dict(sigma=0.3, d=1e308),
+               dict(sigma=0.3, d=5e-324), dict(sigma=0.3, omega=10**1000)):
+        with pytest.raises(ValueError):
+            PipeRow.random(3, seed=0, **kw)
+    assert time.perf_counter() - t0 < 1.0     # refused up front, not after redrawing
+    with pytest.raises(ValueError, match="MAX_PIPES"):
+        PipeRow.random(MAX_PIPES + 1, 0.3)

@@ -167,7 +167,7 @@ def test_failed_runs_are_counted_not_fatal(monkeypatch):
 def test_failed_draws_are_counted():
     # sigma0 = 0: the pipes start at j d + forced(0); with strong forcing some rows overlap and
     # cannot be drawn: failed runs with the reason "draw", the others counted as usual
-    res = ensemble([0.3], 12, **{**KW, "sigma0": 0.0})
+    res = ensemble([0.5], 12, **{**KW, "sigma0": 0.0})   # 2 of these 12 rows cannot be drawn
     st = res.per_sigma[0]
     assert 0 < st.failed < 12 and st.failures[0][1].startswith("draw: could not draw")
     assert st.failed + st.excluded + len(st.sites) == 12
@@ -213,7 +213,9 @@ def test_bad_sigmas_and_runs():
     with pytest.raises(TypeError, match="runs"):
         ensemble([0.1], 2.0, **KW)
     with pytest.raises(ValueError, match="MAX_RUNS"):
-        ensemble([0.1, 0.2], E.MAX_RUNS, **KW)
+        ensemble([0.1, 0.2], E.MAX_RUNS + 1, **KW)
+    with pytest.raises(ValueError, match="MAX_TOTAL_RUNS"):
+        ensemble([0.1] * (E.MAX_TOTAL_RUNS // E.MAX_RUNS + 1), E.MAX_RUNS, **KW)
 
 
 # ----------------------------------------------------------------- statistics
@@ -236,7 +238,9 @@ def test_describe_histogram_against_numpy():
     # ties: the smallest most frequent value, as in the paper's k* = min argmax
     assert describe_histogram([0, 3, 1, 3], np.random.default_rng(0))["mode"] == 1
     empty = describe_histogram([0, 0, 0])
-    assert empty["mode"] is None and math.isnan(empty["mean"])
+    assert empty["mode"] is None and empty["mean"] is None and empty["mean_ci"] == [None, None]
+    one = describe_histogram([0, 1])   # a single run: no spread, so no standard errors
+    assert one["mean"] == 1 and one["se"] is None and one["mode_se"] is None
 
 
 def test_statistics_match_per_run_arrays(serial):
@@ -370,3 +374,45 @@ def test_figures_have_legends_and_nonnegative_error_bars(serial):
     mode, err = plots.impact._yerr(serial, "pipes", "mode")
     ok = np.isfinite(mode)
     assert np.all(mode[ok] - err[0][ok] >= 0) and np.all(err[:, ok] >= 0)
+
+
+# ----------------------------------------------------------------- fuzz round (issue 12)
+def test_caps_and_horizons_refused_up_front():
+    from symhx.impact.model import MAX_HORIZON, MAX_PIPES
+
+    for kw, match in ((dict(n=MAX_PIPES + 1), "MAX_PIPES"),
+                      (dict(t_transient=MAX_HORIZON), "MAX_HORIZON"),
+                      (dict(t_window=1e308), "MAX_HORIZON"),
+                      (dict(t_window=10**1000), "MAX_HORIZON"),
+                      (dict(t_transient=10**1000), "MAX_HORIZON"),
+                      (dict(t_window=5e-324), "too short"),
+                      (dict(t_window="1e-400"), "t_window")):
+        with pytest.raises(ValueError, match=match):
+            ensemble([0.3], 2, **{**KW, **kw})
+
+
+def test_no_impact_statistics_are_none_not_nan(capsys):
+    # sigma = 0 and sigma0 = 0: every pipe rests at j d, no run has an impact in the window
+    res = ensemble([0.0], 3, **{**KW, "sigma0": 0.0, "progress": None})
+    st = res.per_sigma[0]
+    assert st.excluded == 3 and st.failed == 0
+    for what in ("pipes", "sites"):
+        assert st.stats[what]["mean"] is None and st.stats[what]["mode"] is None
+    assert np.isnan(res.column("pipes", "mean")).all()   # documented: NaN in the plotting column
+    rc, out, _ = _cli(["ensemble", "--sigmas", "0", "--runs", "1", "--pipes", "3",
+                       "--t-transient", "1", "--t-window", "1", "--workers", "1"], capsys)
+    assert rc == 0 and "nan" not in out.lower() and "no runs with an impact" in out
+
+
+def test_free_flight_closure_fraction_validates():
+    ff = free_flight_closure_fraction
+    for kw, exc in ((dict(sigma=math.nan), ValueError), (dict(sigma=0), ValueError),
+                    (dict(sigma=True), TypeError), (dict(sigma=1e300), ValueError),
+                    (dict(gaps=0), ValueError), (dict(gaps=True), TypeError),
+                    (dict(gaps=E.MAX_GAPS + 1), ValueError), (dict(horizon=0), ValueError),
+                    (dict(horizon=math.inf), ValueError), (dict(horizon=10**1000), ValueError),
+                    (dict(seed=True), TypeError), (dict(seed=[]), TypeError),
+                    (dict(Omega=1.0), ValueError)):
+        args = {"sigma": 0.3, "gaps": 3, "horizon": 10.0, **kw}
+        with pytest.raises(exc, match=next(iter(kw))):
+            ff(**args)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import math
 import os
 import sys
 import time
@@ -168,11 +169,17 @@ def cmd_ensemble(args: argparse.Namespace) -> int:
           f"{'mode':>4} {'95% CI':>9} {'mean sites':>10} {'gap rate':>9}")
     for s in res.per_sigma:
         p, q = s.stats["pipes"], s.stats["sites"]
+        rate = s.gap_rate()[0]
+        rate_s = f"{rate:9.5f}" if math.isfinite(rate) else f"{'-':>9}"
+        if p["mean"] is None:   # no run with an impact in the window (or every run failed)
+            print(f"{s.sigma:6.3f} {s.excluded:6d} {s.failed:6d} {'no runs with an impact':>47}"
+                  f" {rate_s}")
+            continue
         lo, hi = p["mean_ci"]
         mlo, mhi = p["mode_ci"]
         print(f"{s.sigma:6.3f} {s.excluded:6d} {s.failed:6d} {p['mean']:10.3f} "
               f"[{lo:6.2f},{hi:6.2f}] {p['mode']!s:>4} [{mlo!s:>3},{mhi!s:>3}] "
-              f"{q['mean']:10.3f} {s.gap_rate()[0]:9.5f}")
+              f"{q['mean']:10.3f} {rate_s}")
     if args.out:
         print(f"written to {args.out}")
     return 0

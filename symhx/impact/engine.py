@@ -82,6 +82,7 @@ import mpmath
 import numpy as np
 
 from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
+from symhx.validation import check_dps
 
 __all__ = ["GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine", "EventKind", "EventLog",
            "FloatContext", "MPContext", "Outcome", "RowArrays", "default_v_stick", "row_arrays",
@@ -129,23 +130,29 @@ def work_dps(dps: int) -> int:
     >>> work_dps(30)
     70
     """
-    return 2 * dps + 10
+    return 2 * check_dps(dps) + 10
 
 
-def default_v_stick(row: PipeRow, dps: int | None) -> float:
+def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
     """Relative speed below which a contact sticks (chatter ends): ``omega d 10**(-dps/2 - 1)``.
 
     The position error of sticking at speed ``u`` instead of completing the chatter is
     ``u**2 / |Delta''| ~ 10**-dps``.  Float64 uses ``dps = 10`` (``1e-6 omega d``): slower
     bounces last ``2u/|Delta''|`` and their roots are below the rounding of the gap, so float64
-    cannot resolve them anyway.
+    cannot resolve them anyway.  For an int ``dps`` the value is an mpf (``10**-2501`` at
+    ``dps = MAX_DPS`` is below the float64 range).
 
     >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[0.0])
-    >>> default_v_stick(row, None), default_v_stick(row, 20)
+    >>> default_v_stick(row, None), float(default_v_stick(row, 20))
     (1e-06, 1e-11)
     """
-    digits = 10 if dps is None else dps
-    return row.omega * row.d * 10.0 ** (-digits / 2 - 1)
+    if not isinstance(row, PipeRow):
+        raise TypeError(f"row must be a PipeRow, got {type(row).__name__} {row!r:.60}")
+    dps = check_dps(dps, allow_none=True)
+    if dps is None:
+        return row.omega * row.d * 10.0 ** (-10 / 2 - 1)
+    with mpmath.workdps(20):
+        return mpmath.mpf(row.omega) * row.d * mpmath.power(10, -mpmath.mpf(dps) / 2 - 1)
 
 
 def _cos_sin(x: float) -> tuple[float, float]:

@@ -43,12 +43,25 @@ import numpy as np
 
 from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.fast import count_impacts
-from symhx.impact.model import SQRT2, PipeRow
+from symhx.impact.model import SQRT2, PipeRow, check_horizon, check_pipes
 from symhx.validation import check_int, check_real, check_seed
+
+
+def _float(x: Any, name: str) -> float:
+    """float64 value of an exact number, refusing what float64 cannot hold."""
+    try:
+        f = float(x)
+    except OverflowError:
+        f = math.inf
+    if not math.isfinite(f):
+        raise ValueError(f"{name} = {x} is beyond the float64 range")
+    return f
 
 __all__ = [
     "BOOTSTRAP",
+    "MAX_GAPS",
     "MAX_RUNS",
+    "MAX_TOTAL_RUNS",
     "EnsembleResult",
     "SigmaStats",
     "describe_histogram",
@@ -64,9 +77,16 @@ __all__ = [
 
 #: bootstrap resamples (multinomial, from the histogram) behind every interval
 BOOTSTRAP = 2000
+#: documented work cap: more than this many ``runs`` per sigma are refused (10^5 runs of 100
+#: pipes take about a core-hour; the statistics' errors shrink like ``1/sqrt(runs)``); split the
+#: work over seeds or raise the cap deliberately.
+MAX_RUNS = 10**5
 #: documented work cap: ``len(sigmas) * runs`` above this is refused (10^8 runs of 100 pipes take
-#: about a core-week); split the work or raise the cap deliberately.
-MAX_RUNS = 10**8
+#: about a core-week).
+MAX_TOTAL_RUNS = 10**8
+#: documented work cap of :func:`free_flight_closure_fraction`: at most this many gaps
+#: (50-90 microseconds each, so about 1-2 s; the binomial standard error is then <= 0.0036).
+MAX_GAPS = 20_000
 
 
 # --------------------------------------------------------------------------- one run
@@ -151,6 +171,8 @@ def describe_histogram(hist: Any, rng: np.random.Generator | None = None,
     ``mean_ci``/``mode_ci``: 2.5 and 97.5 percentiles of ``boot`` multinomial resamples of the
     histogram (they never leave the observed range, so never go below 0); ``mode_se``: the
     standard deviation of the resampled modes.  ``mode`` is the smallest most frequent value.
+    Undefined statistics are ``None``, never NaN: all of them for an empty histogram (no run
+    kept), ``se`` and ``mode_se`` for a single run.
 
     >>> st = describe_histogram([0, 3, 1], np.random.default_rng(0))
     >>> st["mean"], st["mode"], st["count"]
@@ -159,21 +181,22 @@ def describe_histogram(hist: Any, rng: np.random.Generator | None = None,
     h = np.asarray(hist, dtype=np.int64)
     k = int(h.sum())
     out: dict[str, Any] = {"count": k, "hist": h.tolist()}
-    if k == 0:
-        out.update(mean=math.nan, se=math.nan, mode=None, mode_se=math.nan,
-                   mean_ci=[math.nan, math.nan], mode_ci=[None, None])
+    if k == 0:   # no run kept (e.g. no impact in any window): every statistic is undefined
+        out.update(mean=None, se=None, mode=None, mode_se=None, mean_ci=[None, None],
+                   mode_ci=[None, None])
         return out
     v = np.arange(len(h), dtype=float)
     mean = float((h * v).sum() / k)
-    var = float((h * (v - mean) ** 2).sum() / (k - 1)) if k > 1 else math.nan
-    out.update(mean=mean, se=math.sqrt(var / k) if k > 1 else math.nan, mode=int(np.argmax(h)))
+    var = float((h * (v - mean) ** 2).sum() / (k - 1)) if k > 1 else None
+    out.update(mean=mean, se=math.sqrt(var / k) if var is not None else None,
+               mode=int(np.argmax(h)))
     rng = rng if rng is not None else np.random.default_rng(0)
     samples = rng.multinomial(k, h / k, size=boot)
     bmeans = samples @ v / k
     bmodes = np.argmax(samples, axis=1)
     out["mean_ci"] = [float(x) for x in np.percentile(bmeans, [2.5, 97.5])]
     out["mode_ci"] = [int(x) for x in np.percentile(bmodes, [2.5, 97.5], method="nearest")]
-    out["mode_se"] = float(np.std(bmodes, ddof=1))
+    out["mode_se"] = float(np.std(bmodes, ddof=1)) if k > 1 else None
     return out
 
 
@@ -288,7 +311,8 @@ def _check_sigmas(sigmas: Any) -> list[float]:
                         f"{sigmas!r}")
     if len(sigmas) == 0:
         raise ValueError("sigmas must be a non-empty sequence of numbers >= 0, got []")
-    return [float(check_real(s, f"sigmas[{i}]", low=0)) for i, s in enumerate(sigmas)]
+    return [_float(check_real(s, f"sigmas[{i}]", low=0), f"sigmas[{i}]")
+            for i, s in enumerate(sigmas)]
 
 
 def _make_progress(total: int, progress: bool | None) -> Any:
@@ -361,27 +385,36 @@ def ensemble(
     """
     sig = _check_sigmas(sigmas)
     runs = check_int(runs, "runs", minimum=1)
-    if len(sig) * runs > MAX_RUNS:
+    if runs > MAX_RUNS:
+        raise ValueError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
+                         f"symhx.impact.ensemble.MAX_RUNS), got {runs}")
+    if len(sig) * runs > MAX_TOTAL_RUNS:
         raise ValueError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
-                         f"symhx.impact.ensemble.MAX_RUNS = {MAX_RUNS}")
-    n = check_int(n, "n", minimum=1)
-    t_tr = float(check_real(t_transient, "t_transient", low=0))
-    t_w = float(check_real(t_window, "t_window", low=0, low_open=True))
+                         f"symhx.impact.ensemble.MAX_TOTAL_RUNS = {MAX_TOTAL_RUNS}")
+    n = check_pipes(n)
     seed_i = check_seed(seed)
     if seed_i is None:
         raise TypeError("seed must be an int >= 0 (an ensemble needs a fixed seed), got None")
-    r = float(check_real(restitution, "restitution", low=0, high=1))
-    om = float(check_real(omega, "omega", low=0, low_open=True))
-    dd = float(check_real(d, "d", low=0, low_open=True))
+    r = _float(check_real(restitution, "restitution", low=0, high=1), "restitution")
+    om = _float(check_real(omega, "omega", low=0, low_open=True), "omega")
+    dd = _float(check_real(d, "d", low=0, low_open=True), "d")
+    t_tr_x = check_horizon(t_transient, "t_transient", om, allow_zero=True)
+    t_w_x = check_horizon(t_window, "t_window", om)
+    check_horizon(float(t_tr_x + t_w_x), "(t_transient + t_window)", om)
+    t_tr, t_w = float(t_tr_x), float(t_w_x)
+    if t_w == 0 or (t_tr + t_w) - t_tr <= 0:
+        raise ValueError(f"t_window = {t_window!r} is too short: t_transient + t_window must "
+                         f"exceed t_transient = {t_tr!r} in float64")
     if sigma0 is None or (isinstance(sigma0, (Sequence, np.ndarray))
                           and not isinstance(sigma0, (str, bytes))):
         s0s = [None] * len(sig) if sigma0 is None else [
-            float(check_real(v, f"sigma0[{i}]", low=0)) for i, v in enumerate(sigma0)]
+            _float(check_real(v, f"sigma0[{i}]", low=0), f"sigma0[{i}]")
+            for i, v in enumerate(sigma0)]
         if len(s0s) != len(sig):
             raise ValueError(f"sigma0 must be None, a number or one number per sigma "
                              f"({len(sig)}), got {len(s0s)} values")
     else:
-        s0s = [float(check_real(sigma0, "sigma0", low=0))] * len(sig)
+        s0s = [_float(check_real(sigma0, "sigma0", low=0), "sigma0")] * len(sig)
     chunk = check_int(chunk, "chunk", minimum=1)
     if executor is not None and not isinstance(executor, Executor):
         raise TypeError(f"executor must be a concurrent.futures.Executor or None, got "
@@ -389,7 +422,7 @@ def ensemble(
     for name, flag in (("progress", progress), ("keep_runs", keep_runs)):
         if flag is not None and not isinstance(flag, bool):
             raise TypeError(f"{name} must be True, False or None, got {flag!r}")
-    every = float(check_real(checkpoint_every, "checkpoint_every", low=0))
+    every = _float(check_real(checkpoint_every, "checkpoint_every", low=0), "checkpoint_every")
     Om = tuple(Omega) if isinstance(Omega, (Sequence, np.ndarray)) else (Omega,)
     for i, w in enumerate(Om):
         if not isinstance(w, type(SQRT2)):
@@ -656,20 +689,47 @@ def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 40
     As ``horizon -> inf`` this tends to ``P(Y0 + Y1/|omega^2 - Omega^2| > d)``, eq. (22)/(27),
     i.e. :func:`symhx.forcing.impact_probability`.
 
+    Parameters
+    ----------
+    sigma : standard deviation ``> 0`` of the four coefficients of each gap (finite).
+    gaps : number of random gaps, an int in ``[1, MAX_GAPS]``.
+    horizon : length ``> 0`` of the window, ``omega * horizon <= MAX_HORIZON``
+        (``symhx.impact.model``).
+    seed : ``None`` or an int ``>= 0``.
+    omega, d, Omega : as for :class:`PipeRow` (``Omega != omega``).
+
     >>> free_flight_closure_fraction(0.01, 10, horizon=50.0)
     0.0
     """
     from symhx.impact.engine import Engine, FloatContext, Outcome
 
-    rng = np.random.default_rng(seed)
-    row = PipeRow(1, restitution=1.0, omega=omega, d=d, Omega=(Omega,), alpha=[[0.0]],
-                  beta=[[0.0]], x0=[d], v0=[0.0])
+    sig = _float(check_real(sigma, "sigma", low=0, low_open=True), "sigma")
+    gaps = check_int(gaps, "gaps", minimum=1)
+    if gaps > MAX_GAPS:
+        raise ValueError(f"gaps must be <= {MAX_GAPS} (the work cap "
+                         f"symhx.impact.ensemble.MAX_GAPS), got {gaps}")
+    seed_i = check_seed(seed)
+    om = _float(check_real(omega, "omega", low=0, low_open=True), "omega")
+    dd = _float(check_real(d, "d", low=0, low_open=True), "d")
+    Om = _float(check_real(Omega, "Omega", low=0), "Omega")
+    hor = float(check_horizon(horizon, "horizon", om))
+    # PipeRow checks resonance and the float64 range of the wall
+    row = PipeRow(1, restitution=1.0, omega=om, d=dd, Omega=(Om,), alpha=[[0.0]],
+                  beta=[[0.0]], x0=[dd], v0=[0.0])
+    den = om**2 - Om**2
+    try:   # the search squares amplitudes (up to ~4 sigma / |den|): they must stay finite
+        ok = math.isfinite((4 * sig * max(1.0, 1 / abs(den))) ** 2)
+    except OverflowError:
+        ok = False
+    if not ok:
+        raise ValueError(f"sigma = {sigma!r} is too large for the float64 engine (the "
+                         "amplitudes overflow); use a smaller sigma")
+    rng = np.random.default_rng(seed_i)
     eng = Engine(row, FloatContext(), v_stick=0.0)
-    den = omega**2 - Omega**2
     closed = 0
     for _ in range(gaps):
-        a0, b0, a1, b1 = rng.normal(0.0, sigma, size=(4, 2)) @ np.array([1.0, -1.0])
-        g = [d, a0, b0, a1 / den, b1 / den]
-        _, code = eng.search(g, 0.0, float(horizon))
+        a0, b0, a1, b1 = rng.normal(0.0, sig, size=(4, 2)) @ np.array([1.0, -1.0])
+        g = [dd, a0, b0, a1 / den, b1 / den]
+        _, code = eng.search(g, 0.0, hor)
         closed += code not in (Outcome.NONE, Outcome.CONT)
     return closed / gaps

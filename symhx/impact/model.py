@@ -29,9 +29,29 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.validation import check_int, check_real, to_rational
+from symhx.validation import check_int, check_real, check_seed, to_rational
 
-__all__ = ["SQRT2", "PipeRow", "SimulationError", "exact_to_mpf"]
+__all__ = ["MAX_EVENTS", "MAX_HORIZON", "MAX_PIPES", "MAX_SCALE", "SQRT2", "PipeRow",
+           "SimulationError", "check_horizon", "check_pipes", "exact_to_mpf"]
+
+#: documented work cap: rows of more than this many pipes are refused (every event scans the
+#: ``n + 1`` sites: a row of 10**4 pipes already takes minutes per unit of time at sigma = 0.3).
+MAX_PIPES = 10_000
+#: documented work cap on a simulated time span ``t``: ``omega * t <= MAX_HORIZON`` (radians,
+#: about 16,000 periods; a row of 3 pipes at sigma = 3 makes ~3.5 events per unit of time and a
+#: row of 100 pipes ~100 times more, a million events take about a second in the C engine and
+#: ``symhx simulate`` prints each one).  Longer spans are refused up front.
+MAX_HORIZON = 10**5
+#: the largest ``max_events`` of :func:`symhx.impact.simulate`, and its value when ``None`` (a
+#: recorded history of 10**8 events needs about 5 GB).
+MAX_EVENTS = 10**8
+#: the float64 engine squares and multiplies amplitudes and frequencies: every input of a
+#: :class:`PipeRow` must have ``|value| <= MAX_SCALE`` and the scales ``omega, d >= 1 / MAX_SCALE``
+#: (a row scaled by 1e160 or 1e-200 silently lost all its impacts before this check).
+MAX_SCALE = 1e100
+#: draws of free-oscillation coefficients :meth:`PipeRow.random` may spend per pipe (in total,
+#: over all redraws of the forcing) before it gives up with a ``ValueError``.
+_DRAWS_PER_PIPE = 4_000
 
 
 class _Sqrt2:
@@ -70,6 +90,48 @@ class SimulationError(RuntimeError):
     """
 
 
+def check_horizon(t: Any, name: str, omega: float = 1.0, *, allow_zero: bool = False
+                  ) -> Fraction:
+    """A time span ``t`` (``> 0``, or ``>= 0`` with ``allow_zero``) as an exact ``Fraction``,
+    refused up front when ``omega * t > MAX_HORIZON``.
+
+    >>> check_horizon("2.5", "t_end")
+    Fraction(5, 2)
+    >>> check_horizon(1e7, "t_end")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: t_end = 10000000.0 is too long: omega * t_end must be <= 100000 ...
+    """
+    fr = check_real(t, name, low=0, low_open=not allow_zero)
+    if fr * Fraction(omega) > MAX_HORIZON:
+        raise ValueError(
+            f"{name} = {t!r} is too long: omega * {name} must be <= {MAX_HORIZON} (about "
+            f"{MAX_HORIZON // 6:,} periods; the work cap symhx.impact.model.MAX_HORIZON), got "
+            f"omega = {omega!r}")
+    return fr
+
+
+def check_pipes(n: Any, name: str = "n") -> int:
+    """A number of pipes: an int in ``[1, MAX_PIPES]``.
+
+    >>> check_pipes(5)
+    5
+    """
+    n = check_int(n, name, minimum=1)
+    if n > MAX_PIPES:
+        raise ValueError(f"{name} must be <= {MAX_PIPES} pipes (the work cap "
+                         f"symhx.impact.model.MAX_PIPES), got {n}")
+    return n
+
+
+def _check_scale(value: float, name: str, positive: bool = False) -> None:
+    """``|value| <= MAX_SCALE`` (and ``>= 1 / MAX_SCALE`` for the positive scales)."""
+    if abs(value) > MAX_SCALE or (positive and abs(value) < 1 / MAX_SCALE):
+        rng = f"[{1 / MAX_SCALE:g}, {MAX_SCALE:g}]" if positive else f"<= {MAX_SCALE:g} in size"
+        raise ValueError(f"{name} = {value!r} is outside the range {rng} that the engines "
+                         "resolve (symhx.impact.model.MAX_SCALE); rescale the units")
+
+
 def _is_irrational(x: Any) -> bool:
     """Exact irrational inputs kept as objects: :data:`SQRT2`, or sympy real irrationals."""
     if isinstance(x, _Sqrt2):
@@ -92,7 +154,10 @@ def _scalar(value: Any, name: str) -> tuple[float, Any]:
         if not math.isfinite(f):
             raise ValueError(f"{name} must be finite, got {value!r}")
         return f, value
-    f = float(fr)
+    try:
+        f = float(fr)
+    except OverflowError:
+        f = math.inf
     if not math.isfinite(f):
         raise ValueError(f"{name} = {value!r} is beyond the float64 range")
     return f, fr
@@ -216,7 +281,7 @@ class PipeRow:
         x0: Any,
         v0: Any,
     ) -> None:
-        n = check_int(n, "n", minimum=1)
+        n = check_pipes(n)
         omega_f, omega_x = _scalar(omega, "omega")
         if not omega_f > 0:
             raise ValueError(f"omega must be > 0, got {omega!r}")
@@ -247,6 +312,16 @@ class PipeRow:
         b, b_x = _array(beta, "beta", (n, k))
         x, x_x = _array(x0, "x0", (n,))
         v, v_x = _array(v0, "v0", (n,))
+        _check_scale(omega_f, "omega", positive=True)
+        _check_scale(d_f, "d", positive=True)
+        for name, arr in (("Omega", np.array([float(w) for w in Omega])), ("alpha", a),
+                          ("beta", b), ("v0", v)):
+            if arr.size and np.max(np.abs(arr)) > MAX_SCALE:
+                idx = tuple(int(i) for i in np.unravel_index(np.argmax(np.abs(arr)), arr.shape))
+                _check_scale(float(arr[idx]), f"{name}{list(idx)}")
+        if not math.isfinite((n + 1) * d_f):
+            raise ValueError(f"d = {d!r} is too large: the right wall (n + 1) d = {n + 1} d is "
+                             "beyond the float64 range")
         walls = np.concatenate(([0.0], x, [(n + 1) * d_f]))
         if not np.all(np.diff(walls) > 0):
             bad = int(np.argmin(np.diff(walls)))
@@ -329,12 +404,14 @@ class PipeRow:
         >>> row.n, row.alpha.shape, bool(np.all(row.gap0() > 0))
         (5, (5, 1), True)
         """
-        n = check_int(n, "n", minimum=1)
-        sig = float(check_real(sigma, "sigma", low=0))
-        sig0 = sig if sigma0 is None else float(check_real(sigma0, "sigma0", low=0))
-        if not (math.isfinite(sig) and math.isfinite(sig0)):
-            raise ValueError(f"sigma and sigma0 must be finite, got {sigma!r}, {sigma0!r}")
+        n = check_pipes(n)
+        sig, _ = _scalar(check_real(sigma, "sigma", low=0), "sigma")
+        sig0 = sig if sigma0 is None else _scalar(check_real(sigma0, "sigma0", low=0),
+                                                  "sigma0")[0]
         max_redraws = check_int(max_redraws, "max_redraws", minimum=1)
+        if not isinstance(seed, (np.random.SeedSequence, np.random.Generator,
+                                 np.random.BitGenerator)):
+            seed = check_seed(seed)
         if isinstance(Omega, (str, bytes)) or not isinstance(Omega, (Sequence, np.ndarray)):
             Omega = (Omega,)
         Omega = tuple(Omega)
@@ -344,6 +421,13 @@ class PipeRow:
             raise ValueError(f"omega must be > 0, got {omega!r}")
         if not d_f > 0:
             raise ValueError(f"d must be > 0, got {d!r}")
+        _check_scale(om, "omega", positive=True)
+        _check_scale(d_f, "d", positive=True)
+        right = (n + 1) * d_f
+        if not math.isfinite(right):
+            raise ValueError(f"d = {d!r} is too large: the right wall (n + 1) d = {n + 1} d is "
+                             "beyond the float64 range")
+        _scalar(restitution, "restitution")   # range checked by the constructor
         if len(Omega) < 1:
             raise ValueError("Omega must hold at least one forcing frequency")
         Om = np.array([_scalar(w, f"Omega[{i}]")[0] for i, w in enumerate(Omega)])
@@ -352,24 +436,43 @@ class PipeRow:
             i = int(np.argmin(np.abs(den)))
             raise ValueError(f"Omega[{i}] = {Om[i]!r} equals omega = {om!r} (resonance): the "
                              "forced response is unbounded; choose Omega[i] != omega")
+
+        def too_large(scale: float) -> ValueError:
+            return ValueError(
+                f"could not draw non-overlapping initial positions: with sigma={sigma!r}, "
+                f"sigma0={sigma0!r}, omega={omega!r}, Omega={Omega!r} the random displacements "
+                f"(scale ~{scale:.3g}) are too large for the spacing d={d!r}; use a smaller "
+                "sigma/sigma0, a larger d, or Omega further from omega")
+
+        scale = sig * float(np.sum(1 / np.abs(den))) + sig0
+        # refused up front: a pipe's start x_j(0) ~ N(j d + forced, sig0**2) must land in an
+        # interval of width < (n + 1) d, which has probability < (n + 1) d / (sig0 sqrt(2 pi))
+        # per draw; below 1e-3 the bounded redraws below would all but surely fail
+        if sig0 > 0 and right / (sig0 * math.sqrt(2 * math.pi)) < 1e-3:
+            raise too_large(scale)
         rng = np.random.default_rng(seed)
         k = len(Omega)
         x0 = np.empty(n)
         v0 = np.empty(n)
-        right = (n + 1) * d_f
+        total = _DRAWS_PER_PIPE * n   # all draws of all forcings: bounded work on failure
+        ok = False
         for _forcing in range(10):
             alpha = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
             beta = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
             f0 = (alpha / den).sum(axis=1)            # forced part at t = 0
             fv0 = (beta * Om / den).sum(axis=1)       # its velocity at t = 0
+            if not (np.all(np.isfinite(f0)) and np.all(np.isfinite(fv0))):
+                raise too_large(scale)
             ok = False
             budget = 20 * max_redraws   # draws per forcing: bounded work (~0.2 s) on failure
             for _attempt in range(100):
                 prev = 0.0
                 ok = True
                 for j in range(n):
-                    for _ in range(min(max_redraws, budget)):
+                    tries = min(max_redraws, budget, total) if sig0 > 0 else min(1, total)
+                    for _ in range(tries):
                         budget -= 1
+                        total -= 1
                         a0, b0 = (rng.normal(0.0, sig0, size=2) if sig0 > 0 else (0.0, 0.0))
                         xj = (j + 1) * d_f + a0 + f0[j]
                         if prev < xj < right:
@@ -380,17 +483,12 @@ class PipeRow:
                     x0[j] = xj
                     v0[j] = om * b0 + fv0[j]
                     prev = xj
-                if ok:
+                if ok or total <= 0:
                     break
-            if ok:
+            if ok or total <= 0:
                 break
-        else:
-            scale = sig * float(np.sum(1 / np.abs(den))) + sig0
-            raise ValueError(
-                f"could not draw non-overlapping initial positions: with sigma={sigma!r}, "
-                f"sigma0={sigma0!r}, omega={omega!r}, Omega={Omega!r} the random displacements "
-                f"(scale ~{scale:.3g}) are too large for the spacing d={d!r}; use a smaller "
-                "sigma/sigma0, a larger d, or Omega further from omega")
+        if not ok:
+            raise too_large(scale)
         return cls(n, omega=omega, d=d, restitution=restitution, Omega=Omega, alpha=alpha,
                    beta=beta, x0=x0, v0=v0)
 

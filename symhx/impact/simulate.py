@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import mpmath
 
 from symhx.impact import fast
 from symhx.impact.engine import Engine, MPContext, default_v_stick, work_dps
 from symhx.impact.history import History
-from symhx.impact.model import PipeRow, SimulationError
+from symhx.impact.model import MAX_EVENTS, PipeRow, SimulationError, check_horizon, exact_to_mpf
 from symhx.validation import check_choice, check_dps, check_int, check_real
 
 __all__ = ["default_v_stick", "simulate", "work_dps"]
@@ -30,17 +31,20 @@ def simulate(
     ----------
     row : PipeRow
     t_end : number
-        Horizon ``> 0`` (finite; exact for the mpmath engine like every row input).
+        Horizon ``> 0`` (exact for the mpmath engine like every row input), with
+        ``omega * t_end <= MAX_HORIZON`` (``symhx.impact.model``; longer spans are refused).
     dps : int or None
         ``None``: the float64 engine (C extension; pure-Python fallback if it is not built).
         An int in ``[1, MAX_DPS]``: the mpmath reference engine, working at :func:`work_dps`
         digits from the row's exact inputs, so that impact times are correct to about ``dps``
         digits (up to the Lyapunov growth of errors).
     v_stick : float, optional
-        Chatter threshold (:func:`default_v_stick`).
+        Chatter threshold ``> 0`` (:func:`default_v_stick`): a contact slower than this sticks.
+        ``0`` is refused: without sticking an inelastic chatter never ends (infinitely many
+        impacts in finite time).
     max_events : int, optional
         Raise :class:`~symhx.impact.SimulationError` beyond this many events (guard for huge
-        horizons).
+        horizons); at most and by default ``MAX_EVENTS`` (``symhx.impact.model``).
     engine : ``"auto"``, ``"c"`` or ``"python"`` (float64 engine only).
 
     Returns
@@ -61,19 +65,34 @@ def simulate(
     True
     """
     if not isinstance(row, PipeRow):
-        raise TypeError(f"row must be a PipeRow, got {type(row).__name__}")
-    t_end_x = check_real(t_end, "t_end", low=0, low_open=True)
+        raise TypeError(f"row must be a PipeRow, got {type(row).__name__} {row!r:.60}")
+    t_end_x = check_horizon(t_end, "t_end", row.omega)
     t_end_f = float(t_end_x)
-    if not math.isfinite(t_end_f):
-        raise ValueError(f"t_end = {t_end!r} is beyond the float64 range")
     dps = check_dps(dps, allow_none=True)
     engine = check_choice(engine, "engine", ("auto", "c", "python"))
-    if max_events is not None:
-        max_events = check_int(max_events, "max_events", minimum=1)
-    if v_stick is None:
-        vs = default_v_stick(row, dps)
+    if max_events is None:
+        max_events = MAX_EVENTS
     else:
-        vs = float(check_real(v_stick, "v_stick", low=0))
+        max_events = check_int(max_events, "max_events", minimum=1)
+        if max_events > MAX_EVENTS:
+            raise ValueError(f"max_events must be <= {MAX_EVENTS} (a recorded history of that "
+                             "many events needs gigabytes; the cap "
+                             f"symhx.impact.model.MAX_EVENTS), got {max_events}")
+    vs_x: Any
+    if v_stick is None:
+        vs_x = default_v_stick(row, dps)
+    else:
+        # 0 would disable sticking: an inelastic chatter is then an infinite sequence of ever
+        # faster impacts (Zeno) that no engine can finish, so v_stick must be > 0
+        vs_x = check_real(v_stick, "v_stick", low=0, low_open=True)
+    if dps is None:
+        try:
+            vs = float(vs_x)
+        except OverflowError:
+            vs = math.inf
+        if not 0 < vs < math.inf:
+            raise ValueError(f"v_stick = {v_stick!r} is outside the float64 range (> 0, finite) "
+                             "of the float64 engine: give a positive float64 number, or use dps")
     if dps is None:
         if engine in ("auto", "c"):
             if fast.available():
@@ -83,7 +102,7 @@ def simulate(
         return fast.simulate_python(row, t_end_f, v_stick=vs, max_events=max_events)
     wdps = work_dps(dps)
     with mpmath.workdps(wdps):
-        eng = Engine(row, MPContext(), v_stick=vs)
+        eng = Engine(row, MPContext(), v_stick=exact_to_mpf(vs_x))
         te = mpmath.mpf(t_end_x.numerator) / t_end_x.denominator
         eng.run(te, max_events=max_events)
         return History.from_log(row, te, dps, eng.log, eng.F, wdps)
