@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -67,7 +68,36 @@ def test_decimal_strings_are_exact_and_floats_binary():
     assert F.impact_probability("0.1") == F.impact_probability(0.1)
     with pytest.raises(ValueError, match="float64 range"):
         F.impact_probability("1e400")
-    assert F.log_impact_probability("1e-400", dps=15) < mpmath.mpf("-1e790")
+    # E = uv = 2.5e799 is beyond the documented cap MAX_EXPONENT (exp of it takes seconds)
+    with pytest.raises(ValueError, match="MAX_EXPONENT"):
+        F.log_impact_probability("1e-400", dps=15)
+    assert F.log_impact_probability("1e-150", dps=15) < mpmath.mpf("-1e299")
+
+
+def test_fuzz_fixes_none_empty_and_extremes():
+    """Issue 12: None is a TypeError, an empty Omega array an error, extremes no NaN."""
+    for name in ("sigma", "omega", "d"):
+        kw = {"sigma": 0.3, name: None}
+        with pytest.raises(TypeError, match=name):
+            F.impact_probability(**kw)
+    with pytest.raises(ValueError, match="Omega: an empty"):
+        F.dp_dsigma(0.3, Omega=np.array([]))
+    # dp/dsigma where the float kernel overflows: the mpmath value (independent path) or 0
+    for kw in (dict(sigma1=5e-324), dict(omega=1e308), dict(Omega=1e308)):
+        ref = float(F.dp_dsigma(0.3, **kw, dps=30))
+        assert abs(F.dp_dsigma(0.3, **kw) / ref - 1) < 1e-14, kw
+        # a single Rayleigh(sqrt2 sigma) amplitude: p = exp(-d^2/(4 sigma^2))
+        assert abs(ref - 0.5 / 0.3**3 * math.exp(-1 / 0.36)) < 1e-12, kw
+    for kw in (dict(sigma=1e308), dict(sigma=5e-324), dict(d=1e308), dict(d=5e-324)):
+        assert F.dp_dsigma(**{"sigma": 0.3, **kw}) == 0.0, kw
+    assert F.rayleigh_scales(0.3, omega=1e308) == (0.3 * math.sqrt(2), 0.0)
+    assert F.rayleigh_sum_probability([0.5, 0.3], d=1e308).value == 0.0
+    assert F.rayleigh_sum_probability([0.5, 0.3], d=1e308, tail="lower").value == 1.0
+    for kw in (dict(sigma=5e-324), dict(Omega=1e308), dict(d=1e308), dict(omega=1e308)):
+        with pytest.raises(ValueError, match="float64 range"):
+            F.naive_impact_probability(**{"sigma": 0.3, **kw})
+    with pytest.raises(ValueError, match="MAX_EXPONENT"):
+        F.impact_probability("0.3", d="1e1000", dps=15)
 
 
 def test_resonance_and_components():

@@ -159,6 +159,13 @@ class ForcingParams:
                 sigma1 = sigma1[0]
         exact = dps is not None
 
+        for name, v in (("sigma", sigma), ("omega", omega), ("d", d)):
+            if v is None:
+                raise TypeError(f"{name} must be a real number, got None")
+        if isinstance(Omega, np.ndarray) and Omega.size == 0:
+            raise ValueError("Omega: an empty array of forcing frequencies (give a scalar, a "
+                             "list of components or None for the paper's sqrt(2))")
+
         def conv(name: str, v: Any) -> Any:
             if v is None:
                 return None
