@@ -92,6 +92,13 @@ def test_fuzz_fixes_none_empty_and_extremes():
         assert F.dp_dsigma(**{"sigma": 0.3, **kw}) == 0.0, kw
     assert F.rayleigh_scales(0.3, omega=1e308) == (0.3 * math.sqrt(2), 0.0)
     assert F.rayleigh_sum_probability([0.5, 0.3], d=1e308).value == 0.0
+    for scales in ([0.5, 0.3], [0.5, 0.3, 0.2]):  # the far-tail cut leaves the normal tail alone
+        for x in (2.0, 4.0):
+            ref = F.rayleigh_sum_probability(scales, d=x, dps=30).value
+            got = F.rayleigh_sum_probability(scales, d=x).value
+            assert ref > 1e-30 and abs(got / float(ref) - 1) < 1e-11, (scales, x, got, ref)
+    with pytest.raises(TypeError, match="dps"):
+        F.ForcingParams.validated(0.3, dps="abc")
     assert F.rayleigh_sum_probability([0.5, 0.3], d=1e308, tail="lower").value == 1.0
     for kw in (dict(sigma=5e-324), dict(Omega=1e308), dict(d=1e308), dict(omega=1e308)):
         with pytest.raises(ValueError, match="float64 range"):
@@ -131,3 +138,22 @@ def test_global_precision_untouched():
     F.sigma_for_impact_probability("0.25", dps=30)
     assert mpmath.mp.dps == before
 
+
+
+def test_theory_curve_tiny_p_and_N_cap():
+    """Below THEORY_P_FLOOR the p -> 0 shortcut equals the graph model at the exact p."""
+    import symhx
+    from symhx.forcing.theory import THEORY_MAX_N, theory_curve
+
+    tc = theory_curve([5e-324, 0.01, 0.05, 0.2], N=101, dps=15)
+    assert list(tc.p[:2]) == [0.0, 0.0] and list(tc.mode[:2]) == [1, 1]
+    for i, s in enumerate((0.01, 0.05, 0.2)):  # p(0.01) ~ 1e-1086: below the floor
+        pm = F.impact_probability(s, dps=20)
+        assert tc.p[i + 1] == float(pm)
+        assert tc.mean[i + 1] == float(symhx.mean(101, pm, space="simple", dps=20))
+        assert tc.mode[i + 1] == int(symhx.mode(101, pm, space="simple"))
+    assert tc.mean[0] == 1.0
+    with pytest.raises(ValueError, match="THEORY_MAX_N"):
+        theory_curve(0.3, N=THEORY_MAX_N + 1)
+    with pytest.raises(ValueError, match="THEORY_MAX_N"):
+        theory_curve(0.3, N=10**1000)

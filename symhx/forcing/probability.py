@@ -310,9 +310,9 @@ def naive_impact_probability(
     s0 = float(float_arg("sigma", sigma))
     s1 = s0 if sigma1 is None else float(float_arg("sigma1", sigma1))
     om = float(float_arg("omega", omega))
-    Om2 = 2.0 if Omega is None else float(np.float64(float_arg("Omega", Omega)) ** 2)
     dd = float(float_arg("d", d))
     with np.errstate(over="ignore"):
+        Om2 = 2.0 if Omega is None else float(np.float64(float_arg("Omega", Omega)) ** 2)
         k = float((np.float64(om) * om - Om2) ** 2)
     if k == 0:
         raise ValueError("Omega: resonance Omega == omega (infinite forced amplitude)")
