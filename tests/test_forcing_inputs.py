@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -67,7 +68,43 @@ def test_decimal_strings_are_exact_and_floats_binary():
     assert F.impact_probability("0.1") == F.impact_probability(0.1)
     with pytest.raises(ValueError, match="float64 range"):
         F.impact_probability("1e400")
-    assert F.log_impact_probability("1e-400", dps=15) < mpmath.mpf("-1e790")
+    # E = uv = 2.5e799 is beyond the documented cap MAX_EXPONENT (exp of it takes seconds)
+    with pytest.raises(ValueError, match="MAX_EXPONENT"):
+        F.log_impact_probability("1e-400", dps=15)
+    assert F.log_impact_probability("1e-150", dps=15) < mpmath.mpf("-1e299")
+
+
+def test_fuzz_fixes_none_empty_and_extremes():
+    """Issue 12: None is a TypeError, an empty Omega array an error, extremes no NaN."""
+    for name in ("sigma", "omega", "d"):
+        kw = {"sigma": 0.3, name: None}
+        with pytest.raises(TypeError, match=name):
+            F.impact_probability(**kw)
+    with pytest.raises(ValueError, match="Omega: an empty"):
+        F.dp_dsigma(0.3, Omega=np.array([]))
+    # dp/dsigma where the float kernel overflows: the mpmath value (independent path) or 0
+    for kw in (dict(sigma1=5e-324), dict(omega=1e308), dict(Omega=1e308)):
+        ref = float(F.dp_dsigma(0.3, **kw, dps=30))
+        assert abs(F.dp_dsigma(0.3, **kw) / ref - 1) < 1e-14, kw
+        # a single Rayleigh(sqrt2 sigma) amplitude: p = exp(-d^2/(4 sigma^2))
+        assert abs(ref - 0.5 / 0.3**3 * math.exp(-1 / 0.36)) < 1e-12, kw
+    for kw in (dict(sigma=1e308), dict(sigma=5e-324), dict(d=1e308), dict(d=5e-324)):
+        assert F.dp_dsigma(**{"sigma": 0.3, **kw}) == 0.0, kw
+    assert F.rayleigh_scales(0.3, omega=1e308) == (0.3 * math.sqrt(2), 0.0)
+    assert F.rayleigh_sum_probability([0.5, 0.3], d=1e308).value == 0.0
+    for scales in ([0.5, 0.3], [0.5, 0.3, 0.2]):  # the far-tail cut leaves the normal tail alone
+        for x in (2.0, 4.0):
+            ref = F.rayleigh_sum_probability(scales, d=x, dps=30).value
+            got = F.rayleigh_sum_probability(scales, d=x).value
+            assert ref > 1e-30 and abs(got / float(ref) - 1) < 1e-11, (scales, x, got, ref)
+    with pytest.raises(TypeError, match="dps"):
+        F.ForcingParams.validated(0.3, dps="abc")
+    assert F.rayleigh_sum_probability([0.5, 0.3], d=1e308, tail="lower").value == 1.0
+    for kw in (dict(sigma=5e-324), dict(Omega=1e308), dict(d=1e308), dict(omega=1e308)):
+        with pytest.raises(ValueError, match="float64 range"):
+            F.naive_impact_probability(**{"sigma": 0.3, **kw})
+    with pytest.raises(ValueError, match="MAX_EXPONENT"):
+        F.impact_probability("0.3", d="1e1000", dps=15)
 
 
 def test_resonance_and_components():
@@ -101,3 +138,22 @@ def test_global_precision_untouched():
     F.sigma_for_impact_probability("0.25", dps=30)
     assert mpmath.mp.dps == before
 
+
+
+def test_theory_curve_tiny_p_and_N_cap():
+    """Below THEORY_P_FLOOR the p -> 0 shortcut equals the graph model at the exact p."""
+    import symhx
+    from symhx.forcing.theory import THEORY_MAX_N, theory_curve
+
+    tc = theory_curve([5e-324, 0.01, 0.05, 0.2], N=101, dps=15)
+    assert list(tc.p[:2]) == [0.0, 0.0] and list(tc.mode[:2]) == [1, 1]
+    for i, s in enumerate((0.01, 0.05, 0.2)):  # p(0.01) ~ 1e-1086: below the floor
+        pm = F.impact_probability(s, dps=20)
+        assert tc.p[i + 1] == float(pm)
+        assert tc.mean[i + 1] == float(symhx.mean(101, pm, space="simple", dps=20))
+        assert tc.mode[i + 1] == int(symhx.mode(101, pm, space="simple"))
+    assert tc.mean[0] == 1.0
+    with pytest.raises(ValueError, match="THEORY_MAX_N"):
+        theory_curve(0.3, N=THEORY_MAX_N + 1)
+    with pytest.raises(ValueError, match="THEORY_MAX_N"):
+        theory_curve(0.3, N=10**1000)

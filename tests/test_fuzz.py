@@ -154,6 +154,9 @@ REJECT: dict[str, set[str]] = {
 _EMPTIES = {"[]", "np.array([])"}
 for _role in ("p", "nonneg", "positive", "positive?", "p01"):
     REJECT[_role + "[]"] = REJECT[_role] - _EMPTIES
+# any finite real (a threshold x of a distribution: x <= 0 is allowed, sf(x) = 1 there)
+REJECT["real"] = _NOT_REAL | _NONFINITE
+REJECT["real[]"] = REJECT["real"] - _EMPTIES
 # a restitution coefficient in [0, 1] (0: plastic impacts, supported by both engines)
 REJECT["restitution0"] = REJECT["restitution"] - _ZERO
 # a flag that may also be None (ensemble's progress: None = only when stderr is a terminal)
@@ -245,6 +248,13 @@ def _entries() -> list[Entry]:
         E("rayleigh_sum_probability", s.rayleigh_sum_probability,
           {"scales": [0.5, 0.3], "d": 1, "tail": "upper", "dps": None},
           {"scales": "array+", "d": "positive", "tail": "choice", "dps": "dps?"}),
+        E("RayleighSum", s.RayleighSum, {"scales": [0.5, 0.3]}, {"scales": "array+"}),
+        E("RayleighSum.probability", s.RayleighSum([0.5, 0.3, 0.2]).probability,
+          {"x": 1.0, "tail": "upper", "dps": None}, {"x": "real", "tail": "choice", "dps": "dps?"}),
+        E("RayleighSum.sf()", s.RayleighSum([0.5, 0.3]).sf, {"x": [0.5, 1.0], "dps": None},
+          {"x": "real[]", "dps": "dps?"}),
+        E("ForcingParams.validated", s.ForcingParams.validated, dict(_FORCING),
+          dict(_FORCING_ROLES)),
         E("sigma_for_impact_probability", s.sigma_for_impact_probability,
           {**{k: v for k, v in _FORCING.items() if k != "sigma"}, "p": 0.1},
           {**{k: v for k, v in _FORCING_ROLES.items() if k != "sigma"}, "p": "p01[]"}),
@@ -288,6 +298,7 @@ NOT_CALLABLE = {
     "History": "result class, built by simulate",
     "ModePath": "result class, built by mode_path",
     "RayleighSumResult": "result class, built by rayleigh_sum_probability",
+    "ForcingParams": "value object; its constructor is fuzzed as ForcingParams.validated",
     "TheoryCurve": "result class, built by theory_curve",
     "SigmaStats": "result class, built by ensemble",
     "PipeRow": "fuzzed through PipeRow.random",

@@ -25,7 +25,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.validation import check_array, to_rational
+from symhx.validation import check_array, check_dps, to_rational
 
 __all__ = [
     "ForcingParams",
@@ -149,7 +149,9 @@ class ForcingParams:
     @classmethod
     def validated(cls, sigma: Any, sigma1: Any = None, omega: Any = 1, Omega: Any = None,
                   d: Any = 1, *, dps: int | None = None) -> ForcingParams:
-        """Convert and check every argument once (see the module docstring)."""
+        """Convert and check every argument once (see the module docstring); ``dps`` (checked
+        here too) only decides exact Fractions (an int) or float64 arrays (``None``)."""
+        dps = check_dps(dps, allow_none=True)
         if is_components(Omega) and len(Omega) == 1:  # one component given as a list
             Omega = Omega[0]
             if is_components(sigma1):
@@ -158,6 +160,13 @@ class ForcingParams:
                         f"sigma1: {len(sigma1)} values for 1 forcing component (Omega)")
                 sigma1 = sigma1[0]
         exact = dps is not None
+
+        for name, v in (("sigma", sigma), ("omega", omega), ("d", d)):
+            if v is None:
+                raise TypeError(f"{name} must be a real number, got None")
+        if isinstance(Omega, np.ndarray) and Omega.size == 0:
+            raise ValueError("Omega: an empty array of forcing frequencies (give a scalar, a "
+                             "list of components or None for the paper's sqrt(2))")
 
         def conv(name: str, v: Any) -> Any:
             if v is None:

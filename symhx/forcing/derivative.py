@@ -28,14 +28,40 @@ def _dp_float(fp: ForcingParams) -> Any:
     Om = None if fp.Omega is None else b[4]
     if sig0.size == 0:
         return np.empty(sig0.shape)
-    uv = UV(*(np.ravel(a) for a in uv_forcing(sig0, sig1, om, Om, dd)))
-    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+    with np.errstate(under="ignore", over="ignore", invalid="ignore", divide="ignore"):
+        uv = UV(*(np.ravel(a) for a in uv_forcing(sig0, sig1, om, Om, dd)))
         if tied:  # sigma dp/dsigma = d g(d) = 4 uv/r exp(-uv) I2(u, v)
             val = 4.0 * uv.u * uv.v / uv.r * np.exp(-uv.e) * i2_float(uv.u, uv.v)
         else:  # sigma0 dp/dsigma0 = E[R0 f1(d - R0)] = 4 uv/r**2 exp(-uv) I3(u, v)
             val = 4.0 * uv.u * uv.v / uv.r**2 * np.exp(-uv.e) * i3_float(uv.u, uv.v)
-    out = val.reshape(sig0.shape) / sig0
+        out = val.reshape(sig0.shape) / sig0
+    bad = ~np.isfinite(out)
+    if bad.any():  # extreme but finite inputs (over/underflow inside the float kernel)
+        out = np.array(out, dtype=float)
+        e = np.broadcast_to(uv.e.reshape(-1) if uv.e.size > 1 else uv.e, (out.size,))
+        flat_bad = np.flatnonzero(bad.reshape(-1))
+        parts = [a.reshape(-1) for a in (sig0, sig1, om, dd)] + (
+            [] if Om is None else [Om.reshape(-1)])
+        for i in flat_bad:
+            out.reshape(-1)[i] = _dp_fallback(float(e[i]), *(float(a[i]) for a in parts),
+                                              tied=tied, omega_none=Om is None)
     return float(out) if scalar else out
+
+
+#: above this exponent ``uv`` the derivative underflows float64: it is at most
+#: ``exp(-uv)`` times a polynomial in ``u, v, 1/sigma`` (< exp(1e4) for float64 inputs)
+_DP_UNDERFLOW_E = 1e6
+
+
+def _dp_fallback(e: float, s0: float, s1: float, om: float, dd: float, *rest: float,
+                 tied: bool, omega_none: bool) -> float:
+    """One float64 derivative where the float kernel over/underflows: 0.0 where the exact value
+    is below float64's range, else the mpmath path at 20 digits rounded to float."""
+    if e > _DP_UNDERFLOW_E:
+        return 0.0
+    fp1 = ForcingParams.validated(s0, None if tied else s1, om, None if omega_none else rest[0],
+                                  dd, dps=20)
+    return float(_dp_mp(fp1, 20))
 
 
 def _dp_mp(fp: ForcingParams, dps: int) -> mpmath.mpf:

@@ -34,15 +34,18 @@ _SPLIT = 134217729.0  # 2**27 + 1, Dekker splitting constant
 
 def delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
     """``omega**2 - Omega**2`` with small relative error also close to resonance."""
-    if Omega is None:  # Omega**2 = 2 exactly: omega**2 = hi + lo exactly (Dekker), then - 2
-        c = _SPLIT * omega
-        hi = c - (c - omega)
-        lo = omega - hi
-        sq = omega * omega
-        err = ((hi * hi - sq) + 2.0 * hi * lo) + lo * lo
-        delta = (sq - 2.0) + err
-    else:
-        delta = (omega - Omega) * (omega + Omega)
+    with np.errstate(over="ignore", invalid="ignore"):
+        if Omega is None:  # Omega**2 = 2 exactly: omega**2 = hi + lo exactly (Dekker), then - 2
+            c = _SPLIT * omega
+            hi = c - (c - omega)
+            lo = omega - hi
+            sq = omega * omega
+            err = ((hi * hi - sq) + 2.0 * hi * lo) + lo * lo
+            delta = (sq - 2.0) + err
+            # omega**2 beyond float64 (omega > ~1.3e154): the split overflows; Delta = +inf
+            delta = np.where(np.isfinite(sq), delta, sq)
+        else:
+            delta = (omega - Omega) * (omega + Omega)
     bad = delta == 0
     if Omega is not None and np.any(bad):  # an underflowed product is no resonance
         bad = bad & (omega == Omega)

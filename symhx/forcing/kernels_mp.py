@@ -6,6 +6,7 @@ digits, and the positive integrals of the derivative in closed form.
 from __future__ import annotations
 
 import math
+import sys
 
 import mpmath
 
@@ -13,6 +14,7 @@ from symhx.forcing.arguments import mp_arg
 from symhx.forcing.kernels_float import SQRT_PI
 
 __all__ = [
+    "MAX_EXPONENT",
     "estimate",
     "estimate_float",
     "guard_digits",
@@ -84,7 +86,7 @@ def estimate(x: mpmath.mpf, y: mpmath.mpf) -> tuple[float, float, float]:
     lxy = lx + ly
     ls = max(lx, ly) + math.log1p(math.exp(-abs(lx - ly)))
     le = lxy - ls
-    e = math.exp(min(le, 700.0))
+    e = math.exp(le) if le < 709.78 else math.inf  # inf: beyond MAX_EXPONENT
     if e > 50.0:
         return e, math.exp(min(lxy, 700.0)), 0.0
     if abs(lx - ly) > 60.0 or not -600.0 < lx < 600.0 or not -600.0 < ly < 600.0:
@@ -120,8 +122,23 @@ def estimate_float(sigma, sigma1, omega, Omega, d) -> tuple[float, float, float]
     return e, x * y, math.exp(-e) * b / r
 
 
+#: cap on the exponent ``E = uv`` of ``p ~ exp(-E)`` in the mpmath evaluation (``p`` below
+#: ``10**(-7e307)``, beyond every float64 ``log p``): ``exp`` of a larger argument costs seconds
+#: to minutes, so such a forcing (``d/sigma`` above ~1e154) is refused up front
+MAX_EXPONENT = sys.float_info.max
+
+
 def guard_digits(e: float) -> int:
-    """Extra digits so that ``exp(-uv)`` keeps its relative accuracy (uv ~ 1e6 costs 6)."""
+    """Extra digits so that ``exp(-uv)`` keeps its relative accuracy (uv ~ 1e6 costs 6).
+
+    Raises ValueError when ``e`` exceeds :data:`MAX_EXPONENT` (before any mpmath work).
+    """
+    if not e <= MAX_EXPONENT:
+        raise ValueError(
+            f"sigma, d: the forcing gives p = exp(-E) with E ~ "
+            f"{'> 1e308' if e == math.inf else format(e, '.3g')} above the cap "
+            f"MAX_EXPONENT = {MAX_EXPONENT:.3g} of the mpmath evaluation (d/sigma must stay "
+            "below ~1e154)")
     return 12 + (int(math.log10(e)) + 1 if e > 1 else 0)
 
 

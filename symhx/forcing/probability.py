@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import Any
 
 import mpmath
+import numpy as np
 
 from symhx.forcing.arguments import ForcingParams, elementwise, float_arg
 from symhx.forcing.kernels_float import single_float
@@ -309,12 +310,22 @@ def naive_impact_probability(
     s0 = float(float_arg("sigma", sigma))
     s1 = s0 if sigma1 is None else float(float_arg("sigma1", sigma1))
     om = float(float_arg("omega", omega))
-    Om2 = 2.0 if Omega is None else float(float_arg("Omega", Omega)) ** 2
     dd = float(float_arg("d", d))
-    k = (om * om - Om2) ** 2
+    with np.errstate(over="ignore"):
+        Om2 = 2.0 if Omega is None else float(np.float64(float_arg("Omega", Omega)) ** 2)
+        k = float((np.float64(om) * om - Om2) ** 2)
     if k == 0:
         raise ValueError("Omega: resonance Omega == omega (infinite forced amplitude)")
-    c = k / (4 * s0 * s0 * s1 * s1)
+    den = 4 * s0 * s0 * s1 * s1
+    # the literal integrand needs k, 1/(4 s0^2 s1^2), d**2/sigma**2 and k d**2/sigma1**2 as
+    # normal float64 numbers: refuse the rest up front (impact_probability has no such limits)
+    if not (math.isfinite(k) and 1e-300 < den < 1e300 and 1e-300 < dd * dd < 1e300
+            and math.isfinite(k / den) and math.isfinite(k * dd * dd / (s1 * s1))):
+        raise ValueError(
+            f"naive_impact_probability: sigma={sigma!r}, sigma1={sigma1!r}, omega={omega!r}, "
+            f"Omega={Omega!r}, d={d!r} are outside the float64 range of the literal eq. (27) "
+            "integrand; use impact_probability")
+    c = k / den
 
     def f(t: float, x: float) -> float:
         return t * (x - t) * math.exp(-t * t / (4 * s0 * s0)) * math.exp(

@@ -332,6 +332,16 @@ _EPS = float(np.finfo(float).eps)
 
 def _float_with_error(scales: Sequence[float], x: np.ndarray, kind: str
                       ) -> tuple[np.ndarray, np.ndarray]:
+    # far tail: sum R_i <= sqrt(M+1) sqrt(sum R_i**2), so sf and pdf are below a polynomial
+    # times exp(-x**2 / (2 (M+1) max s**2)) < exp(-2e6): exactly 0 in float64 (cdf: 1); the
+    # kernels would overflow there (x**2 beyond float64)
+    far = x > _FAR_TAIL * math.sqrt(len(scales)) * max(scales)
+    if far.any():
+        val = np.full(x.shape, 1.0 if kind == "cdf" else 0.0)
+        err = np.zeros(x.shape)
+        if (~far).any():
+            val[~far], err[~far] = _float_with_error(scales, x[~far], kind)
+        return val, err
     groups = [_FGroup(g) for g in make_groups(scales)]
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         if len(groups) == 1:
@@ -546,6 +556,10 @@ class RayleighSum:
             if big.any():
                 out[big] = np.log1p(-_float_with_error(sc, x[big], other)[0])
         return out
+
+
+#: ``x / (sqrt(M+1) max s)`` beyond which the float64 sf/pdf are 0 and the cdf 1
+_FAR_TAIL = 2000.0
 
 
 def _to_float(fr: Fraction) -> float:

@@ -4,13 +4,22 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
+import mpmath
 import numpy as np
 
 from symhx.forcing.arguments import ForcingParams, float_arg
 from symhx.forcing.probability import evaluate
 from symhx.validation import check_dps, check_N
 
-__all__ = ["TheoryCurve", "theory_curve"]
+__all__ = ["THEORY_MAX_N", "THEORY_P_FLOOR", "TheoryCurve", "theory_curve"]
+
+#: largest ``N`` of :func:`theory_curve` (mean and mode are float64/int64 arrays)
+THEORY_MAX_N = 10**15
+#: below this ``p`` the graph model is evaluated at ``THEORY_P_FLOOR`` itself: there ``X = 1``
+#: with probability ``1 - O(N p)``, so mean and mode are already 1 in float64 (checked at the
+#: call); an exact ``p`` with an exponent of millions of bits would make the model's exact
+#: conversion of ``p`` run for minutes
+THEORY_P_FLOOR = "1e-1000"
 
 
 class TheoryCurve(NamedTuple):
@@ -66,6 +75,9 @@ def theory_curve(
     import symhx  # lazily: the graph model lives in a higher layer (the API)
 
     N = check_N(N)
+    if N > THEORY_MAX_N:
+        shown = f"{N}" if N < 10**30 else f"an integer of {len(str(N))} digits"
+        raise ValueError(f"N must be <= THEORY_MAX_N = 10**15, got {shown}")
     dps = check_dps(dps)
     s = np.atleast_1d(float_arg("sigma", sigma))
     fp = ForcingParams.validated(1, sigma1, omega, Omega, d, dps=dps)
@@ -73,9 +85,27 @@ def theory_curve(
         raise TypeError("theory_curve: sigma1, omega, Omega and d must be scalars")
     ps, means, modes_ = [], [], []
     for sv in s.ravel():
-        pm = evaluate(ForcingParams.validated(float(sv), sigma1, omega, Omega, d, dps=dps),
-                      dps, "p")
-        ps.append(float(pm))
+        # float64 log p first: far below the floor p is not evaluated in mpmath at all
+        lp = evaluate(ForcingParams.validated(float(sv), sigma1, omega, Omega, d), None, "logp")
+        tiny = float(lp) < -2400.0  # p < exp(-2400) < THEORY_P_FLOOR
+        if not tiny:
+            pm = evaluate(ForcingParams.validated(float(sv), sigma1, omega, Omega, d, dps=dps),
+                          dps, "p")
+            with mpmath.workdps(dps):
+                floor = mpmath.mpf(THEORY_P_FLOOR)
+                tiny = pm < floor
+        ps.append(0.0 if tiny else float(pm))
+        if tiny:  # the limit p -> 0: evaluate at the floor and check it is the limit
+            with mpmath.workdps(dps):
+                floor = mpmath.mpf(THEORY_P_FLOOR)
+            m_val = float(symhx.mean(N, floor, space=space, dps=dps))
+            mo_val = int(symhx.mode(N, floor, space=space))
+            if m_val != 1.0 or mo_val != 1:  # pragma: no cover - N <= THEORY_MAX_N
+                raise ValueError(f"sigma={sv!r}: p below {THEORY_P_FLOOR} is not in the "
+                                 f"p -> 0 limit for N={N}")
+            means.append(m_val)
+            modes_.append(mo_val)
+            continue
         means.append(float(symhx.mean(N, pm, space=space, dps=dps)))
         modes_.append(int(symhx.mode(N, pm, space=space)))
     return TheoryCurve(
