@@ -311,8 +311,11 @@ def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
     """
     N = _int(N, "N", 1)
     L = _int(L, "L", 1)
-    if L * math.log2(N) > math.log2(MAX_ENUMERATION):
-        raise ValueError(f"N**L = {N}**{L} words is beyond the documented work limit "
+    # exact integer test (L may be huge; N == 1 still costs L per word)
+    if L > MAX_ENUMERATION or (N > 1 and L >= MAX_ENUMERATION.bit_length()) \
+            or N**L > MAX_ENUMERATION:
+        shown = L if L < 10**15 else f"~10**{len(str(L)) - 1}"
+        raise ValueError(f"N**L = {N}**{shown} words is beyond the documented work limit "
                          f"{MAX_ENUMERATION} (symhx.circuits.MAX_ENUMERATION); raise that "
                          f"constant to allow it")
     a = [0] * (L + 1)
