@@ -68,6 +68,8 @@ from symhx.validation import (
 __all__ = [
     "EXACT_N_LIMIT",
     "FLOAT_N_LIMIT",
+    "MP_QUANTILE_N_LIMIT",
+    "MP_SUM_N_LIMIT",
     "Distribution",
     "SimpleDistribution",
     "binary_split",
@@ -80,7 +82,23 @@ EXACT_N_LIMIT = 100_000
 #: float64 table of the whole support (8 bytes per k).  Raise it here if you have the memory.
 FLOAT_N_LIMIT = 10_000_000
 
+#: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs, ``entropy``):
+#: the working precision carries two guard digits per digit of N, so the cost grows like a power
+#: of ``log N`` (0.25 s at N = 10**100, 1.6 s at 10**300, minutes at 10**1000).  ``mode`` and
+#: ``modes`` are decided without these sums and take any N.
+MP_SUM_N_LIMIT = 10**100
+#: largest N for the quantiles of the mpmath path (``ppf``, ``isf``, ``median``, ``interval``):
+#: a bisection over ``[1, N]`` with one tail sum per step (0.2 s at N = 10**6, 14 s at 10**8).
+MP_QUANTILE_N_LIMIT = 10**6
+
 _LN10 = math.log(10)
+
+
+def _n_show(N: int) -> str:
+    if N < 10**15:
+        return str(N)
+    e = len(str(N)) - 1
+    return f"10**{e}" if N == 10**e else f"~10**{e}"
 
 
 def _is_array(x: Any) -> bool:
@@ -151,6 +169,15 @@ class Distribution:
                 f"mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
         # digits lost by the recurrences and the k, k**2 weights
         self._guard = 10 + 2 * digits_of(self.N)
+
+    def _check_mp_cap(self, what: str, limit: int, name: str) -> None:
+        """Refuse (before any work) an mpmath-path computation beyond its documented N limit."""
+        if self.N > limit:
+            raise ValueError(
+                f"{what} on the mpmath path is limited to N <= {_n_show(limit)} "
+                f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
+                f"Use dps=None (float64, N <= {FLOAT_N_LIMIT}), mode()/modes() (any N) or "
+                f"symhx.asymptotic_critical_point for huge N")
 
     # ----------------------------------------------------------------- subclass hooks
     @property
@@ -362,6 +389,8 @@ class Distribution:
             return min(int(np.searchsorted(cdf, float(q), side="left")), self.N - 1) + 1
         # smallest k with cdf(k) >= q (cdf(N) = 1 >= q); on the mpmath path q is resolved to
         # the dps digits of the cdf: a q within 10**(1 - dps) (relative) of cdf(k) counts as equal
+        if not self.exact:
+            self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
         while lo < hi:
@@ -380,6 +409,8 @@ class Distribution:
         if self.dps is None:
             sf = self._ftab["sf"]  # non-increasing: smallest k with sf(k) <= q
             return int(np.searchsorted(-sf, -float(q), side="left")) + 1
+        if not self.exact:
+            self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 + Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
         while lo < hi:
@@ -630,6 +661,7 @@ class SimpleDistribution(Distribution):
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
         with self._wp():
             below = self._below()
             lmax, runs = self._compute_runs(below)
