@@ -183,3 +183,36 @@ def test_table_matches_exact(N, p):
         for (_, got), want in zip(tab, exact, strict=True):
             w = mpmath.mpf(want.numerator) / want.denominator
             assert abs(got - w) <= mpmath.mpf(10) ** -29 * w
+
+
+def test_work_limits_refused_up_front():
+    """Fuzz-round caps: the mpmath sums and quantiles name their documented limit."""
+    import time
+
+    from symhx.distribution import MP_QUANTILE_N_LIMIT, MP_SUM_N_LIMIT
+
+    t = time.monotonic()
+    d = symhx.distribution_of(MP_SUM_N_LIMIT * 10, mpmath.mpf("0.1"), dps=15)
+    for method in ("mean", "var", "entropy", "median"):
+        with pytest.raises(ValueError, match="MP_SUM_N_LIMIT|MP_QUANTILE_N_LIMIT"):
+            getattr(d, method)()
+    with pytest.raises(ValueError, match="MP_SUM_N_LIMIT"):
+        d.cdf(3)
+    with pytest.raises(ValueError, match="MP_SUM_N_LIMIT"):
+        symhx.mean(10**1000, 0.1)
+    with pytest.raises(ValueError, match="MP_QUANTILE_N_LIMIT"):
+        symhx.median(MP_QUANTILE_N_LIMIT + 1, mpmath.mpf("0.1"), dps=15)
+    assert time.monotonic() - t < 2
+    # the mode is decided without the sums: any N
+    assert symhx.mode(10**1000, mpmath.mpf("0.1")) == 10**1000 - 9
+    # at the limit itself the sums still work: with j = N - X the weights are ~ (1/p)**j / j!
+    # (Poisson), so E[X] = N - 1/p up to O(1/N) for p = 0.1 (at 130 digits; its binary value is
+    # off by 1e-130 relative), checked at 110 digits (absolute 1e-8)
+    with mpmath.workdps(130):
+        p = mpmath.mpf(1) / 10
+    m = symhx.mean(MP_SUM_N_LIMIT, p, dps=110)
+    with mpmath.workdps(130):
+        assert abs(m - (MP_SUM_N_LIMIT - 10)) < mpmath.mpf(10) ** -8
+    # and the quantiles: the median of the upper tail is one of the top few k
+    assert 0 <= MP_QUANTILE_N_LIMIT - symhx.median(MP_QUANTILE_N_LIMIT, mpmath.mpf("0.1"),
+                                                     dps=15) < 20
