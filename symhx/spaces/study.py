@@ -68,8 +68,8 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     if N > STUDY_N_LIMIT:
         shown = N if N < 10**15 else f"~10**{len(str(N)) - 1}"
         raise ValueError(f"N={shown} is beyond the documented work limit N <= {STUDY_N_LIMIT} "
-                         f"of convergence_study (symhx.spaces.study.STUDY_N_LIMIT: one critical-point "
-                         f"search per space); raise that constant to allow it")
+                         f"of convergence_study (symhx.spaces.study.STUDY_N_LIMIT: one "
+                         f"critical-point search per space); raise that constant to allow it")
     dps = check_dps(dps)
     weighting = check_choice(weighting, "weighting", WEIGHTINGS)
     if isinstance(ms, range) and ms \
