@@ -67,6 +67,8 @@ from symhx.validation import (
 
 __all__ = [
     "EXACT_N_LIMIT",
+    "EXACT_QUANTILE_WORK_LIMIT",
+    "EXACT_WORK_LIMIT",
     "FLOAT_N_LIMIT",
     "MP_QUANTILE_N_LIMIT",
     "MP_SUM_N_LIMIT",
@@ -82,6 +84,14 @@ EXACT_N_LIMIT = 100_000
 #: float64 table of the whole support (8 bytes per k).  Raise it here if you have the memory.
 FLOAT_N_LIMIT = 10_000_000
 
+#: exact (rational) sums are refused when ``N * (bits of N + bits of p's numerator and
+#: denominator)`` exceeds this (the binary-splitting integers hold about that many bits):
+#: ``mean(20000, "0.1")`` (3.9e5) takes 0.6 s, ``mean(20000, "1e-9")`` (9e5) 2 s,
+#: ``mean(10**5, "0.1")`` (2.2e6) 11 s.  Pass p as a float / mpf for the mpmath path.
+EXACT_WORK_LIMIT = 500_000
+#: the same measure for exact quantiles (``ppf``, ``isf``, ``median``, ``interval``: one exact
+#: partial sum per bisection step): ``median(10**4, "0.1")`` (1.8e5) takes 0.9 s.
+EXACT_QUANTILE_WORK_LIMIT = 200_000
 #: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs, ``entropy``):
 #: the working precision carries two guard digits per digit of N, so the cost grows like a power
 #: of ``log N`` (0.25 s at N = 10**100, 1.6 s at 10**300, minutes at 10**1000).  ``mode`` and
@@ -178,6 +188,18 @@ class Distribution:
                 f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
                 f"Use dps=None (float64, N <= {FLOAT_N_LIMIT}), mode()/modes() (any N) or "
                 f"symhx.asymptotic_critical_point for huge N")
+
+    def _check_exact_work(self, what: str, limit: int, name: str) -> None:
+        """Refuse (before any work) exact sums whose integers would be too large."""
+        assert self.fr is not None
+        work = self.N * (self.N.bit_length() + self.fr.numerator.bit_length()
+                         + self.fr.denominator.bit_length())
+        if work > limit:
+            raise ValueError(
+                f"{what} in exact rational arithmetic would need ~{work:.2g} bit-terms for "
+                f"N={_n_show(self.N)}, p={str(self.fr)[:40]} (documented work limit {limit}, "
+                f"symhx.distribution.{name}); pass p as a float or mpmath.mpf for the mpmath "
+                f"path at dps digits, or dps=None for float64")
 
     # ----------------------------------------------------------------- subclass hooks
     @property
@@ -389,7 +411,10 @@ class Distribution:
             return min(int(np.searchsorted(cdf, float(q), side="left")), self.N - 1) + 1
         # smallest k with cdf(k) >= q (cdf(N) = 1 >= q); on the mpmath path q is resolved to
         # the dps digits of the cdf: a q within 10**(1 - dps) (relative) of cdf(k) counts as equal
-        if not self.exact:
+        if self.exact:
+            self._check_exact_work("a quantile", EXACT_QUANTILE_WORK_LIMIT,
+                                   "EXACT_QUANTILE_WORK_LIMIT")
+        else:
             self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
@@ -409,7 +434,10 @@ class Distribution:
         if self.dps is None:
             sf = self._ftab["sf"]  # non-increasing: smallest k with sf(k) <= q
             return int(np.searchsorted(-sf, -float(q), side="left")) + 1
-        if not self.exact:
+        if self.exact:
+            self._check_exact_work("a quantile", EXACT_QUANTILE_WORK_LIMIT,
+                                   "EXACT_QUANTILE_WORK_LIMIT")
+        else:
             self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 + Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
@@ -583,12 +611,14 @@ class SimpleDistribution(Distribution):
 
     @cached_property
     def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:
+        self._check_exact_work("summing the distribution", EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")
         gamma = self._split(lambda j: (1, j))
         m1 = self._split(lambda j: (1, 1))
         m2 = self._split(lambda j: (j, 1))
         return gamma, m1, m2
 
     def _exact_partial(self, k: int) -> Fraction:
+        self._check_exact_work("summing the distribution", EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")
         return self._split(lambda j: (1, j), k)
 
     def _phi_exact(self, k: int) -> Fraction:

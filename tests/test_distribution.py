@@ -216,3 +216,25 @@ def test_work_limits_refused_up_front():
     # and the quantiles: the median of the upper tail is one of the top few k
     assert 0 <= MP_QUANTILE_N_LIMIT - symhx.median(MP_QUANTILE_N_LIMIT, mpmath.mpf("0.1"),
                                                      dps=15) < 20
+
+
+def test_exact_work_limits():
+    """Exact sums and quantiles are refused up front past their documented bit budgets; just
+    inside, the exact mean still agrees with the mpmath path at 40 digits."""
+    import time
+
+    t = time.monotonic()
+    with pytest.raises(ValueError, match="EXACT_WORK_LIMIT"):
+        symhx.mean(10**5, "0.1")
+    with pytest.raises(ValueError, match="EXACT_WORK_LIMIT"):
+        symhx.cdf(10**4, "1e-30", 3)
+    with pytest.raises(ValueError, match="EXACT_QUANTILE_WORK_LIMIT"):
+        symhx.median(20000, "0.1")
+    assert time.monotonic() - t < 1
+    # the mode needs no sums: Phi(m+1)/Phi(m) = p (N-m) m/(m+1) <= 1 < the ratio one step below
+    N, m, p = 10**5, symhx.mode(10**5, "0.1"), Fraction(1, 10)
+    assert p * (N - m) * m / (m + 1) <= 1 < p * (N - m + 1) * (m - 1) / m
+    exact = symhx.mean(20000, "0.1")
+    with mpmath.workdps(60):
+        approx = symhx.mean(20000, mpmath.mpf(1) / 10, dps=40)
+        assert abs(mpmath.mpf(exact.numerator) / exact.denominator / approx - 1) < 1e-38
