@@ -645,7 +645,7 @@ class SimpleDistribution(Distribution):
     def _ctx(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
         """``(p, log p, log N)`` as mpf at ``dps`` + guard digits."""
         with self._wp():
-            pm = mp_value(self.p, self.fr)
+            pm = _mp_of(self.p, self.fr)
             return pm, mpmath.log(pm), mpmath.log(self.N)
 
     @property
@@ -813,6 +813,19 @@ def _exact_value(x: Any) -> Fraction:
     return fr
 
 
+def _mp_of(p: Any, fr: Fraction | None) -> mpmath.mpf:
+    """``p`` at the working precision; a rational with huge numerator/denominator (a tiny
+    binary float such as ``mpf('1e-1000000')`` has a 3.3-million-bit denominator) is cut to
+    ``prec + 64`` bits of each part first (relative error ``2**-(prec+60)``): converting the
+    huge ints to mpf directly takes seconds."""
+    if fr is None:
+        return mp_value(p, None)
+    keep = mpmath.mp.prec + 64
+    a, b = fr.numerator, fr.denominator
+    sa, sb = max(0, a.bit_length() - keep), max(0, b.bit_length() - keep)
+    return mpmath.ldexp(mpmath.mpf(a >> sa) / (b >> sb), sa - sb)
+
+
 def _logp_float(p: Any, fr: Fraction | None) -> float:
     """float64 ``log p`` for any size of numerator and denominator."""
     if fr is not None:
@@ -834,6 +847,12 @@ def _hump(N: int, fr: Fraction | None, pm: mpmath.mpf) -> tuple[int, int, bool] 
 
     ``f_{N,p}(k) b = -a k**2 + (N a - b) k - b`` for ``p = a/b``: all in integers.
     """
+    # no increasing stretch unless N p > 1 (A > 0 below): decide p < 1/(2N) from the binary
+    # exponent first (a tiny p has a numerator/denominator of millions of bits)
+    if fr is not None and fr.numerator * 2 * N < fr.denominator:
+        return None
+    if fr is None and mpmath.mag(pm) < -N.bit_length() - 2:  # |p| < 2**(mag) <= 1/(4N)
+        return None
     if fr is None:  # irrational p: use a rational approximation at the working precision
         man, exp = pm.man_exp
         fr = Fraction(man) * Fraction(2) ** exp

@@ -238,3 +238,16 @@ def test_exact_work_limits():
     with mpmath.workdps(60):
         approx = symhx.mean(20000, mpmath.mpf(1) / 10, dps=40)
         assert abs(mpmath.mpf(exact.numerator) / exact.denominator / approx - 1) < 1e-38
+
+
+def test_tiny_binary_p_is_fast():
+    """A tiny binary p (a 3.3-million-bit denominator) neither hangs nor loses accuracy:
+    var X = P(2) + O(p**2) = 5 p (N = 11: Phi(2)/Phi(1) = p (N - 1)/2)."""
+    import time
+
+    p = mpmath.mpf("1e-1000000")
+    t = time.monotonic()
+    v = symhx.var(11, p, dps=30)
+    assert time.monotonic() - t < 2
+    with mpmath.workdps(60):
+        assert abs(v / (5 * p) - 1) < mpmath.mpf(10) ** -25
