@@ -355,6 +355,15 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
 
 
 # ----------------------------------------------------------------------------- error table
+def _sequence(x: Any, name: str) -> tuple[Any, ...]:
+    """The items of a list / tuple / array argument (a string is not a sequence of values)."""
+    if hasattr(x, "ndim") and hasattr(x, "tolist"):  # a numpy array
+        x = x.tolist() if x.ndim == 1 else None
+    if not isinstance(x, (list, tuple, range)):
+        raise TypeError(f"{name} must be a list or tuple, got {x!r:.60}")
+    return tuple(x)
+
+
 DEFAULT_NS: tuple[int, ...] = (10**3, 10**6, 10**10, 10**30, 10**100)
 
 
@@ -389,6 +398,11 @@ def error_table(Ns: tuple[int, ...] = DEFAULT_NS, *, dps: int = 120,
     """
     from symhx.critical import critical_point, discriminant_root
 
+    dps = check_dps(dps)
+    Ns = tuple(check_N(N, "each N of Ns") for N in _sequence(Ns, "Ns"))
+    orders = tuple(check_choice(o, "each order of orders", ORDERS)
+                   for o in _sequence(orders, "orders"))
+    pd_terms = check_int(pd_terms, "pd_terms", minimum=1)
     rows: list[dict[str, Any]] = []
     floor = mpmath.mpf(10) ** (-dps)
     for N in Ns:

@@ -37,6 +37,7 @@ __all__ = [
     "MAX_CIRCUIT_LENGTH",
     "MAX_COUNT_BITS",
     "MAX_ENUMERATION",
+    "MAX_ENUMERATION_LENGTH",
     "MAX_PATTERN_LENGTH",
     "MAX_TOTAL_N",
     "brute_force_pattern_counts",
@@ -65,6 +66,8 @@ MAX_PATTERN_LENGTH = 50
 MAX_COUNT_BITS = 10_000_000
 #: largest number of words ``N**L`` that :func:`enumerate_circuits` may walk
 MAX_ENUMERATION = 10**8
+#: :func:`enumerate_circuits` refuses longer circuits (its recursion nests L generators)
+MAX_ENUMERATION_LENGTH = 500
 
 
 def _int(value: object, name: str, minimum: int) -> int:
@@ -311,10 +314,21 @@ def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
     """
     N = _int(N, "N", 1)
     L = _int(L, "L", 1)
-    if L * math.log2(N) > math.log2(MAX_ENUMERATION):
-        raise ValueError(f"N**L = {N}**{L} words is beyond the documented work limit "
+    # exact integer test (L may be huge)
+    if L > MAX_ENUMERATION_LENGTH:
+        shown_l = L if L < 10**15 else f"~10**{len(str(L)) - 1}"
+        raise ValueError(f"L={shown_l} is beyond the documented limit {MAX_ENUMERATION_LENGTH} "
+                         f"(symhx.circuits.MAX_ENUMERATION_LENGTH: the enumeration nests L "
+                         f"generators)")
+    if N**L > MAX_ENUMERATION:
+        shown = L if L < 10**15 else f"~10**{len(str(L)) - 1}"
+        raise ValueError(f"N**L = {N}**{shown} words is beyond the documented work limit "
                          f"{MAX_ENUMERATION} (symhx.circuits.MAX_ENUMERATION); raise that "
                          f"constant to allow it")
+    return _enumerate(N, L)
+
+
+def _enumerate(N: int, L: int) -> Iterator[tuple[int, ...]]:
     a = [0] * (L + 1)
 
     def gen(t: int, p: int) -> Iterator[tuple[int, ...]]:

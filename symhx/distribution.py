@@ -67,7 +67,11 @@ from symhx.validation import (
 
 __all__ = [
     "EXACT_N_LIMIT",
+    "EXACT_QUANTILE_WORK_LIMIT",
+    "EXACT_WORK_LIMIT",
     "FLOAT_N_LIMIT",
+    "MP_QUANTILE_N_LIMIT",
+    "MP_SUM_N_LIMIT",
     "Distribution",
     "SimpleDistribution",
     "binary_split",
@@ -80,7 +84,31 @@ EXACT_N_LIMIT = 100_000
 #: float64 table of the whole support (8 bytes per k).  Raise it here if you have the memory.
 FLOAT_N_LIMIT = 10_000_000
 
+#: exact (rational) sums are refused when ``N * (bits of N + bits of p's numerator and
+#: denominator)`` exceeds this (the binary-splitting integers hold about that many bits):
+#: ``mean(20000, "0.1")`` (3.9e5) takes 0.6 s, ``mean(20000, "1e-9")`` (9e5) 2 s,
+#: ``mean(10**5, "0.1")`` (2.2e6) 11 s.  Pass p as a float / mpf for the mpmath path.
+EXACT_WORK_LIMIT = 500_000
+#: the same measure for exact quantiles (``ppf``, ``isf``, ``median``, ``interval``: one exact
+#: partial sum per bisection step): ``median(10**4, "0.1")`` (1.8e5) takes 0.9 s.
+EXACT_QUANTILE_WORK_LIMIT = 200_000
+#: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs, ``entropy``):
+#: the working precision carries two guard digits per digit of N, so the cost grows like a power
+#: of ``log N`` (0.25 s at N = 10**100, 1.6 s at 10**300, minutes at 10**1000).  ``mode`` and
+#: ``modes`` are decided without these sums and take any N.
+MP_SUM_N_LIMIT = 10**100
+#: largest N for the quantiles of the mpmath path (``ppf``, ``isf``, ``median``, ``interval``):
+#: a bisection over ``[1, N]`` with one tail sum per step (0.2 s at N = 10**6, 14 s at 10**8).
+MP_QUANTILE_N_LIMIT = 10**6
+
 _LN10 = math.log(10)
+
+
+def _n_show(N: int) -> str:
+    if N < 10**15:
+        return str(N)
+    e = len(str(N)) - 1
+    return f"10**{e}" if N == 10**e else f"~10**{e}"
 
 
 def _is_array(x: Any) -> bool:
@@ -151,6 +179,27 @@ class Distribution:
                 f"mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
         # digits lost by the recurrences and the k, k**2 weights
         self._guard = 10 + 2 * digits_of(self.N)
+
+    def _check_mp_cap(self, what: str, limit: int, name: str) -> None:
+        """Refuse (before any work) an mpmath-path computation beyond its documented N limit."""
+        if self.N > limit:
+            raise ValueError(
+                f"{what} on the mpmath path is limited to N <= {_n_show(limit)} "
+                f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
+                f"Use dps=None (float64, N <= {FLOAT_N_LIMIT}), mode()/modes() (any N) or "
+                f"symhx.asymptotic_critical_point for huge N")
+
+    def _check_exact_work(self, what: str, limit: int, name: str) -> None:
+        """Refuse (before any work) exact sums whose integers would be too large."""
+        assert self.fr is not None
+        work = self.N * (self.N.bit_length() + self.fr.numerator.bit_length()
+                         + self.fr.denominator.bit_length())
+        if work > limit:
+            raise ValueError(
+                f"{what} in exact rational arithmetic would need ~{work:.2g} bit-terms for "
+                f"N={_n_show(self.N)}, p={str(self.fr)[:40]} (documented work limit {limit}, "
+                f"symhx.distribution.{name}); pass p as a float or mpmath.mpf for the mpmath "
+                f"path at dps digits, or dps=None for float64")
 
     # ----------------------------------------------------------------- subclass hooks
     @property
@@ -362,6 +411,11 @@ class Distribution:
             return min(int(np.searchsorted(cdf, float(q), side="left")), self.N - 1) + 1
         # smallest k with cdf(k) >= q (cdf(N) = 1 >= q); on the mpmath path q is resolved to
         # the dps digits of the cdf: a q within 10**(1 - dps) (relative) of cdf(k) counts as equal
+        if self.exact:
+            self._check_exact_work("a quantile", EXACT_QUANTILE_WORK_LIMIT,
+                                   "EXACT_QUANTILE_WORK_LIMIT")
+        else:
+            self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
         while lo < hi:
@@ -380,6 +434,11 @@ class Distribution:
         if self.dps is None:
             sf = self._ftab["sf"]  # non-increasing: smallest k with sf(k) <= q
             return int(np.searchsorted(-sf, -float(q), side="left")) + 1
+        if self.exact:
+            self._check_exact_work("a quantile", EXACT_QUANTILE_WORK_LIMIT,
+                                   "EXACT_QUANTILE_WORK_LIMIT")
+        else:
+            self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 + Fraction(10) ** (1 - self.dps))
         lo, hi = 1, self.N
         while lo < hi:
@@ -552,12 +611,14 @@ class SimpleDistribution(Distribution):
 
     @cached_property
     def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:
+        self._check_exact_work("summing the distribution", EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")
         gamma = self._split(lambda j: (1, j))
         m1 = self._split(lambda j: (1, 1))
         m2 = self._split(lambda j: (j, 1))
         return gamma, m1, m2
 
     def _exact_partial(self, k: int) -> Fraction:
+        self._check_exact_work("summing the distribution", EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")
         return self._split(lambda j: (1, j), k)
 
     def _phi_exact(self, k: int) -> Fraction:
@@ -584,7 +645,7 @@ class SimpleDistribution(Distribution):
     def _ctx(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
         """``(p, log p, log N)`` as mpf at ``dps`` + guard digits."""
         with self._wp():
-            pm = mp_value(self.p, self.fr)
+            pm = _mp_of(self.p, self.fr)
             return pm, mpmath.log(pm), mpmath.log(self.N)
 
     @property
@@ -630,6 +691,7 @@ class SimpleDistribution(Distribution):
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
         with self._wp():
             below = self._below()
             lmax, runs = self._compute_runs(below)
@@ -751,6 +813,19 @@ def _exact_value(x: Any) -> Fraction:
     return fr
 
 
+def _mp_of(p: Any, fr: Fraction | None) -> mpmath.mpf:
+    """``p`` at the working precision; a rational with huge numerator/denominator (a tiny
+    binary float such as ``mpf('1e-1000000')`` has a 3.3-million-bit denominator) is cut to
+    ``prec + 64`` bits of each part first (relative error ``2**-(prec+60)``): converting the
+    huge ints to mpf directly takes seconds."""
+    if fr is None:
+        return mp_value(p, None)
+    keep = mpmath.mp.prec + 64
+    a, b = fr.numerator, fr.denominator
+    sa, sb = max(0, a.bit_length() - keep), max(0, b.bit_length() - keep)
+    return mpmath.ldexp(mpmath.mpf(a >> sa) / (b >> sb), sa - sb)
+
+
 def _logp_float(p: Any, fr: Fraction | None) -> float:
     """float64 ``log p`` for any size of numerator and denominator."""
     if fr is not None:
@@ -772,6 +847,12 @@ def _hump(N: int, fr: Fraction | None, pm: mpmath.mpf) -> tuple[int, int, bool] 
 
     ``f_{N,p}(k) b = -a k**2 + (N a - b) k - b`` for ``p = a/b``: all in integers.
     """
+    # no increasing stretch unless N p > 1 (A > 0 below): decide p < 1/(2N) from the binary
+    # exponent first (a tiny p has a numerator/denominator of millions of bits)
+    if fr is not None and fr.numerator * 2 * N < fr.denominator:
+        return None
+    if fr is None and mpmath.mag(pm) < -N.bit_length() - 2:  # |p| < 2**(mag) <= 1/(4N)
+        return None
     if fr is None:  # irrational p: use a rational approximation at the working precision
         man, exp = pm.man_exp
         fr = Fraction(man) * Fraction(2) ** exp

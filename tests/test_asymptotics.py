@@ -170,3 +170,13 @@ def test_public_export_and_result_fields():
     assert a.order == "next" and isinstance(a.k_int, int) and a.decay
     d = a.as_dict()
     assert set(d) >= {"N", "order", "p", "q", "k"}
+
+
+def test_error_table_validates_sequences():
+    from symhx.asymptotics import error_table
+
+    for kw in (dict(Ns=""), dict(orders=""), dict(orders="best"), dict(Ns=(1000.5,)),
+               dict(orders=("nope",)), dict(pd_terms=0), dict(dps=0), dict(Ns=None)):
+        with pytest.raises((ValueError, TypeError)):
+            error_table(**{**dict(Ns=(1000,), dps=20, orders=("leading",), pd_terms=2), **kw})
+    assert error_table((), dps=20) == []

@@ -343,3 +343,18 @@ def test_rel_width_ok_threshold():
             bad = flint.arb(mid, mid * flint.arb(10) ** -dps / 3)  # 2 r / mid = 0.67e-dps > 1/4
             assert rel_width_ok(ok, dps) and not rel_width_ok(bad, dps)
             assert rel_width_ok(flint.arb(7), dps) and not rel_width_ok(flint.arb(0, 1), dps)
+
+
+def test_mode_path_cap_is_counted_before_building():
+    import time
+
+    N = 10**6
+    t = time.monotonic()
+    with pytest.raises(ValueError, match="MAX_BREAKPOINTS") as exc:
+        mode_path(N)
+    assert time.monotonic() - t < 1
+    # independent count: after the jump the mode climbs one step per k with
+    # (k+1)/(k(N-k)) <= 1, i.e. every k from k_after to N-1 (checked by brute force here)
+    k0 = symhx.critical_point(N).k_after
+    count = sum(1 for k in range(k0, N) if k + 1 <= k * (N - k)) + 1
+    assert f"would list {count} breakpoints" in str(exc.value)

@@ -144,3 +144,16 @@ def test_bad_inputs_and_work_limits_are_clear_errors():
         C.log_phi(10, 2, dps=True)
     # a huge N in log_phi (more digits than Python's int->str limit) still works
     assert C.log_phi(10**5000, 2, dps=20) > 0
+
+
+def test_enumerate_circuits_work_limit_exact():
+    """The N**L cap is an exact integer test: no float overflow for huge L, and N = 1 counts."""
+    for N, L in ((3, 10**1000), (1, 10**1000), (1, C.MAX_ENUMERATION_LENGTH + 1), (2, 27)):
+        with pytest.raises(ValueError, match="MAX_ENUMERATION"):
+            C.enumerate_circuits(N, L)  # refused at the call, before iterating
+    # below the cap it still enumerates (2**27 words > 1e8 is refused above, 2**20 is fine)
+    # and the count agrees with the independent Burnside formula
+    assert sum(1 for _ in C.enumerate_circuits(2, 20)) == sum(C.circuits_of_length(2, 20).values())
+    assert list(C.enumerate_circuits(1, 5)) == [(0,) * 5]
+    L = C.MAX_ENUMERATION_LENGTH  # the longest allowed still runs (no RecursionError)
+    assert list(C.enumerate_circuits(1, L)) == [(0,) * L]

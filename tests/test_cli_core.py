@@ -299,3 +299,17 @@ def test_options_without_help_text_still_show_their_default():
                                                  (None, False, argparse.SUPPRESS)):
                 assert f"default: {action.default}" in text or "default" in (
                     action.help or "").lower(), (name, action.dest)
+
+
+def test_empty_visits_is_an_error(capsys):
+    assert main(["circuits", "12", "--visits", ""]) == 2
+    assert "--visits" in capsys.readouterr().err
+
+
+def test_distribution_float_huge_N_refused_quickly(capsys):
+    import time
+
+    t = time.monotonic()
+    assert main(["distribution", "1e1000", "0.1", "--float"]) == 2
+    assert "MP_SUM_N_LIMIT" in capsys.readouterr().err
+    assert time.monotonic() - t < 1

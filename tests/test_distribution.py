@@ -183,3 +183,71 @@ def test_table_matches_exact(N, p):
         for (_, got), want in zip(tab, exact, strict=True):
             w = mpmath.mpf(want.numerator) / want.denominator
             assert abs(got - w) <= mpmath.mpf(10) ** -29 * w
+
+
+def test_work_limits_refused_up_front():
+    """Fuzz-round caps: the mpmath sums and quantiles name their documented limit."""
+    import time
+
+    from symhx.distribution import MP_QUANTILE_N_LIMIT, MP_SUM_N_LIMIT
+
+    t = time.monotonic()
+    d = symhx.distribution_of(MP_SUM_N_LIMIT * 10, mpmath.mpf("0.1"), dps=15)
+    for method in ("mean", "var", "entropy", "median"):
+        with pytest.raises(ValueError, match=r"MP_SUM_N_LIMIT|MP_QUANTILE_N_LIMIT"):
+            getattr(d, method)()
+    with pytest.raises(ValueError, match="MP_SUM_N_LIMIT"):
+        d.cdf(3)
+    with pytest.raises(ValueError, match="MP_SUM_N_LIMIT"):
+        symhx.mean(10**1000, 0.1)
+    with pytest.raises(ValueError, match="MP_QUANTILE_N_LIMIT"):
+        symhx.median(MP_QUANTILE_N_LIMIT + 1, mpmath.mpf("0.1"), dps=15)
+    assert time.monotonic() - t < 2
+    # the mode is decided without the sums: any N
+    assert symhx.mode(10**1000, mpmath.mpf("0.1")) == 10**1000 - 9
+    # at the limit itself the sums still work: with j = N - X the weights are ~ (1/p)**j / j!
+    # (Poisson), so E[X] = N - 1/p up to O(1/N) for p = 0.1 (at 130 digits; its binary value is
+    # off by 1e-130 relative), checked at 110 digits (absolute 1e-8)
+    with mpmath.workdps(130):
+        p = mpmath.mpf(1) / 10
+    m = symhx.mean(MP_SUM_N_LIMIT, p, dps=110)
+    with mpmath.workdps(130):
+        assert abs(m - (MP_SUM_N_LIMIT - 10)) < mpmath.mpf(10) ** -8
+    # and the quantiles: the median of the upper tail is one of the top few k
+    assert 0 <= MP_QUANTILE_N_LIMIT - symhx.median(MP_QUANTILE_N_LIMIT, mpmath.mpf("0.1"),
+                                                     dps=15) < 20
+
+
+def test_exact_work_limits():
+    """Exact sums and quantiles are refused up front past their documented bit budgets; just
+    inside, the exact mean still agrees with the mpmath path at 40 digits."""
+    import time
+
+    t = time.monotonic()
+    with pytest.raises(ValueError, match="EXACT_WORK_LIMIT"):
+        symhx.mean(10**5, "0.1")
+    with pytest.raises(ValueError, match="EXACT_WORK_LIMIT"):
+        symhx.cdf(10**4, "1e-30", 3)
+    with pytest.raises(ValueError, match="EXACT_QUANTILE_WORK_LIMIT"):
+        symhx.median(20000, "0.1")
+    assert time.monotonic() - t < 1
+    # the mode needs no sums: Phi(m+1)/Phi(m) = p (N-m) m/(m+1) <= 1 < the ratio one step below
+    N, m, p = 10**5, symhx.mode(10**5, "0.1"), Fraction(1, 10)
+    assert p * (N - m) * m / (m + 1) <= 1 < p * (N - m + 1) * (m - 1) / m
+    exact = symhx.mean(20000, "0.1")
+    with mpmath.workdps(60):
+        approx = symhx.mean(20000, mpmath.mpf(1) / 10, dps=40)
+        assert abs(mpmath.mpf(exact.numerator) / exact.denominator / approx - 1) < 1e-38
+
+
+def test_tiny_binary_p_is_fast():
+    """A tiny binary p (a 3.3-million-bit denominator) neither hangs nor loses accuracy:
+    var X = P(2) + O(p**2) = 5 p (N = 11: Phi(2)/Phi(1) = p (N - 1)/2)."""
+    import time
+
+    p = mpmath.mpf("1e-1000000")
+    t = time.monotonic()
+    v = symhx.var(11, p, dps=30)
+    assert time.monotonic() - t < 2
+    with mpmath.workdps(60):
+        assert abs(v / (5 * p) - 1) < mpmath.mpf(10) ** -25

@@ -161,6 +161,11 @@ REJECT["real[]"] = REJECT["real"] - _EMPTIES
 REJECT["restitution0"] = REJECT["restitution"] - _ZERO
 # a flag that may also be None (ensemble's progress: None = only when stderr is a terminal)
 REJECT["bool?"] = REJECT["bool"] - {"None"}
+# a probability level in [0, 1] (quantiles: ppf(0) = 0, ppf(1) = N; interval(0) is a point)
+REJECT["q"] = REJECT["p01"] - _ZERO
+REJECT["q[]"] = REJECT["q"] - _EMPTIES
+# an optional sample size (None: one draw; 0: an empty sample, as numpy)
+REJECT["size?"] = (_NOT_REAL - {"None"}) | _NON_INTEGRAL | _NEGATIVE | {"10**1000"}
 
 
 @dataclass(frozen=True)
@@ -281,9 +286,24 @@ def _entries() -> list[Entry]:
     for name in ("impact_probability", "no_impact_probability", "log_impact_probability",
                  "log_no_impact_probability", "dp_dsigma"):
         out.append(E(name, getattr(s, name), dict(_FORCING), dict(_FORCING_ROLES)))
-    for name in ("mean", "variance", "normaliser"):
+    for name in ("mean", "variance", "normaliser", "var", "std", "entropy", "median"):
         out.append(E(name, getattr(s, name), {"N": 10, "p": "0.1", "space": "simple", "dps": 20},
                      {"N": "N", "p": "p[]", "space": "choice", "dps": "dps?"}))
+    for name in ("cdf", "sf", "logcdf", "logsf"):  # like pmf: k any int (cdf(0) = 0)
+        out.append(E(name, getattr(s, name),
+                     {"N": 10, "p": "0.1", "k": 3, "space": "simple", "dps": 20},
+                     {"N": "N", "p": "p[]", "k": "int", "space": "choice", "dps": "dps?"}))
+    for name in ("ppf", "isf"):
+        out.append(E(name, getattr(s, name),
+                     {"N": 10, "p": "0.1", "q": "0.3", "space": "simple", "dps": 20},
+                     {"N": "N", "p": "p[]", "q": "q[]", "space": "choice", "dps": "dps?"}))
+    out.append(E("interval", s.interval,
+                 {"N": 10, "p": "0.1", "confidence": "0.9", "space": "simple", "dps": 20},
+                 {"N": "N", "p": "p", "confidence": "q", "space": "choice", "dps": "dps?"}))
+    out.append(E("rvs", s.rvs,
+                 {"N": 10, "p": 0.1, "size": 3, "random_state": 1, "space": "simple"},
+                 {"N": "N", "p": "p", "size": "size?", "random_state": "seed",
+                  "space": "choice"}))
     return out
 
 

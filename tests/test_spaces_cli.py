@@ -15,3 +15,15 @@ def test_spaces_and_convergence_json(capsys):
     rows = json.loads(capsys.readouterr().out)["rows"]
     assert [r["space"] for r in rows] == ["excess<=0", "excess<=1", "eq41", "eq41-printed"]
     assert main(["spaces", "20", "--space", "bogus"]) == 2
+
+
+def test_convergence_caps_refused_up_front(capsys):
+    import time
+
+    t = time.monotonic()
+    for argv in (["convergence", "1e6", "--max-m", "1"], ["convergence", "12", "--max-m", "1e6"],
+                 ["convergence", "12", "--max-m", "10**1000"]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert err.count("error:") == 1 and "<=" in err
+    assert time.monotonic() - t < 1

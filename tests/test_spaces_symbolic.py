@@ -56,3 +56,27 @@ def test_convergence_study_monotone_in_m():
     for p in ("0.02", "0.05"):
         means = [r.means[p] for r in rows[:4]]
         assert means == sorted(means)
+
+
+def test_convergence_study_validates_before_work():
+    import time
+
+    import pytest
+
+    from symhx.spaces import MAX_EXCESS
+    from symhx.spaces.study import STUDY_N_LIMIT
+
+    good = dict(N=20, ms=(0,), ps=("0.01",), dps=15, extra=())
+    bad = [dict(ms=""), dict(ps=""), dict(ps=[]), dict(weighting=None), dict(weighting="abc"),
+           dict(N=STUDY_N_LIMIT + 1), dict(ms=range(10**1000)), dict(ms=(MAX_EXCESS + 1,)),
+           dict(ms=(-1,)), dict(ps=("nan",)), dict(extra=("simple",)), dict(dps=0)]
+    t = time.monotonic()
+    for kw in bad:
+        with pytest.raises((ValueError, TypeError)):
+            convergence_study(**{**good, **kw})
+    assert time.monotonic() - t < 1
+    # valid: a numpy array of m and the distinct weighting are accepted, one row per m
+    import numpy as np
+
+    rows = convergence_study(**{**good, "ms": np.array([0, 1]), "weighting": "distinct"})
+    assert [r.space for r in rows] == ["excess<=0;distinct", "excess<=1;distinct"]

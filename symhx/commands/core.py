@@ -180,7 +180,7 @@ def cmd_distribution(args: argparse.Namespace) -> int:
 def cmd_circuits(args: argparse.Namespace) -> int:
     from symhx import circuits as C
 
-    if args.visits:
+    if args.visits is not None:
         try:
             visits = tuple(int(v) for v in args.visits.split(","))
         except ValueError:

@@ -10,6 +10,8 @@ from typing import Any
 
 from symhx.commands._common import dump_json, int_arg, int_show, mpstr, rational_arg
 from symhx.commands.core import DPS_HELP, N_HELP, P_HELP, add_dps, add_json, write_csv
+from symhx.spaces import MAX_EXCESS
+from symhx.spaces.study import STUDY_N_LIMIT
 
 ORDER = 60
 
@@ -40,10 +42,11 @@ def register(sub: Any) -> None:
 
     c = sub.add_parser("convergence", help="E[X] and the jump p_c for excess<=m, m = 0..M, "
                        "against eq. (41)")
-    c.add_argument("N", type=int_arg("N", minimum=2, maximum=MAX_SPACES_N), nargs="?",
-                   default=100, help=N_HELP + f"; at most {MAX_SPACES_N:.0e} (work limit)")
-    c.add_argument("--max-m", type=int_arg("--max-m", minimum=0), default=6,
-                   help="largest excess m of the truncated spaces")
+    c.add_argument("N", type=int_arg("N", minimum=2, maximum=STUDY_N_LIMIT), nargs="?",
+                   default=100, help=N_HELP + f"; at most {STUDY_N_LIMIT:.0e} (work limit)")
+    c.add_argument("--max-m", type=int_arg("--max-m", minimum=0, maximum=MAX_EXCESS), default=6,
+                   help=f"largest excess m of the truncated spaces (at most {MAX_EXCESS}, "
+                   "a work limit)")
     c.add_argument("--p", action="append", default=None, type=str,
                    help="a p value (exact decimal; repeatable; default: the paper's figure "
                    "values)")

@@ -10,13 +10,28 @@ from typing import Any
 
 import mpmath
 
+from symhx.spaces._classes import MAX_EXCESS, WEIGHTINGS
 from symhx.spaces._critical import critical_point
 from symhx.spaces._dist import distribution
+from symhx.validation import check_choice, check_dps, check_int, check_N, check_p
 
-__all__ = ["DEFAULT_PS", "ConvergenceRow", "convergence_study"]
+__all__ = ["DEFAULT_PS", "STUDY_N_LIMIT", "ConvergenceRow", "convergence_study"]
+
+#: largest N of :func:`convergence_study` (a documented work limit: it runs one certified
+#: critical-point search per space, about a second each at N = 10**6)
+STUDY_N_LIMIT = 100_000
 
 #: the p values of the paper's figures 11 and 12 (as exact decimals)
 DEFAULT_PS: tuple[str, ...] = ("0.005", "0.01", "0.015", "0.04", "0.05")
+
+
+def _sequence(x: Any, name: str) -> tuple[Any, ...]:
+    """The items of a list / tuple / range / 1-d array (a string is not a sequence of values)."""
+    if hasattr(x, "ndim") and hasattr(x, "tolist"):  # a numpy array
+        x = x.tolist() if x.ndim == 1 else None
+    if not isinstance(x, (list, tuple, range)):
+        raise TypeError(f"{name} must be a list, tuple or range, got {x!r:.60}")
+    return tuple(x)
 
 
 @dataclass(frozen=True)
@@ -49,7 +64,27 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     >>> [r.space for r in rows], [r.k_after for r in rows]
     (['excess<=0', 'excess<=1'], [7, 7])
     """
-    ps = tuple(ps)
+    N = check_N(N)
+    if N > STUDY_N_LIMIT:
+        shown = N if N < 10**15 else f"~10**{len(str(N)) - 1}"
+        raise ValueError(f"N={shown} is beyond the documented work limit N <= {STUDY_N_LIMIT} "
+                         f"of convergence_study (symhx.spaces.study.STUDY_N_LIMIT: one "
+                         f"critical-point search per space); raise that constant to allow it")
+    dps = check_dps(dps)
+    weighting = check_choice(weighting, "weighting", WEIGHTINGS)
+    if isinstance(ms, range) and ms \
+            and max(ms[0], ms[-1]) > MAX_EXCESS:  # refuse a huge range before listing it
+        raise ValueError(f"ms={ms!r:.60} goes beyond the documented work limit m <= {MAX_EXCESS} "
+                         f"(symhx.spaces._classes.MAX_EXCESS)")
+    ms = tuple(check_int(m, "each maximum excess m of ms", minimum=0, maximum=MAX_EXCESS)
+               for m in _sequence(ms, "ms"))
+    ps = tuple(_sequence(ps, "ps"))
+    if not ps:
+        raise ValueError("ps must hold at least one p value (decimal strings), got none")
+    for p in ps:
+        check_p(p, "each p of ps")
+    extra = tuple(check_choice(s, "each extra space", ("eq41", "eq41-printed"))
+                  for s in _sequence(extra, "extra"))
     rows = []
     suffix = "" if weighting == "length" else ";distinct"
     spaces = [f"excess<={m}{suffix}" for m in ms] + [f"{s}{suffix}" for s in extra]
