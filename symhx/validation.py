@@ -52,6 +52,7 @@ import numpy as np
 __all__ = [
     "DEFAULT_DPS",
     "DEFAULT_SPACE",
+    "MAX_BINARY_EXPONENT",
     "MAX_DECIMAL_EXPONENT",
     "MAX_DPS",
     "as_fraction",
@@ -77,6 +78,10 @@ DEFAULT_SPACE = "simple"
 #: Decimal strings such as ``"1e100000"`` are parsed exactly; the exponent is capped here so that a
 #: typo cannot ask for a number with billions of digits (10**100000 has 100001 digits).
 MAX_DECIMAL_EXPONENT = 100_000
+#: ``mpf`` values are taken at their exact binary value ``man * 2**exp``; beyond this binary
+#: exponent that exact value has more than ~10**6 digits, so it is refused (the same guard as
+#: :data:`MAX_DECIMAL_EXPONENT`; ``mpf('1e-100000')`` is well inside).
+MAX_BINARY_EXPONENT = 3_400_000
 
 
 def _show(x: Any) -> str:
@@ -156,7 +161,10 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
     if isinstance(x, mpmath.mpf):
         if not mpmath.isfinite(x):
             raise ValueError(f"{name} must be finite, got {x!r}")
-        sign, man, exp, _ = x._mpf_  # exact: never re-rounded to the global precision
+        sign, man, exp, bc = x._mpf_  # exact: never re-rounded to the global precision
+        if man and abs(exp + bc) > MAX_BINARY_EXPONENT:
+            raise ValueError(f"{name}={mpmath.nstr(x, 5)} is beyond the exact-conversion range "
+                             f"2**+-{MAX_BINARY_EXPONENT} (symhx.validation.MAX_BINARY_EXPONENT)")
         fr = Fraction(man) * Fraction(2) ** exp if man else Fraction(0)
         return -fr if sign else fr
     if _sympy_number(x):
@@ -334,7 +342,7 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
     def first_bad(mask: np.ndarray) -> str:
         idx = np.argwhere(mask)[0]
         where = f" at index {tuple(int(i) for i in idx)}" if arr.ndim else ""
-        return f"{arr[tuple(idx)]!r}{where}"
+        return f"{float(arr[tuple(idx)])!r}{where}"
 
     if finite and not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got {first_bad(~np.isfinite(arr))}")
