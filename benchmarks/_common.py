@@ -1,4 +1,4 @@
-"""Shared helpers for the work-precision benchmarks (achieved error against time, both log scale)."""
+"""Shared helpers for the work-precision benchmarks (achieved error against time, log-log)."""
 
 from __future__ import annotations
 

@@ -807,10 +807,18 @@ class SimpleDistribution(Distribution):
 
 
 def _exact_value(x: Any) -> Fraction:
-    """The exact rational value of a Fraction or a (finite) mpf."""
-    fr = to_rational(x, "value")
-    assert fr is not None
-    return fr
+    """The exact rational value of a Fraction or a (finite) mpf computed here.
+
+    Internal values (a cdf far in its tail can be ~10**-2000000) are converted directly from the
+    mantissa and exponent, without the input cap of :func:`symhx.validation.to_rational`.
+    """
+    if isinstance(x, mpmath.mpf):
+        sign, man, exp, _ = x._mpf_
+        fr = Fraction(man << exp) if exp >= 0 else Fraction(man, 1 << -exp)
+        return -fr if sign else fr
+    exact = to_rational(x, "value")
+    assert exact is not None
+    return exact
 
 
 def _mp_of(p: Any, fr: Fraction | None) -> mpmath.mpf:

@@ -42,7 +42,7 @@ def test_other_exact_types():
     ("1e200000", ValueError), (mpmath.mpf("1e-100000000000"), ValueError),
 ])
 def test_refusals_name_the_argument(bad, exc):
-    with pytest.raises(exc, match="^p"):
+    with pytest.raises(exc, match=r"^p"):
         v.to_rational(bad, "p")
 
 
@@ -56,7 +56,7 @@ def test_check_p_sign_and_zero():
 @pytest.mark.parametrize("dps, exc", [(0, ValueError), (-1, ValueError), (2.5, TypeError),
                                       (True, TypeError), (10**6, ValueError), ("30", TypeError)])
 def test_check_dps(dps, exc):
-    with pytest.raises(exc, match="^dps must be an int between 1 and 5000"):
+    with pytest.raises(exc, match=r"^dps must be an int between 1 and 5000"):
         v.check_dps(dps)
 
 
@@ -71,7 +71,7 @@ def test_check_int_and_N():
     assert v.check_N("1e100") == 10**100 and v.check_N(np.int64(5)) == 5
     assert v.check_int(Fraction(6, 3), "k") == 2
     for bad, exc in ((2.0, TypeError), (True, TypeError), ("2.5", ValueError), (1, ValueError)):
-        with pytest.raises(exc, match="^N must"):
+        with pytest.raises(exc, match=r"^N must"):
             v.check_N(bad)
 
 

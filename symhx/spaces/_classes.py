@@ -218,6 +218,7 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     """
     N = check_N(N, minimum=1)
     k = check_int(k, "k")
+    shape = check_shape(shape)  # validated even where the count is 0 (k outside 1..N)
     if k < 1 or k > N:
         return 0
     val = class_ratio(shape, k, printed=printed) * Fraction(math.perm(N, k), k)

@@ -1,9 +1,9 @@
 """Section 8 of the paper: higher-order circuits, eqs. (29)-(41), from one general count.
 
 The paper counts each class by hand and its formulas fail at the boundary lengths (see the
-book's errata chapter). Here every class is a special case of one derived count (key ``"37"``): for a circuit of
-length ``k`` whose repeated vertices have multiplicities ``m_1, ..., m_r`` (total ``M``) and whose
-other ``k - M`` vertices are visited once,
+book's errata chapter). Here every class is a special case of one derived count (key ``"37"``):
+for a circuit of length ``k`` whose repeated vertices have multiplicities ``m_1, ..., m_r``
+(total ``M``) and whose other ``k - M`` vertices are visited once,
 
 * choose the labelled vertices: ``N! / (N - r)!`` ordered choices for the repeated ones, divided by
   ``nu = prod_j c_j!`` (``c_j`` repeated vertices share multiplicity ``j``), times
