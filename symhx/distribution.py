@@ -62,6 +62,7 @@ from symhx.validation import (
     check_real,
     check_seed,
     is_exact_type,
+    mpf_to_fraction,
     to_rational,
 )
 
@@ -813,9 +814,7 @@ def _exact_value(x: Any) -> Fraction:
     mantissa and exponent, without the input cap of :func:`symhx.validation.to_rational`.
     """
     if isinstance(x, mpmath.mpf):
-        sign, man, exp, _ = x._mpf_
-        fr = Fraction(man << exp) if exp >= 0 else Fraction(man, 1 << -exp)
-        return -fr if sign else fr
+        return mpf_to_fraction(x)
     exact = to_rational(x, "value")
     assert exact is not None
     return exact

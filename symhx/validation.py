@@ -65,6 +65,7 @@ __all__ = [
     "check_real",
     "check_seed",
     "is_exact_type",
+    "mpf_to_fraction",
     "to_rational",
 ]
 
@@ -161,12 +162,11 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
     if isinstance(x, mpmath.mpf):
         if not mpmath.isfinite(x):
             raise ValueError(f"{name} must be finite, got {x!r}")
-        sign, man, exp, bc = x._mpf_  # exact: never re-rounded to the global precision
+        _, man, exp, bc = x._mpf_
         if man and abs(exp + bc) > MAX_BINARY_EXPONENT:
             raise ValueError(f"{name}={mpmath.nstr(x, 5)} is beyond the exact-conversion range "
                              f"2**+-{MAX_BINARY_EXPONENT} (symhx.validation.MAX_BINARY_EXPONENT)")
-        fr = Fraction(man) * Fraction(2) ** exp if man else Fraction(0)
-        return -fr if sign else fr
+        return mpf_to_fraction(x)
     if _sympy_number(x):
         if getattr(x, "is_Rational", False):
             return Fraction(int(x.p), int(x.q))
@@ -182,6 +182,15 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
     if isinstance(x, (numbers.Complex, mpmath.mpc)):
         raise TypeError(f"{name} must be a real number, got {_show(x)}")
     raise TypeError(f"{name} must be a real number, got {_show(x)}")
+
+
+def mpf_to_fraction(x: mpmath.mpf) -> Fraction:
+    """The exact value ``man * 2**exp`` of a finite mpf (never re-rounded to the global
+    precision).  No size cap: :func:`to_rational` caps user inputs; internal values (a cdf far in
+    its tail can be ~10**-2000000) come here directly."""
+    sign, man, exp, _ = x._mpf_
+    fr = Fraction(man << exp) if exp >= 0 else Fraction(man, 1 << -exp)
+    return -fr if sign else fr
 
 
 def as_fraction(p: Any, name: str = "p") -> Fraction | None:

@@ -27,22 +27,24 @@ __all__ = [
 ]
 
 
-def mp_p_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
+def _uv_b_over_r(x: mpmath.mpf, y: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """``(u v, b / r)`` with ``p = exp(-u v) b / r``: the closed form's positive terms."""
     r = mpmath.sqrt(x + y)
     u = x / r
     v = y / r
     b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
     b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
-    return mpmath.exp(-u * v) * b / r
+    return u * v, b / r
+
+
+def mp_p_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
+    uv, b_r = _uv_b_over_r(x, y)
+    return mpmath.exp(-uv) * b_r
 
 
 def mp_logp_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
-    r = mpmath.sqrt(x + y)
-    u = x / r
-    v = y / r
-    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
-    return -u * v + mpmath.log(b / r)
+    uv, b_r = _uv_b_over_r(x, y)
+    return -uv + mpmath.log(b_r)
 
 
 def mp_q_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
