@@ -97,6 +97,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
     for mod in command_modules():
         mod.register(sub)
+    parser.set_defaults(_subparsers=sub.choices)
     return parser
 
 
@@ -109,7 +110,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit code (see the module docstring)."""
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        args, extra = parser.parse_known_args(argv)
+        if extra:  # reported by the command's own parser: "symhx paper: error: ..."
+            args._subparsers[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as exc:  # --help, --version, or a usage error already printed (one line)
         return exc.code if isinstance(exc.code, int) else 2
     prog = f"symhx {args.command}"

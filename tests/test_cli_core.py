@@ -57,6 +57,17 @@ def test_bad_input_exit_code(capsys):
     assert "p must be > 0" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("argv, prog", [
+    (("paper", "--bogus"), "symhx paper"),
+    (("critical", "101", "surplus"), "symhx critical"),
+])
+def test_unknown_option_named_by_its_command(capsys, argv, prog):
+    assert main(list(argv)) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"{prog}: error: unrecognized arguments: {argv[-1]}")
+    assert err.count("\n") == 1
+
+
 def test_core_paper_section(tmp_path):
     from symhx.commands import core
 

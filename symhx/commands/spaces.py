@@ -128,9 +128,9 @@ def paper(out: Path, full: bool) -> list[str]:
     from symhx.spaces import boundary_table, class_decomposition, critical_point
 
     N = PAPER_N
-    for p in ("0.005", "0.01", "0.05"):
-        from fractions import Fraction
+    from fractions import Fraction
 
+    for p in ("0.005", "0.01", "0.05"):
         for space in ("eq41", "eq41-printed"):
             cd = class_decomposition(N, float(Fraction(p)), space=space, dps=20)
             header = ["k", *[cd.labels[s] for s in cd.shapes]]
@@ -140,9 +140,9 @@ def paper(out: Path, full: bool) -> list[str]:
                 dump_json({"columns": header, "rows": table}) + "\n")
         plot_class_decomposition(N, float(Fraction(p)), kmax=None if p == "0.05" else 40
                                  ).savefig(out / f"fig11_p{p}.png", dpi=110, bbox_inches="tight")
-    for p in (0.015, 0.04):
-        plot_simple_vs_higher(N, p).savefig(out / f"fig12_p{p}.png", dpi=110,
-                                            bbox_inches="tight")
+    for p_fig12 in (0.015, 0.04):
+        plot_simple_vs_higher(N, p_fig12).savefig(out / f"fig12_p{p_fig12}.png", dpi=110,
+                                                  bbox_inches="tight")
     plot_mean_vs_p_spaces(N, spaces=("simple", "eq41", "eq41-printed", "excess<=6"),
                           points=40 if full else 20).savefig(out / "fig13_theory.png", dpi=110,
                                                              bbox_inches="tight")
