@@ -7,6 +7,7 @@ Usage (from the repository root)::
     python scripts/mutation.py symhx/circuits.py symhx/graph.py
     python scripts/mutation.py --all                # every core module in pyproject
     python scripts/mutation.py --report-only        # rebuild the report from the last run
+    python scripts/mutation.py --merge A.json B.json  # one report from parallel runs
     python scripts/mutation.py symhx/circuits.py --rerun symhx.circuits.x_phi__mutmut_3  # after
                                                     # adding a test for a survivor
 
@@ -34,6 +35,7 @@ import ast
 import difflib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -169,6 +171,11 @@ def build_report(workdir: Path, modules: list[str], old: dict) -> dict:
             "survivors": survivors,
             **({"unresolved": unresolved} if unresolved else {}),
         }
+    return _assemble(per_module, equivalent_decl, stale)
+
+
+def _assemble(per_module: dict, equivalent_decl: dict, stale: dict) -> dict:
+    """The report: per-module results, their totals and the equivalent declarations."""
     tot = {k: sum(m[k] for m in per_module.values())
            for k in ("total", "killed", "survived", "no_tests", "equivalent", "not_checked")}
     live = tot["killed"] + tot["survived"] + tot["no_tests"]
@@ -179,9 +186,31 @@ def build_report(workdir: Path, modules: list[str], old: dict) -> dict:
         "kill_rate_definition": "killed / (killed + survived + no_tests); equivalent excluded",
         "totals": tot,
         "modules": dict(sorted(per_module.items())),
-        "equivalent": equivalent_decl,
-        **({"stale_equivalent": stale} if stale else {}),
+        "equivalent": dict(sorted(equivalent_decl.items())),
+        **({"stale_equivalent": dict(sorted(stale.items()))} if stale else {}),
     }
+
+
+def merge_reports(reports: list[dict]) -> dict:
+    """One report from several (for instance runs on different modules in parallel): a module's
+    entry and the declarations for its mutants come from the last report that ran it."""
+    per_module: dict = {}
+    owner: dict = {}
+    for i, rep in enumerate(reports):
+        for module, entry in rep.get("modules", {}).items():
+            per_module[module] = entry
+            owner[module] = i
+
+    def keep(name: str, i: int) -> bool:   # a declaration belongs to the module of its mutant
+        module = re.split(r"\.x[_\u01c1]", name, maxsplit=1)[0].replace(".", "/") + ".py"
+        return owner.get(module, i) == i
+
+    equivalent: dict = {}
+    stale: dict = {}
+    for i, rep in enumerate(reports):
+        equivalent.update({k: v for k, v in rep.get("equivalent", {}).items() if keep(k, i)})
+        stale.update({k: v for k, v in rep.get("stale_equivalent", {}).items() if keep(k, i)})
+    return _assemble(per_module, equivalent, stale)
 
 
 def _mutmut_version() -> str:
@@ -204,12 +233,20 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--report-only", action="store_true",
                         help="only rebuild the report from the last run in --workdir")
     parser.add_argument("--no-nice", action="store_true")
+    parser.add_argument("--merge", nargs="+", type=Path, metavar="REPORT", default=None,
+                        help="only merge these reports (e.g. from parallel runs on different "
+                             "modules) into --report")
     parser.add_argument("--rerun", nargs="+", metavar="MUTANT", default=None,
                         help="rerun only these mutants in the existing --workdir with the current "
                              "test files (after adding tests for survivors), then rebuild the "
                              "report")
     args = parser.parse_args(argv)
 
+    if args.merge:
+        merged = merge_reports([json.loads(p.read_text()) for p in args.merge])
+        args.report.write_text(json.dumps(merged, indent=1) + "\n")
+        print(json.dumps(merged["totals"]))
+        return 0
     test_map: dict[str, list[str]] = cfg.get("tests", {})
     modules = args.modules or (sorted(test_map) if args.all else cfg.get("default", []))
     unknown = [m for m in modules if m not in test_map]
