@@ -433,9 +433,19 @@ static void hfix(Eng *E, int i) {
     heap[p] = i; hpos[i] = p;
 }
 
+/* earliest scheduled time of the sites other than i (the heap's top, or its best child) */
+static inline double next_other(const Eng *E, int i) {
+    int h = E->heap[0], size = E->n + 1;
+    if (h != i) return E->nt[h];
+    double a = size > 1 ? E->nt[E->heap[1]] : INFINITY, b = size > 2 ? E->nt[E->heap[2]] : INFINITY;
+    return a < b ? a : b;
+}
+
 static void schedule(Eng *E, int i, double t, int graze_restart, int reuse) {
     double thi = t + E->chunk, te;
     if (thi > E->tend) thi = E->tend;
+    double tn = next_other(E, i);   /* engine.Engine.run.schedule: search no further than that */
+    if (tn > t && tn < thi) thi = tn;
     double *g = E->gc + (size_t)i * E->L, *b = E->bc + (size_t)i * 6;
     if (!reuse) {
         if (E->stuck[i]) contact_force(E, i, g);
@@ -507,7 +517,7 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi) {
 static void run(Eng *E) {
     int n = E->n;
     for (int i = 0; i <= n; i++) {
-        E->nt[i] = -INFINITY;
+        E->nt[i] = INFINITY;
         E->heap[i] = i;
         E->hpos[i] = i;
     }
@@ -582,43 +592,111 @@ static void run(Eng *E) {
     }
 }
 
-/* run(n, omega, d, r, v_stick, chunk, t_end, t_from, record, max_events,
- *     F: bytes nf doubles, coef/forced/raw: bytes (n+2)*L doubles)
- * -> (counts bytes (n+1) int64, events bytes, updates bytes, n_events) */
+/* The closed-form arrays of a row from its float64 inputs: the same IEEE operations in the same
+ * order as the float64 path of engine.row_arrays (tests check bit-identity), so the C engine pays
+ * its own set-up without numpy.  F = (omega, Omega_1..Omega_K); alpha, beta: n x K (C order). */
+static void row_setup(Eng *E, const double *alpha, const double *beta, const double *x0,
+                      const double *v0) {
+    int n = E->n, K = E->nf - 1, L = E->L;
+    size_t sz = (size_t)(n + 2) * L;
+    memset(E->coef, 0, sz * sizeof(double));
+    memset(E->forced, 0, sz * sizeof(double));
+    memset(E->raw, 0, sz * sizeof(double));
+    double om = E->om, om2 = om * om;
+    for (int j = 1; j <= n; j++) {
+        const double *a = alpha + (size_t)(j - 1) * K, *b = beta + (size_t)(j - 1) * K;
+        double *fo = E->forced + (size_t)j * L, *ra = E->raw + (size_t)j * L;
+        double fx = 0, fv = 0;
+        for (int m = 0; m < K; m++) {
+            double f = E->F[m + 1], den = om2 - f * f;
+            double fa = a[m] / den, fb = b[m] / den;
+            fo[3 + 2 * m] = fa; fo[4 + 2 * m] = fb;
+            ra[3 + 2 * m] = a[m]; ra[4 + 2 * m] = b[m];
+            fx = m == 0 ? fa : fx + fa;
+            fv = m == 0 ? fb * f : fv + fb * f;
+        }
+        double *c = E->coef + (size_t)j * L, jd = (double)j * E->d;
+        memcpy(c, fo, L * sizeof(double));
+        c[0] = jd;
+        c[1] = (x0[j - 1] - jd) - fx;
+        c[2] = (v0[j - 1] - fv) / om;
+    }
+    E->coef[(size_t)(n + 1) * L] = (double)(n + 1) * E->d;
+}
+
+/* run(n, omega, d, r, v_stick, t_end, t_from, record, max_events, F, alpha, beta, x0, v0)
+ * F: sequence of the nf = K + 1 frequencies (omega, Omega_1..Omega_K) as floats; alpha, beta:
+ * buffers of n*K doubles (C order), x0, v0: n doubles.  The search horizon is engine.row_arrays'
+ * chunk 2 / omega.
+ * -> (counts bytes (n+1) int64, events bytes, updates bytes, n_events, coef0 bytes or None)
+ * (coef0: the (n+2) x L coefficients at t = 0, returned when record) */
 static PyObject *py_run(PyObject *self, PyObject *args) {
     int n, record;
-    double om, d, r, vstick, chunk, tend, tfrom;
+    double om, d, r, vstick, tend, tfrom;
     long long max_events;
-    Py_buffer bF, bc, bf, br;
-    if (!PyArg_ParseTuple(args, "idddddddpLy*y*y*y*", &n, &om, &d, &r, &vstick, &chunk, &tend,
-                          &tfrom, &record, &max_events, &bF, &bc, &bf, &br))
+    PyObject *Fobj;
+    Py_buffer ba, bb, bx, bv;
+    if (!PyArg_ParseTuple(args, "iddddddpLOy*y*y*y*", &n, &om, &d, &r, &vstick, &tend, &tfrom,
+                          &record, &max_events, &Fobj, &ba, &bb, &bx, &bv))
         return NULL;
     Eng E;
     memset(&E, 0, sizeof E);
-    E.n = n; E.om = om; E.d = d; E.r = r; E.vstick = vstick; E.chunk = chunk; E.tend = tend;
-    E.t_from = tfrom; E.record = record; E.max_events = max_events;
-    E.nf = (int)(bF.len / sizeof(double));
-    E.L = 1 + 2 * E.nf;
-    size_t sz = (size_t)(n + 2) * E.L * sizeof(double);
-    PyObject *res = NULL;
-    if ((size_t)bc.len != sz || (size_t)bf.len != sz || (size_t)br.len != sz) {
-        PyErr_SetString(PyExc_ValueError, "coefficient buffers have the wrong size");
+    PyObject *res = NULL, *Fseq = NULL, *coef0 = NULL;
+    double *Fv = NULL;
+    if (n < 1) {
+        PyErr_SetString(PyExc_ValueError, "n must be >= 1");
         goto done;
     }
-    E.F = (const double *)bF.buf;
-    E.coef = malloc(sz); E.forced = malloc(sz); E.raw = malloc(sz);
-    E.stuck = calloc(n + 1, 1);
-    E.nt = malloc((n + 1) * sizeof(double));
-    E.nk = malloc((n + 1) * sizeof(int));
-    E.heap = malloc((n + 1) * sizeof(int));
-    E.hpos = malloc((n + 1) * sizeof(int));
-    E.counts = calloc(n + 1, sizeof(long long));
-    E.g = malloc(E.L * sizeof(double));
-    E.gc = malloc((size_t)(n + 1) * E.L * sizeof(double));
-    E.bc = malloc((size_t)(n + 1) * 6 * sizeof(double));
-    E.F2 = malloc(E.nf * sizeof(double));
-    E.F3 = malloc(E.nf * sizeof(double));
-    E.tc = malloc(4 * E.nf * sizeof(double));
+    Fseq = PySequence_Fast(Fobj, "F must be a sequence of floats");
+    if (!Fseq) goto done;
+    E.nf = (int)PySequence_Fast_GET_SIZE(Fseq);
+    if (E.nf < 2) {
+        PyErr_SetString(PyExc_ValueError, "F must hold omega and at least one forcing frequency");
+        goto done;
+    }
+    Fv = malloc(E.nf * sizeof(double));
+    if (!Fv) { PyErr_NoMemory(); goto done; }
+    for (int m = 0; m < E.nf; m++) {
+        Fv[m] = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(Fseq, m));
+        if (Fv[m] == -1.0 && PyErr_Occurred()) goto done;
+    }
+    int K = E.nf - 1;
+    if ((size_t)ba.len != (size_t)n * K * sizeof(double) || ba.len != bb.len
+        || (size_t)bx.len != (size_t)n * sizeof(double) || bx.len != bv.len) {
+        PyErr_SetString(PyExc_ValueError, "alpha, beta, x0 or v0 has the wrong size");
+        goto done;
+    }
+    E.n = n; E.om = om; E.d = d; E.r = r; E.vstick = vstick; E.chunk = 2 / om; E.tend = tend;
+    E.t_from = tfrom; E.record = record; E.max_events = max_events;
+    E.L = 1 + 2 * E.nf;
+    E.F = Fv;
+    size_t sz = (size_t)(n + 2) * E.L * sizeof(double);
+    /* one block for every per-run array (fewer allocator calls): doubles first, then ints */
+    size_t nd = 3 * sz / sizeof(double) + (n + 1) + E.L + (size_t)(n + 1) * E.L
+                + (size_t)(n + 1) * 6 + 2 * E.nf + 4 * E.nf;
+    size_t ni = 3 * (size_t)(n + 1);
+    char *blk = malloc(nd * sizeof(double) + ni * sizeof(int) + (n + 1)
+                       + (n + 1) * sizeof(long long));
+    if (!blk) { PyErr_NoMemory(); goto done; }
+    double *p = (double *)blk;
+    E.coef = p; p += sz / sizeof(double);
+    E.forced = p; p += sz / sizeof(double);
+    E.raw = p; p += sz / sizeof(double);
+    E.nt = p; p += n + 1;
+    E.g = p; p += E.L;
+    E.gc = p; p += (size_t)(n + 1) * E.L;
+    E.bc = p; p += (size_t)(n + 1) * 6;
+    E.F2 = p; p += E.nf;
+    E.F3 = p; p += E.nf;
+    E.tc = p; p += 4 * E.nf;
+    E.counts = (long long *)p;
+    int *q = (int *)(E.counts + (n + 1));
+    E.nk = q; q += n + 1;
+    E.heap = q; q += n + 1;
+    E.hpos = q; q += n + 1;
+    E.stuck = (unsigned char *)q;
+    memset(E.stuck, 0, n + 1);
+    memset(E.counts, 0, (n + 1) * sizeof(long long));
     E.tc_t[0] = E.tc_t[1] = NAN;
     E.pin = 0.0;
     E.plastic_at = NAN;
@@ -626,20 +704,26 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
         E.F2[m] = E.F[m] * E.F[m];
         E.F3[m] = E.F2[m] * E.F[m];
     }
-    memcpy(E.coef, bc.buf, sz); memcpy(E.forced, bf.buf, sz); memcpy(E.raw, br.buf, sz);
+    row_setup(&E, (const double *)ba.buf, (const double *)bb.buf, (const double *)bx.buf,
+              (const double *)bv.buf);
+    if (record) {
+        coef0 = PyBytes_FromStringAndSize((const char *)E.coef, (Py_ssize_t)sz);
+        if (!coef0) goto done;
+    }
     Py_BEGIN_ALLOW_THREADS
     run(&E);
     Py_END_ALLOW_THREADS
     if (E.err == 2) { PyErr_NoMemory(); goto done; }
     if (E.err) { PyErr_SetString(PyExc_RuntimeError, E.errmsg); goto done; }
-    res = Py_BuildValue("(y#y#y#L)", (const char *)E.counts, (Py_ssize_t)((n + 1) * sizeof(long long)),
+    res = Py_BuildValue("(y#y#y#LO)", (const char *)E.counts, (Py_ssize_t)((n + 1) * sizeof(long long)),
                         (const char *)E.ev, (Py_ssize_t)(E.nev * 6 * sizeof(double)),
                         (const char *)E.up, (Py_ssize_t)(E.nup * (2 + E.L) * sizeof(double)),
-                        E.nevents);
+                        E.nevents, coef0 ? coef0 : Py_None);
 done:
-    free(E.coef); free(E.forced); free(E.raw); free(E.stuck); free(E.nt); free(E.nk); free(E.heap); free(E.hpos);
-    free(E.counts); free(E.g); free(E.gc); free(E.bc); free(E.F2); free(E.F3); free(E.tc); free(E.ev); free(E.up);
-    PyBuffer_Release(&bF); PyBuffer_Release(&bc); PyBuffer_Release(&bf); PyBuffer_Release(&br);
+    free(E.coef);   /* the block */
+    free(Fv); free(E.ev); free(E.up);
+    Py_XDECREF(Fseq); Py_XDECREF(coef0);
+    PyBuffer_Release(&ba); PyBuffer_Release(&bb); PyBuffer_Release(&bx); PyBuffer_Release(&bv);
     return res;
 }
 

@@ -285,7 +285,7 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     for m in range(K):
         a = alpha[:, m]
         b = beta[:, m]
-        den = om2 - F[m + 1] ** 2
+        den = om2 - F[m + 1] * F[m + 1]
         fa = a / den
         fb = b / den
         forced[1:n + 1, 3 + 2 * m] = fa
@@ -316,14 +316,21 @@ class EventLog:
     def __init__(self, coef0: Any) -> None:
         self._coef0 = coef0
         self._events: list[tuple[Any, ...]] = []
-        zero = coef0[0][0] * 0
-        self._upd_t: list[list[Any]] = [[zero] for _ in range(len(coef0))]
-        self._upd_c: list[list[Any]] = [[list(c)] for c in coef0]
+        self._upd_t: list[list[Any]] | None = None   # per-pipe lists: built on first use
+        self._upd_c: list[list[Any]] | None = None
         self._ev_arr: np.ndarray | None = None
         self._up_arr: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self._events) if self._ev_arr is None else len(self._ev_arr)
+
+    def _lists(self) -> tuple[list[list[Any]], list[list[Any]]]:
+        if self._upd_t is None or self._upd_c is None:
+            coef0 = self._coef0
+            zero = coef0[0][0] * 0
+            self._upd_t = [[zero] for _ in range(len(coef0))]
+            self._upd_c = [[list(c)] for c in coef0]
+        return self._upd_t, self._upd_c
 
     def add_event(self, t: Any, site: int, kind: EventKind, u_before: Any, u_after: Any,
                   aux: Any) -> None:
@@ -332,13 +339,15 @@ class EventLog:
 
     def add_update(self, j: int, t: Any, coef: Any) -> None:
         """Pipe ``j`` follows the coefficient vector ``coef`` from time ``t`` on."""
-        self._upd_t[j].append(t)
-        self._upd_c[j].append(coef)
+        upd_t, upd_c = self._lists()
+        upd_t[j].append(t)
+        upd_c[j].append(coef)
 
     def extend(self, events: np.ndarray, updates: np.ndarray) -> None:
         """Take the C engine's arrays (into an empty log): ``events`` rows ``(t, site, kind, u0,
         u1, aux)``, ``updates`` rows ``(j, t, coef...)``."""
-        if self._events or self._ev_arr is not None or any(len(u) > 1 for u in self._upd_t):
+        if (self._events or self._ev_arr is not None
+                or (self._upd_t is not None and any(len(u) > 1 for u in self._upd_t))):
             raise ValueError("extend needs an empty EventLog")
         self._ev_arr = events
         self._up_arr = updates
@@ -364,12 +373,15 @@ class EventLog:
             j = up[:, 0].astype(np.int64)
             order = np.argsort(j, kind="stable")
             cuts = np.searchsorted(j[order], np.arange(len(coef0) + 1))
+            upd_t: list[list[Any]] = []
+            upd_c: list[Any] = []
             for k in range(len(coef0)):
                 sel = order[cuts[k]:cuts[k + 1]]
-                self._upd_t[k] = [0.0, *up[sel, 1].tolist()]
-                self._upd_c[k] = np.vstack((coef0[k:k + 1], up[sel, 2:]))  # type: ignore
+                upd_t.append([0.0, *up[sel, 1].tolist()])
+                upd_c.append(np.vstack((coef0[k:k + 1], up[sel, 2:])))
+            self._upd_t, self._upd_c = upd_t, upd_c
             self._up_arr = None
-        return self._upd_t, self._upd_c
+        return self._lists()
 
 
 def cascade_bound(n: int) -> int:
@@ -408,7 +420,7 @@ class Engine:
         # every 1/omega to 3/omega at sigma = 0.3, so certifying further ahead is mostly wasted
         # (benchmarks/bench_impact.py: 2/omega is ~1.7x faster than 2 pi/omega)
         self.chunk = num(chunk) if chunk is not None else ra.chunk
-        self.log = EventLog(self.coef)
+        self.log = EventLog(ra.coef.tolist())   # its own copy: self.coef changes in the run
         self.plastic_at: Any = None   # instant at which the cascade backstop is active
 
     # ---------------------------------------------------------------- trig polynomials
@@ -685,6 +697,12 @@ class Engine:
 
         def schedule(i: int, t: Any, graze_restart: bool = False) -> None:
             t_hi = min(t + self.chunk, t_end)
+            # no further than the next event of the other sites: it may well change this gap
+            # (then the search restarts from scratch), and a search stopped there resumes
+            # where it stopped (certified up to that point), so nothing is lost either way
+            t_next = min((nt[k] for k in range(n + 1) if k != i), default=ctx.inf)
+            if t < t_next < t_hi:
+                t_hi = t_next
             if self.stuck[i]:
                 te, code = self.search(self.contact_force(i), t, t_hi, is_gap=False,
                                        graze_restart=graze_restart)

@@ -1,0 +1,112 @@
+"""The two float64 engines (C and pure Python) bit for bit, the C row set-up against
+``row_arrays``, and the lean float64 path of ``simulate`` against the fully validated one."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from symhx.impact import SQRT2, PipeRow, simulate
+from symhx.impact import fast as fast_mod
+from symhx.impact.engine import FloatContext, row_arrays
+from symhx.impact.model import MAX_HORIZON
+
+pytestmark = pytest.mark.skipif(not fast_mod.available(), reason="C extension not built")
+
+
+def _rows():
+    # forced elastic, inelastic, plastic (r = 0: sticking, releases), chatter-prone r = 0.5,
+    # two forcing frequencies (one of them 0: a constant force), omega and d not 1
+    yield PipeRow.random(10, 0.3, seed=1, restitution=0.8), 30.0
+    yield PipeRow.random(12, 0.5, seed=4, restitution=0.0), 40.0
+    yield PipeRow.random(8, 0.6, seed=5, restitution=0.5), 60.0
+    yield PipeRow.random(6, 0.4, seed=7, restitution=1.0, Omega=(0.0, 2.3), omega=1.7,
+                         d=0.6), 25.0
+    yield PipeRow.random(30, 1.0, seed=3, restitution=0.3, Omega=(SQRT2, 0.37), d=3.0), 15.0
+
+
+def _event_table(h):
+    return np.column_stack([h.times, h.sites, h.kinds, h.u_before, h.u_after, h.aux])
+
+
+@pytest.mark.parametrize("k", range(5))
+def test_c_and_python_float_engines_bit_identical(k):
+    row, t_end = list(_rows())[k]
+    a = simulate(row, t_end, engine="python")
+    b = simulate(row, t_end, engine="c")
+    assert len(a) >= 20
+    # same IEEE operations in the same order: every number of every event equal, not close
+    assert np.array_equal(_event_table(a), _event_table(b))
+    ua_t, ua_c = a._log.updates()
+    ub_t, ub_c = b._log.updates()
+    for j in range(row.n + 2):
+        assert ua_t[j] == ub_t[j]
+        assert np.array_equal(np.asarray(ua_c[j], dtype=float), ub_c[j])
+    ts = np.linspace(0.0, t_end, 37)
+    xa, va = a.states(ts)
+    xb, vb = b.states(ts)
+    assert np.array_equal(xa, xb) and np.array_equal(va, vb)
+
+
+@pytest.mark.parametrize("k", range(5))
+def test_c_row_setup_bit_identical_to_row_arrays(k):
+    row, _ = list(_rows())[k]
+    F, out = fast_mod._call(row, 1e-9, 0.0, 1e-6, True, None)
+    coef0 = np.frombuffer(out[4], dtype=np.float64).reshape(row.n + 2, -1)
+    ra = row_arrays(row, FloatContext())
+    assert F == ra.F.tolist()
+    assert np.array_equal(coef0, ra.coef)
+
+
+def test_row_setup_independent_closed_form():
+    # x_j(0) and x_j'(0) of every pipe from the coefficients equal the row's x0, v0 (eq. 21)
+    row = PipeRow.random(7, 0.8, seed=11, restitution=0.8, Omega=(SQRT2, 0.5), omega=1.3)
+    _, out = fast_mod._call(row, 1e-9, 0.0, 1e-6, True, None)
+    c = np.frombuffer(out[4], dtype=np.float64).reshape(row.n + 2, -1)
+    F = np.array([row.omega, *row.omega_float()])
+    x = c[:, 0] + c[:, 1::2].sum(axis=1)
+    v = (c[:, 2::2] * F).sum(axis=1)
+    np.testing.assert_allclose(x[1:-1], row.x0, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(v[1:-1], row.v0, rtol=0, atol=1e-13)
+    assert x[0] == 0.0 and x[-1] == (row.n + 1) * row.d
+    # the forced part: amplitudes alpha / (omega^2 - Omega^2) straight from the row
+    den = row.omega**2 - F[1:] ** 2
+    np.testing.assert_allclose(c[1:-1, 3::2], row.alpha / den, rtol=1e-15)
+    np.testing.assert_allclose(c[1:-1, 4::2], row.beta / den, rtol=1e-15)
+
+
+def test_fortran_ordered_inputs():
+    row = PipeRow.random(9, 0.4, seed=2, restitution=0.8, Omega=(SQRT2, 0.3, 2.2))
+    rowF = PipeRow(9, restitution=0.8, Omega=(SQRT2, 0.3, 2.2), alpha=np.asfortranarray(row.alpha),
+                   beta=np.asfortranarray(row.beta), x0=row.x0, v0=row.v0)
+    assert not rowF.alpha.flags.c_contiguous
+    a, b = simulate(row, 20.0), simulate(rowF, 20.0)
+    assert len(a) > 10 and np.array_equal(_event_table(a), _event_table(b))
+
+
+def test_lean_float_path_equals_validated_path():
+    row = PipeRow.random(10, 0.3, seed=2, restitution=0.8)
+    a = simulate(row, 30.0)                                  # lean path
+    b = simulate(row, Fraction(30), v_stick=1e-6, max_events=10**8, engine="c")   # full checks
+    assert np.array_equal(_event_table(a), _event_table(b))
+    assert a.t_end == b.t_end == 30.0 and type(a.t_end) is float
+
+
+def test_lean_path_horizon_cap_exact():
+    row = PipeRow(1, restitution=1, omega=3.0, alpha=[[0.0]], beta=[[0.0]], x0=[1.0],
+                  v0=[0.0])
+    t_max = MAX_HORIZON / 3.0          # omega * t_max rounds to 1e5 but is exactly above it
+    assert Fraction(t_max) * 3 > MAX_HORIZON
+    with pytest.raises(ValueError, match="too long"):
+        simulate(row, t_max)
+    t_ok = np.nextafter(t_max, 0.0).item()
+    assert Fraction(t_ok) * 3 <= MAX_HORIZON
+    h = simulate(row, t_ok, max_events=10)   # accepted (no event: the pipe rests)
+    assert len(h) == 0
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError):
+            simulate(row, bad)
+    with pytest.raises(ValueError, match="engine"):
+        simulate(row, 1.0, engine="fortran")
