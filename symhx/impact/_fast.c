@@ -169,11 +169,11 @@ static void bounds(Eng *E, const double *g, double *c0, double *S, double *M1, d
     *c0 = c00; *S = s; *M1 = m1; *M2 = m2; *M3 = m3; *M4 = m4;
 }
 
-/* scaleD = |c0| + S, M1: the bounds of g (as computed by search); D0, V0, A0: g, g', g'' at lo
- * (already evaluated by the caller: the same values derivs would return) */
+/* scaleD = |c0| + S, M1: the bounds of g (as computed by search); D0, V0, A0, J0: g, g', g'',
+ * g''' at lo (already evaluated by the caller: the same values derivs would return) */
 static double refine(Eng *E, const double *g, double lo, double hi, double scaleD, double M1,
-                     double D0, double V0, double A0) {
-    double D = D0, V = V0, A = A0, J, x = lo;
+                     double D0, double V0, double A0, double J0) {
+    double D = D0, V = V0, A = A0, J = J0, x = lo;
     for (int it = 0; it < 400; it++) {
         if (it) derivs(E, g, x, &D, &V, &A, &J);
         if (fabs(D) <= TOLF * EPS * (scaleD + M1 * fabs(x)) && V < 0) return x - D / V;
@@ -181,9 +181,13 @@ static double refine(Eng *E, const double *g, double lo, double hi, double scale
         else if (D < 0) hi = x;
         else return x;
         double xn;
-        if (V < 0) {   /* Halley, Newton if its denominator is not positive */
-            double den = 2 * V * V - D * A;
-            xn = den > 0 ? x - 2 * D * V / den : x - D / V;
+        if (V < 0) {   /* Householder order 3, else Halley, else Newton (engine.refine) */
+            double den3 = 6 * V * V * V - 6 * D * V * A + D * D * J;
+            if (den3 < 0) xn = x - D * (6 * V * V - 3 * D * A) / den3;
+            else {
+                double den = 2 * V * V - D * A;
+                xn = den > 0 ? x - 2 * D * V / den : x - D / V;
+            }
         } else xn = 0.5 * (lo + hi);
         if (!(lo < xn && xn < hi)) xn = 0.5 * (lo + hi);
         if (fabs(xn - x) <= 2 * EPS * fabs(xn) || hi - lo <= 4 * EPS * fabs(hi)) return xn;
@@ -192,9 +196,9 @@ static double refine(Eng *E, const double *g, double lo, double hi, double scale
     return x;
 }
 
-/* Dt, Vt, At: g, g', g'' at t (evaluated by search) */
+/* Dt, Vt, At, Jt: g, g', g'', g''' at t (evaluated by search) */
 static int graze(Eng *E, const double *g, double t, double t0, double tolD, double scaleD,
-                 double M1, double Dt, double Vt, double At, double *te) {
+                 double M1, double Dt, double Vt, double At, double Jt, double *te) {
     double tg = t, D, V = Vt, A = At, J;
     for (int it = 0; it < 100; it++) {
         if (it) derivs(E, g, tg, &D, &V, &A, &J);
@@ -206,7 +210,7 @@ static int graze(Eng *E, const double *g, double t, double t0, double tolD, doub
     if (tg < t0) tg = t;
     if (tg == t) D = Dt;
     else derivs(E, g, tg, &D, &V, &A, &J);
-    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1, Dt, Vt, At); return S_ROOT; }
+    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1, Dt, Vt, At, Jt); return S_ROOT; }
     *te = tg;
     return S_GRAZE;
 }
@@ -221,7 +225,7 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
         *te = t0; return S_NOW;
     }
     if (c0 - S > TOLF * EPS * scale0) { *te = INFINITY; return S_NONE; }
-    double t = t0;
+    double t = t0, iM2 = 1 / M2, M3_3 = M3 / 3;
     int first = 1;
     for (long it = 0; it < MAXIT; it++) {
         if (t >= thi) { *te = t; return S_CONT; }   /* certified up to t >= thi: resume there */
@@ -258,23 +262,23 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
                 *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
             }
             if (A < -tolA && V <= tolV) { *te = t; return S_NOW; }
-            return graze(E, g, t, t0, tolD, scale0, M1, D, V, A, te);
+            return graze(E, g, t, t0, tolD, scale0, M1, D, V, A, J, te);
         }
         double Dl = D - tolD;
         if (V < 0) {
             double Vm = -V - tolV, Dp = D + tolD;
             if (Vm > 0 && 2 * M2 * Dp < Vm * Vm) {
-                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1, D, V, A);
+                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1, D, V, A, J);
                 return S_ROOT;
             }
         }
         double Vl = V - tolV;
-        double h = (Vl + sqrt(Vl * Vl + 2 * M2 * Dl)) / M2;
+        double h = (Vl + sqrt(Vl * Vl + 2 * M2 * Dl)) * iM2;
         double Al = A - tolA, H = 2 * h;
         for (int k = 0; k < 5; k++) {
-            double c = (Al - M3 * H / 3) / 2;
+            double c = (Al - M3_3 * H) * 0.5;
             if (Dl + Vl * H + c * H * H <= 0) break;
-            if (c > 0 && Vl < 0 && -Vl < 2 * c * H && Dl - Vl * Vl / (4 * c) <= 0) break;
+            if (c > 0 && Vl < 0 && -Vl < 2 * c * H && 4 * c * Dl <= Vl * Vl) break;
             h = H;
             H = 2 * H;
         }

@@ -478,6 +478,8 @@ class Engine:
         if c0 - S > _TOL * eps * scale0:  # amplitude bound: can never reach zero
             return ctx.inf, _NONE
         t = t0
+        iM2 = 1 / M2       # per search: multiplications in the step loop, not divisions
+        M3_3 = M3 / 3
         first = True
         for _it in range(_MAXIT):
             if t >= t_hi:   # certified up to t (>= t_hi): resume there, nothing is redone
@@ -532,15 +534,16 @@ class Engine:
                 if Vm > 0 and 2 * M2 * Dp < Vm * Vm:
                     return self.refine(g, t, t + 2 * Dp / Vm), _ROOT
             Vl = V - tolV
-            h = (Vl + ctx.sqrt(Vl * Vl + 2 * M2 * Dl)) / M2
+            h = (Vl + ctx.sqrt(Vl * Vl + 2 * M2 * Dl)) * iM2
             # cubic-improved step: on [0, H], g >= Dl + Vl s + (A - tolA - M3 H/3) s^2/2
             Al = A - tolA
             H = 2 * h
             for _k in range(5):
-                c = (Al - M3 * H / 3) / 2
+                c = (Al - M3_3 * H) / 2
                 if Dl + Vl * H + c * H * H <= 0:
                     break
-                if c > 0 and Vl < 0 and -Vl < 2 * c * H and Dl - Vl * Vl / (4 * c) <= 0:
+                # the bound's minimum (at s = -Vl / (2 c) inside [0, H]) is <= 0
+                if c > 0 and Vl < 0 and -Vl < 2 * c * H and 4 * c * Dl <= Vl * Vl:
                     break
                 h = H
                 H = 2 * H
@@ -577,15 +580,17 @@ class Engine:
     def refine(self, g: list[Any], lo: Any, hi: Any) -> Any:
         """Root of ``g`` in ``[lo, hi]`` where ``g(lo) > 0 > g(hi)`` and ``g`` is monotone.
 
-        Safeguarded Halley (``g''`` comes free with ``g, g'``: cubic convergence, about one
-        evaluation fewer than Newton); stops when ``|g|`` is within its rounding bound (then a
-        last Newton step) or the step is below the resolution of ``t``.
+        Safeguarded Householder iteration of order 3 (``g'', g'''`` come free with ``g, g'``:
+        quartic convergence, one evaluation fewer than Halley on most roots of the benchmark
+        rows), Halley or Newton where its denominator has the wrong sign, bisection where a step
+        leaves the bracket; stops when ``|g|`` is within its rounding bound (then a last Newton
+        step) or the step is below the resolution of ``t``.
         """
         eps = self.ctx.eps
         c0, S, M1, _, _, _ = self.bounds(g)
         x = lo
         for _ in range(400):
-            D, V, A, _ = self.derivs(g, x)
+            D, V, A, J = self.derivs(g, x)
             if abs(D) <= _TOL * eps * (abs(c0) + S + M1 * abs(x)) and V < 0:
                 return x - D / V
             if D > 0:
@@ -594,9 +599,13 @@ class Engine:
                 hi = x
             else:
                 return x
-            if V < 0:
-                den = 2 * V * V - D * A
-                xn = x - 2 * D * V / den if den > 0 else x - D / V
+            if V < 0:   # Householder of order 3 (J comes free too), else Halley, else Newton
+                den3 = 6 * V * V * V - 6 * D * V * A + D * D * J
+                if den3 < 0:
+                    xn = x - D * (6 * V * V - 3 * D * A) / den3
+                else:
+                    den = 2 * V * V - D * A
+                    xn = x - 2 * D * V / den if den > 0 else x - D / V
             else:
                 xn = (lo + hi) / 2
             if not lo < xn < hi:
