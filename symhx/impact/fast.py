@@ -66,10 +66,7 @@ def simulate_c(row: PipeRow, t_end: float, *, v_stick: float, max_events: int | 
     """Full history from the C engine (used by :func:`symhx.impact.simulate` with dps=None)."""
     t_end = float(t_end)
     F, (_, ev, up, _, coef0) = _call(row, t_end, 0.0, v_stick, True, max_events)
-    L = 1 + 2 * len(F)
-    log = EventLog(np.frombuffer(coef0, dtype=np.float64).reshape(-1, L))
-    log.extend(np.frombuffer(ev or b"", dtype=np.float64).reshape(-1, 6),
-               np.frombuffer(up or b"", dtype=np.float64).reshape(-1, 2 + L))
+    log = EventLog.from_buffers(coef0, ev or b"", up or b"", 1 + 2 * len(F))
     return History.from_log(row, t_end, None, log, F)
 
 
