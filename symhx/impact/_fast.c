@@ -319,14 +319,25 @@ static void record_update(Eng *E, int j, double t) {
     E->nup++;
 }
 
+/* one event record: the layout of engine.EVENT_DTYPE (48 bytes, numpy reads the fields as
+ * arrays without copies) */
+typedef struct {
+    double t;
+    long long site;
+    signed char kind, pad[7];
+    double u0, u1, aux;
+} EvRec;
+typedef char evrec_is_48_bytes[sizeof(EvRec) == 6 * sizeof(double) ? 1 : -1];
+
 static void record_event(Eng *E, double t, int site, int kind, double u0, double u1, double aux) {
     if (kind == K_IMPACT || kind == K_STICK) {
         if (t >= E->t_from) E->counts[site]++;
     }
     if (!E->record) return;
     if (grow(&E->ev, &E->cap_ev, (E->nev + 1) * 6)) { E->err = 2; return; }
-    double *p = E->ev + E->nev * 6;
-    p[0] = t; p[1] = site; p[2] = kind; p[3] = u0; p[4] = u1; p[5] = aux;
+    EvRec *p = (EvRec *)(E->ev + E->nev * 6);
+    memset(p, 0, sizeof *p);
+    p->t = t; p->site = site; p->kind = (signed char)kind; p->u0 = u0; p->u1 = u1; p->aux = aux;
     E->nev++;
 }
 

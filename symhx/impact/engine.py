@@ -84,9 +84,9 @@ import numpy as np
 from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 from symhx.validation import check_dps
 
-__all__ = ["GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine", "EventKind", "EventLog",
-           "FloatContext", "MPContext", "Outcome", "RowArrays", "default_v_stick", "row_arrays",
-           "work_dps"]
+__all__ = ["EVENT_DTYPE", "GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine",
+           "EventKind", "EventLog", "FloatContext", "MPContext", "Outcome", "RowArrays",
+           "default_v_stick", "row_arrays", "work_dps"]
 
 
 class EventKind(IntEnum):
@@ -306,6 +306,12 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     return RowArrays(F=F, coef=coef, forced=forced, raw=raw, chunk=2 / om)
 
 
+#: one event record of the C engine (48 bytes: ``_fast.c`` writes this layout)
+EVENT_DTYPE = np.dtype({"names": ["t", "site", "kind", "u0", "u1", "aux"],
+                        "formats": ["f8", "i8", "i1", "f8", "f8", "f8"],
+                        "offsets": [0, 8, 16, 24, 32, 40], "itemsize": 48})
+
+
 class EventLog:
     """The typed record of one run, filled by either engine through :meth:`add_event`,
     :meth:`add_update` (one at a time, the Python engines) or :meth:`extend` (the arrays of the C
@@ -327,14 +333,14 @@ class EventLog:
 
     @classmethod
     def from_buffers(cls, coef0: bytes, events: bytes, updates: bytes, width: int) -> EventLog:
-        """The C engine's record as it comes: float64 buffers of ``coef0`` (``(n + 2) x width``,
-        the coefficients at ``t = 0``), ``events`` (rows ``t, site, kind, u0, u1, aux``) and
-        ``updates`` (rows ``j, t, coef...``).  The events become an array at once; the updates
-        only when :meth:`updates` is first called (a run that is never asked for states does
-        not pay for them)."""
+        """The C engine's record as it comes: buffers of ``coef0`` (float64, ``(n + 2) x width``,
+        the coefficients at ``t = 0``), ``events`` (records of :data:`EVENT_DTYPE`) and
+        ``updates`` (float64 rows ``j, t, coef...``).  The events become an array at once, the
+        updates only when :meth:`updates` is first called (a run that is never asked for states
+        does not pay for them)."""
         log = cls(coef0)
         log._width = width
-        log._ev_arr = np.frombuffer(events, dtype=np.float64).reshape(-1, 6)
+        log._ev_arr = np.frombuffer(events, dtype=EVENT_DTYPE)
         log._up_arr = updates   # type: ignore[assignment]
         return log
 
@@ -380,6 +386,8 @@ class EventLog:
         columns: ``float`` or ``object`` for mpf; sites int64, kinds int8)."""
         if self._ev_arr is not None:
             ev = self._ev_arr
+            if ev.dtype.names:   # the C engine's records: the fields as they are (no copies)
+                return (ev["t"], ev["site"], ev["kind"], ev["u0"], ev["u1"], ev["aux"])
             return (ev[:, 0], ev[:, 1].astype(np.int64), ev[:, 2].astype(np.int8), ev[:, 3],
                     ev[:, 4], ev[:, 5])
         cols = list(zip(*self._events, strict=True)) if self._events else [()] * 6
