@@ -42,17 +42,17 @@ typedef struct {
     char errmsg[200];
 } Eng;
 
-/* cos and sin of x: Cody-Waite reduction by pi/2 (three 33-bit parts, exact products for
- * |x| < 2^19 pi/2) and the fdlibm minimax polynomials on [-pi/4, pi/4], their tails by Estrin's
+/* cos and sin of x: Cody-Waite reduction by pi/2 to the nearest multiple (three 33-bit parts,
+ * exact products for |x| < 2^19 pi/2; the two small ones summed first) and the fdlibm minimax polynomials on [-pi/4, pi/4], their tails by Estrin's
  * scheme (shorter latency than Horner; absolute error < 2^-52, far inside the 64 eps rounding
  * bounds of the search).  engine._cos_sin is the same sequence of IEEE operations in Python, so
  * the float64 engines stay identical; larger |x| use libm in both. */
 static inline void cos_sin(double x, double *c, double *s) {
     if (!(fabs(x) < 823549.6)) { *c = cos(x); *s = sin(x); return; }
-    double fn = floor(x * 6.36619772367581382433e-01 + 0.5);
-    double y = x - fn * 1.57079632673412561417e+00;
-    y = y - fn * 6.07710050630396597660e-11;
-    y = y - fn * 2.02226624871116645580e-21;
+    /* nearest integer to x 2/pi by the 1.5 * 2^52 shift (|x 2/pi| < 2^19: exact) */
+    double fn = (x * 6.36619772367581382433e-01 + 6755399441055744.0) - 6755399441055744.0;
+    double y = (x - fn * 1.57079632673412561417e+00)
+        - (fn * 6.07710050630396597660e-11 + fn * 2.02226624871116645580e-21);
     double z = y * y, z2 = z * z;
     double sr = (8.33333333332248946124e-03 + z * -1.98412698298579493134e-04)
         + z2 * ((2.75573137070700676789e-06 + z * -2.50507602534068634195e-08)
@@ -95,15 +95,10 @@ static inline void cos_sin2(double x0, double x1, double *c0, double *s0, double
         return;
     }
     v2d x = {x0, x1};
-    v2d u = x * 6.36619772367581382433e-01 + 0.5;
-    /* floor(u), exactly (|u| < 2^19): round to an integer by the 1.5 * 2^52 shift, minus one
-     * where that rounded up (the shifted sum is exact in [2^52, 2^53)); u is never -0 */
-    v2d fn = (u + 6755399441055744.0) - 6755399441055744.0;
-    fn = fn - (v2d)((fn > u) & (v2di){0x3ff0000000000000LL, 0x3ff0000000000000LL});
+    v2d fn = (x * 6.36619772367581382433e-01 + 6755399441055744.0) - 6755399441055744.0;
     double f0 = fn[0], f1 = fn[1];
-    v2d y = x - fn * 1.57079632673412561417e+00;
-    y = y - fn * 6.07710050630396597660e-11;
-    y = y - fn * 2.02226624871116645580e-21;
+    v2d y = (x - fn * 1.57079632673412561417e+00)
+        - (fn * 6.07710050630396597660e-11 + fn * 2.02226624871116645580e-21);
     v2d z = y * y, z2 = z * z;
     v2d sr = (8.33333333332248946124e-03 + z * -1.98412698298579493134e-04)
         + z2 * ((2.75573137070700676789e-06 + z * -2.50507602534068634195e-08)

@@ -157,18 +157,19 @@ def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
 
 def _cos_sin(x: float) -> tuple[float, float]:
     """``(cos x, sin x)`` in float64, absolute error below ``2**-52`` (tests: against mpmath):
-    Cody-Waite reduction by pi/2 (three 33-bit parts: exact products for ``|x| < 2**19 pi/2``)
-    and the fdlibm minimax polynomials on ``[-pi/4, pi/4]`` (their tails by Estrin's scheme:
-    shorter dependency chains, same accuracy).  The C engine (``_fast.c``) runs the same IEEE
+    Cody-Waite reduction to the nearest multiple of pi/2 (three 33-bit parts: exact products
+    for ``|x| < 2**19 pi/2``; the two small ones summed first) and the fdlibm minimax
+    polynomials on ``[-pi/4, pi/4]`` (their tails by Estrin's scheme: shorter dependency
+    chains, same accuracy).  The C engine (``_fast.c``) runs the same IEEE
     operations in the same order, so both float64 engines see identical values; larger ``|x|``
     use libm in both.
     """
     if not abs(x) < 823549.6:
         return math.cos(x), math.sin(x)
-    fn = float(math.floor(x * 6.36619772367581382433e-01 + 0.5))
-    y = x - fn * 1.57079632673412561417e+00
-    y = y - fn * 6.07710050630396597660e-11
-    y = y - fn * 2.02226624871116645580e-21
+    # nearest integer to x 2/pi by the 1.5 * 2**52 shift (exact for |x 2/pi| < 2**19)
+    fn = (x * 6.36619772367581382433e-01 + 6755399441055744.0) - 6755399441055744.0
+    y = ((x - fn * 1.57079632673412561417e+00)
+         - (fn * 6.07710050630396597660e-11 + fn * 2.02226624871116645580e-21))
     z = y * y
     z2 = z * z   # Estrin's scheme: shorter dependency chains than Horner, the same accuracy
     sr = ((8.33333333332248946124e-03 + z * -1.98412698298579493134e-04)
