@@ -38,16 +38,17 @@ def _call(row: PipeRow, t_end: float, t_from: float, v_stick: float, record: boo
     :func:`~symhx.impact.engine.row_arrays`) from the row's float64 inputs."""
     if _fast is None:
         raise SimulationError("the C extension symhx.impact._fast is not built")
-    F = [row.omega]
-    F.extend([float(w) for w in row.Omega])
-    args = [row.n, row.omega, row.d, row.restitution, v_stick, t_end, t_from, record,
-            max_events or 0, F, row.alpha, row.beta, row.x0, row.v0]
+    F = [row.omega, *map(float, row.Omega)]
+    alpha, beta = row.alpha, row.beta
     try:
         try:
-            out = _fast.run(*args)
+            out = _fast.run(row.n, row.omega, row.d, row.restitution, v_stick, t_end, t_from,
+                            record, max_events or 0, F, alpha, beta, row.x0, row.v0)
         except (BufferError, ValueError):   # not C-contiguous (a Fortran-ordered input array)
-            args[10:] = [np.ascontiguousarray(a, dtype=np.float64) for a in args[10:]]
-            out = _fast.run(*args)
+            alpha, beta = np.ascontiguousarray(alpha), np.ascontiguousarray(beta)
+            out = _fast.run(row.n, row.omega, row.d, row.restitution, v_stick, t_end, t_from,
+                            record, max_events or 0, F, alpha, beta, np.ascontiguousarray(row.x0),
+                            np.ascontiguousarray(row.v0))
     except RuntimeError as exc:
         raise SimulationError(str(exc)) from None
     return F, out
