@@ -137,3 +137,51 @@ def test_float_cos_sin_kernel_against_mpmath():
         assert worst > mpmath.mpf(2) ** -60   # the check sees rounding at all (not vacuous)
     # outside the reduction's exact range the kernel is libm
     assert _cos_sin(1e7) == (math.cos(1e7), math.sin(1e7))
+
+
+def test_plastic_simultaneous_impacts_then_releases_hand_solved():
+    # x1 = 1 + 2 sin t, x2 = 2, x3 = 3 - 2 sin t (no force, r = 0): both gaps close at t = pi/6
+    # with identical polynomials (an exact tie).  Rules: smaller site first; a plastic impact
+    # merges; at one instant the free gaps (impacts) go before the stuck ones (releases).  By
+    # hand: gap 1 closes at u = -sqrt 3 -> {1, 2} moves at sqrt(3)/2; gap 2 then closes at
+    # u = -sqrt 3 - sqrt(3)/2 -> {1, 2, 3} at rest (momentum 0); its contact forces are tensile
+    # (pipes 1 and 3 sit one d off their equilibria): both contacts release at once, all at rest.
+    from symhx.impact import IMPACT, RELEASE, STICK
+
+    row = PipeRow(3, restitution=0, alpha=np.zeros((3, 1)), beta=np.zeros((3, 1)),
+                  x0=[1.0, 2.0, 3.0], v0=[2.0, 0.0, -2.0])
+    want = [(1, IMPACT), (1, STICK), (2, IMPACT), (2, STICK), (1, RELEASE), (2, RELEASE)]
+    s3 = np.sqrt(3.0)
+    for kw in ({"engine": "c"}, {"engine": "python"}, {"dps": 30}):
+        h = simulate(row, 1.0, **kw)
+        assert list(zip(h.sites.tolist(), h.kinds.tolist(), strict=True)) == want, kw
+        assert max(abs(float(t) - np.pi / 6) for t in h.times) < 1e-14
+        u = [float(x) for x in h.u_before]
+        assert abs(u[0] + s3) < 1e-14 and abs(u[2] + 1.5 * s3) < 1e-14
+        _, v = h.state(h.times[-1])
+        assert max(abs(float(x)) for x in v) < 1e-14
+        # after the releases the outer pipes spring back to their equilibria: no more events
+        x, _ = h.state(1.0)
+        assert float(x[0]) < 2.0 < float(x[2])
+
+
+@pytest.mark.parametrize("k, sigma, omega, t_touch, kinds_at_touch", [
+    # a touch (graze) found twice at one instant merges the pair, which then releases
+    (3945, 0.48176162723346405, 0.03030774030312454, 393.21425751496616,
+     ["graze", "graze", "stick", "release"]),
+    # ... and a touch found again after that merge and release steps past it (touch_step)
+    (2818, 2.2707357379416577, 0.012903439759520111, 1120.5846466477813,
+     ["graze", "graze", "stick", "release", "graze"]),
+])
+def test_repeated_touch_rules_c_equals_python(k, sigma, omega, t_touch, kinds_at_touch):
+    # 4-pipe plastic rows found by a search at small omega (a release leaves the pair touching
+    # within rounding): the touch rules of the run loop, run by the C engine and by the Python
+    # port (two implementations of them), bit for bit
+    row = PipeRow.random(4, sigma, seed=k, restitution=0.0, omega=omega)
+    a = simulate(row, t_touch + 0.5, engine="c")
+    b = simulate(row, t_touch + 0.5, engine="python")
+    at = np.nonzero(a.times == t_touch)[0]
+    assert [a.kind_names()[i] for i in at] == kinds_at_touch
+    assert np.array_equal(_event_table(a), _event_table(b))
+    x, _ = a.states(np.linspace(0.0, t_touch + 0.5, 2001))
+    assert np.diff(x, axis=1).min() > -1e-9 and x.min() > -1e-9
