@@ -185,3 +185,27 @@ def test_repeated_touch_rules_c_equals_python(k, sigma, omega, t_touch, kinds_at
     assert np.array_equal(_event_table(a), _event_table(b))
     x, _ = a.states(np.linspace(0.0, t_touch + 0.5, 2001))
     assert np.diff(x, axis=1).min() > -1e-9 and x.min() > -1e-9
+
+
+@pytest.mark.parametrize("mp", [False, True])
+def test_engine_state_closed_form(mp):
+    # one elastic pipe x = 1 + 2 sin t hits the wall x = 2 at t* = pi/6 with speed sqrt 3; after
+    # it x = 1 + cos(t - t*) - sqrt(3) sin(t - t*) (closed form), before it 1 + 2 sin t
+    import mpmath
+
+    from symhx.impact.engine import Engine, MPContext
+
+    row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
+    with mpmath.workdps(40):
+        eng = Engine(row, MPContext() if mp else FloatContext(), v_stick=1e-6)
+        eng.run(1.0)
+        ts = mpmath.pi / 6
+        s3 = mpmath.sqrt(3)
+        tol = 1e-35 if mp else 1e-14
+        t1, t2 = mpmath.mpf(0.3), mpmath.mpf(0.8)
+        for t, x_ref, v_ref in ((t1, 1 + 2 * mpmath.sin(t1), 2 * mpmath.cos(t1)),
+                                (t2, 1 + mpmath.cos(t2 - ts) - s3 * mpmath.sin(t2 - ts),
+                                 -mpmath.sin(t2 - ts) - s3 * mpmath.cos(t2 - ts))):
+            xs, vs = eng.state(t if mp else float(t))
+            assert len(xs) == len(vs) == 1
+            assert abs(xs[0] - x_ref) < tol and abs(vs[0] - v_ref) < tol
