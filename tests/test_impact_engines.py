@@ -209,3 +209,40 @@ def test_engine_state_closed_form(mp):
             xs, vs = eng.state(t if mp else float(t))
             assert len(xs) == len(vs) == 1
             assert abs(xs[0] - x_ref) < tol and abs(vs[0] - v_ref) < tol
+
+
+@pytest.mark.parametrize("mp", [False, True])
+def test_near_contact_slow_closing_root_not_late(mp):
+    # found by the 1050-row sweep (row 1041, omega ~ 0.0164): a gap within rounding of zero
+    # (D <= tolD, big amplitudes of the slow mode) closing with |V| ~ 1e-8 under a curvature of
+    # -2.9.  Its first root is ~4e-6 ahead; the linear guess D / -V put it 1.9e-3 late, with the
+    # pipes overlapping by 5e-6 meanwhile.  Reference: the root of the same trig polynomial by
+    # mpmath at 50 digits (bisection-safe findroot from the bracket).
+    import mpmath
+
+    from symhx.impact.engine import Engine, MPContext, Outcome
+
+    om = 0.016386317992556732
+    g = [1.5, 34.87395522044951, -109.45862710357925, 1.967176842464283, 0.15543004880653571]
+    t0 = 403.8348033097121
+    row = PipeRow(1, omega=om, restitution=0.3, alpha=[[0.0]], beta=[[0.0]], x0=[30.0],
+                  v0=[0.0], d=30.0)
+    with mpmath.workdps(50):
+        F = [mpmath.mpf(om), mpmath.sqrt(2)]
+
+        def gm(t):
+            return g[0] + sum(g[1 + 2 * m] * mpmath.cos(f * t) + g[2 + 2 * m] * mpmath.sin(f * t)
+                              for m, f in enumerate(F))
+
+        t0m = mpmath.mpf(t0)
+        assert gm(t0m) > 0 and gm(t0m + mpmath.mpf("1e-5")) < 0
+        root = mpmath.findroot(gm, (t0m, t0m + mpmath.mpf("1e-5")), solver="anderson")
+        assert root - t0m > mpmath.mpf("1e-6")
+        ctx = MPContext() if mp else FloatContext()
+        eng = Engine(row, ctx, v_stick=1e-8)
+        gg = [ctx.num(x) for x in g]
+        te, code = eng.search(gg, ctx.num(t0), ctx.num(403.837))
+        assert code == Outcome.ROOT
+        # float64: the gap's rounding (~3e-11 here) leaves ~sqrt(2 tolD / |A|) ~ 4e-6 of time
+        # uncertainty near this touch; the late answer was 1.9e-3 off
+        assert abs(te - root) < (1e-7 if not mp else 1e-30)

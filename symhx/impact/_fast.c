@@ -255,7 +255,8 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
             }
         } else if (D <= tolD || it == CRAWL) {   /* or hovering just above zero: a touch */
             if (V < -tolV && (A <= 0 || V * V > 8 * M2 * tolD)) {
-                *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
+                double Dz = D > 0 ? D : 0;   /* first root of D + V s + A s^2/2 (engine.py) */
+                *te = t + 2 * Dz / (-V + sqrt(V * V - 2 * A * Dz)); return S_ROOT;
             }
             if (A < -tolA && V <= tolV) { *te = t; return S_NOW; }
             return graze(E, g, t, t0, tolD, scale0, M1, D, V, A, J, te);

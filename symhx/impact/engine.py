@@ -557,7 +557,10 @@ class Engine:
                 # came within rounding of zero from above (all earlier steps were certified), or
                 # crawled _CRAWL steps along a gap that stays just above it: a touch there
                 if V < -tolV and (A <= 0 or V * V > 8 * M2 * tolD):
-                    return t + max(D, self.zero) / (-V), _ROOT
+                    # first root of D + V s + A s^2/2 (not D / -V: with a small |V| and a
+                    # closing curvature that is far too late, and the gap overlaps meanwhile)
+                    Dz = max(D, self.zero)
+                    return t + 2 * Dz / (-V + ctx.sqrt(V * V - 2 * A * Dz)), _ROOT
                 if A < -tolA and V <= tolV:   # compressed at zero speed: contact now
                     return t, _NOW
                 return self._graze(g, t, t0, tolD)
