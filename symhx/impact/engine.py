@@ -84,8 +84,8 @@ import numpy as np
 from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 from symhx.validation import check_dps
 
-__all__ = ["EVENT_DTYPE", "GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine",
-           "EventKind", "EventLog", "FloatContext", "MPContext", "Outcome", "RowArrays",
+__all__ = ["EVENT_DTYPE", "GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "V_STICK_FLOAT64",
+           "Engine", "EventKind", "EventLog", "FloatContext", "MPContext", "Outcome", "RowArrays",
            "default_v_stick", "row_arrays", "work_dps"]
 
 
@@ -133,6 +133,10 @@ def work_dps(dps: int) -> int:
     return 2 * check_dps(dps) + 10
 
 
+#: the factor of ``omega d`` in the float64 chatter threshold (:func:`default_v_stick`)
+V_STICK_FLOAT64 = 10.0 ** (-10 / 2 - 1)
+
+
 def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
     """Relative speed below which a contact sticks (chatter ends): ``omega d 10**(-dps/2 - 1)``.
 
@@ -150,7 +154,7 @@ def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
         raise TypeError(f"row must be a PipeRow, got {type(row).__name__} {row!r:.60}")
     dps = check_dps(dps, allow_none=True)
     if dps is None:
-        return row.omega * row.d * 10.0 ** (-10 / 2 - 1)
+        return row.omega * row.d * V_STICK_FLOAT64
     with mpmath.workdps(20):
         return mpmath.mpf(row.omega) * row.d * mpmath.power(10, -mpmath.mpf(dps) / 2 - 1)
 

@@ -67,8 +67,8 @@ def simulate_c(row: PipeRow, t_end: float, *, v_stick: float, max_events: int | 
     """Full history from the C engine (used by :func:`symhx.impact.simulate` with dps=None)."""
     t_end = float(t_end)
     F, (_, ev, up, _, coef0) = _call(row, t_end, 0.0, v_stick, True, max_events)
-    log = EventLog.from_buffers(coef0, ev or b"", up or b"", 1 + 2 * len(F))
-    return History.from_log(row, t_end, None, log, F)
+    return History.from_log(row, t_end, None,
+                            EventLog.from_buffers(coef0, ev or b"", up or b"", 1 + 2 * len(F)), F)
 
 
 def count_impacts(row: PipeRow, t_end: float, t_from: float, *, v_stick: float | None = None,

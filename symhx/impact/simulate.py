@@ -8,7 +8,7 @@ from typing import Any
 import mpmath
 
 from symhx.impact import fast
-from symhx.impact.engine import Engine, MPContext, default_v_stick, work_dps
+from symhx.impact.engine import V_STICK_FLOAT64, Engine, MPContext, default_v_stick, work_dps
 from symhx.impact.history import History
 from symhx.impact.model import (
     MAX_EVENTS,
@@ -83,7 +83,7 @@ def simulate(
             and 0.0 < t_end * row.omega < _HORIZON_SAFE):
         # the common float64 call, validated without Fractions: a float t_end > 0 whose
         # omega * t_end is clearly inside MAX_HORIZON (the rounded product cannot cross it)
-        vs = default_v_stick(row, None)
+        vs = row.omega * row.d * V_STICK_FLOAT64   # = default_v_stick(row, None)
         if engine != "python" and fast.available():
             return fast.simulate_c(row, t_end, v_stick=vs, max_events=MAX_EVENTS)
         if engine == "c":
