@@ -28,6 +28,12 @@ For ``g(t) = c0 + sum_m (a_m cos + b_m sin)`` put ``c_m = |(a_m, b_m)|`` and
   located (Newton on ``g'``): a true dip below rounding is a (small-velocity) impact, otherwise a
   **graze** (tangential contact, relative velocity zero within rounding) which is reported as an
   event of its own and changes no velocity.
+* A gap within rounding of zero that is closing (``V < 0``) has its root at the first root of
+  ``D + V s + A s^2 / 2`` (a small ``|V|`` under a closing curvature makes ``D / |V|`` far too
+  late).
+* Each (re)search stops at the first certified point beyond the next scheduled event of the other
+  sites (an event there may change this gap: then it is searched again from scratch; if not, the
+  search resumes where it stopped, so no step is repeated).
 * At a contact (``g = 0`` after an impact, graze or release) the search starts one-sidedly from
   the Taylor bound ``V s + g'' s^2/2 - M_3 s^3/6`` (or the next non-vanishing derivative), so it
   never rediscovers the same root.
