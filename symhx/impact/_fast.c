@@ -42,26 +42,27 @@ typedef struct {
     char errmsg[200];
 } Eng;
 
-/* cos and sin of x: Cody-Waite reduction by pi/2 (three 33-bit parts, exact products for
- * |x| < 2^19 pi/2) and the fdlibm minimax kernels on [-pi/4, pi/4] (error < 1 ulp, far inside the
- * 64 eps rounding bounds of the search).  engine._cos_sin is the same sequence of IEEE operations
- * in Python, so the float64 engines stay identical; larger |x| use libm in both. */
+/* cos and sin of x: Cody-Waite reduction by pi/2 to the nearest multiple (three 33-bit parts,
+ * exact products for |x| < 2^19 pi/2; the two small ones summed first) and the fdlibm minimax polynomials on [-pi/4, pi/4], their tails by Estrin's
+ * scheme (shorter latency than Horner; absolute error < 2^-52, far inside the 64 eps rounding
+ * bounds of the search).  engine._cos_sin is the same sequence of IEEE operations in Python, so
+ * the float64 engines stay identical; larger |x| use libm in both. */
 static inline void cos_sin(double x, double *c, double *s) {
     if (!(fabs(x) < 823549.6)) { *c = cos(x); *s = sin(x); return; }
-    double fn = floor(x * 6.36619772367581382433e-01 + 0.5);
-    double y = x - fn * 1.57079632673412561417e+00;
-    y = y - fn * 6.07710050630396597660e-11;
-    y = y - fn * 2.02226624871116645580e-21;
-    double z = y * y;
-    double sr = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
-        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z *
-        1.58969099521155010221e-10)));
-    double sv = y + z * y * (-1.66666666666666324348e-01 + z * sr);
-    double cr = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
-        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
-        2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+    /* nearest integer to x 2/pi by the 1.5 * 2^52 shift (|x 2/pi| < 2^19: exact) */
+    double fn = (x * 6.36619772367581382433e-01 + 6755399441055744.0) - 6755399441055744.0;
+    double y = (x - fn * 1.57079632673412561417e+00)
+        - (fn * 6.07710050630396597660e-11 + fn * 2.02226624871116645580e-21);
+    double z = y * y, z2 = z * z, z4 = z2 * z2;
+    double sr = (8.33333333332248946124e-03 + z * -1.98412698298579493134e-04)
+        + (z2 * (2.75573137070700676789e-06 + z * -2.50507602534068634195e-08)
+           + z4 * 1.58969099521155010221e-10);
+    double sv = y + (z * y * -1.66666666666666324348e-01 + z2 * y * sr);
+    double cp = (4.16666666666666019037e-02 + z * -1.38888888888741095749e-03)
+        + (z2 * (2.48015872894767294178e-05 + z * -2.75573143513906633035e-07)
+           + z4 * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11));
     double hz = 0.5 * z, w = 1.0 - hz;
-    double cv = w + (((1.0 - w) - hz) + z * cr);
+    double cv = w + (((1.0 - w) - hz) + z2 * cp);
     switch (((long long)fn) & 3) {
     case 0: *c = cv; *s = sv; break;
     case 1: *c = -sv; *s = cv; break;
@@ -94,25 +95,20 @@ static inline void cos_sin2(double x0, double x1, double *c0, double *s0, double
         return;
     }
     v2d x = {x0, x1};
-    v2d u = x * 6.36619772367581382433e-01 + 0.5;
-    /* floor(u), exactly (|u| < 2^19): round to an integer by the 1.5 * 2^52 shift, minus one
-     * where that rounded up (the shifted sum is exact in [2^52, 2^53)); u is never -0 */
-    v2d fn = (u + 6755399441055744.0) - 6755399441055744.0;
-    fn = fn - (v2d)((fn > u) & (v2di){0x3ff0000000000000LL, 0x3ff0000000000000LL});
+    v2d fn = (x * 6.36619772367581382433e-01 + 6755399441055744.0) - 6755399441055744.0;
     double f0 = fn[0], f1 = fn[1];
-    v2d y = x - fn * 1.57079632673412561417e+00;
-    y = y - fn * 6.07710050630396597660e-11;
-    y = y - fn * 2.02226624871116645580e-21;
-    v2d z = y * y;
-    v2d sr = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
-        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z *
-        1.58969099521155010221e-10)));
-    v2d sv = y + z * y * (-1.66666666666666324348e-01 + z * sr);
-    v2d cr = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
-        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
-        2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+    v2d y = (x - fn * 1.57079632673412561417e+00)
+        - (fn * 6.07710050630396597660e-11 + fn * 2.02226624871116645580e-21);
+    v2d z = y * y, z2 = z * z, z4 = z2 * z2;
+    v2d sr = (8.33333333332248946124e-03 + z * -1.98412698298579493134e-04)
+        + (z2 * (2.75573137070700676789e-06 + z * -2.50507602534068634195e-08)
+           + z4 * 1.58969099521155010221e-10);
+    v2d sv = y + (z * y * -1.66666666666666324348e-01 + z2 * y * sr);
+    v2d cp = (4.16666666666666019037e-02 + z * -1.38888888888741095749e-03)
+        + (z2 * (2.48015872894767294178e-05 + z * -2.75573143513906633035e-07)
+           + z4 * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11));
     v2d hz = 0.5 * z, w = 1.0 - hz;
-    v2d cv = w + (((1.0 - w) - hz) + z * cr);
+    v2d cv = w + (((1.0 - w) - hz) + z2 * cp);
     quadrant(f0, cv[0], sv[0], c0, s0);
     quadrant(f1, cv[1], sv[1], c1, s1);
 }
@@ -169,11 +165,11 @@ static void bounds(Eng *E, const double *g, double *c0, double *S, double *M1, d
     *c0 = c00; *S = s; *M1 = m1; *M2 = m2; *M3 = m3; *M4 = m4;
 }
 
-/* scaleD = |c0| + S, M1: the bounds of g (as computed by search); D0, V0, A0: g, g', g'' at lo
- * (already evaluated by the caller: the same values derivs would return) */
+/* scaleD = |c0| + S, M1: the bounds of g (as computed by search); D0, V0, A0, J0: g, g', g'',
+ * g''' at lo (already evaluated by the caller: the same values derivs would return) */
 static double refine(Eng *E, const double *g, double lo, double hi, double scaleD, double M1,
-                     double D0, double V0, double A0) {
-    double D = D0, V = V0, A = A0, J, x = lo;
+                     double D0, double V0, double A0, double J0) {
+    double D = D0, V = V0, A = A0, J = J0, x = lo;
     for (int it = 0; it < 400; it++) {
         if (it) derivs(E, g, x, &D, &V, &A, &J);
         if (fabs(D) <= TOLF * EPS * (scaleD + M1 * fabs(x)) && V < 0) return x - D / V;
@@ -181,9 +177,13 @@ static double refine(Eng *E, const double *g, double lo, double hi, double scale
         else if (D < 0) hi = x;
         else return x;
         double xn;
-        if (V < 0) {   /* Halley, Newton if its denominator is not positive */
-            double den = 2 * V * V - D * A;
-            xn = den > 0 ? x - 2 * D * V / den : x - D / V;
+        if (V < 0) {   /* Householder order 3, else Halley, else Newton (engine.refine) */
+            double den3 = 6 * V * V * V - 6 * D * V * A + D * D * J;
+            if (den3 < 0) xn = x - D * (6 * V * V - 3 * D * A) / den3;
+            else {
+                double den = 2 * V * V - D * A;
+                xn = den > 0 ? x - 2 * D * V / den : x - D / V;
+            }
         } else xn = 0.5 * (lo + hi);
         if (!(lo < xn && xn < hi)) xn = 0.5 * (lo + hi);
         if (fabs(xn - x) <= 2 * EPS * fabs(xn) || hi - lo <= 4 * EPS * fabs(hi)) return xn;
@@ -192,9 +192,9 @@ static double refine(Eng *E, const double *g, double lo, double hi, double scale
     return x;
 }
 
-/* Dt, Vt, At: g, g', g'' at t (evaluated by search) */
+/* Dt, Vt, At, Jt: g, g', g'', g''' at t (evaluated by search) */
 static int graze(Eng *E, const double *g, double t, double t0, double tolD, double scaleD,
-                 double M1, double Dt, double Vt, double At, double *te) {
+                 double M1, double Dt, double Vt, double At, double Jt, double *te) {
     double tg = t, D, V = Vt, A = At, J;
     for (int it = 0; it < 100; it++) {
         if (it) derivs(E, g, tg, &D, &V, &A, &J);
@@ -206,7 +206,7 @@ static int graze(Eng *E, const double *g, double t, double t0, double tolD, doub
     if (tg < t0) tg = t;
     if (tg == t) D = Dt;
     else derivs(E, g, tg, &D, &V, &A, &J);
-    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1, Dt, Vt, At); return S_ROOT; }
+    if (D < -tolD && tg > t) { *te = refine(E, g, t, tg, scaleD, M1, Dt, Vt, At, Jt); return S_ROOT; }
     *te = tg;
     return S_GRAZE;
 }
@@ -221,7 +221,7 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
         *te = t0; return S_NOW;
     }
     if (c0 - S > TOLF * EPS * scale0) { *te = INFINITY; return S_NONE; }
-    double t = t0;
+    double t = t0, iM2 = 1 / M2, M3_3 = M3 / 3;
     int first = 1;
     for (long it = 0; it < MAXIT; it++) {
         if (t >= thi) { *te = t; return S_CONT; }   /* certified up to t >= thi: resume there */
@@ -255,26 +255,27 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
             }
         } else if (D <= tolD || it == CRAWL) {   /* or hovering just above zero: a touch */
             if (V < -tolV && (A <= 0 || V * V > 8 * M2 * tolD)) {
-                *te = t + (D > 0 ? D : 0) / (-V); return S_ROOT;
+                double Dz = D > 0 ? D : 0;   /* first root of D + V s + A s^2/2 (engine.py) */
+                *te = t + 2 * Dz / (-V + sqrt(V * V - 2 * A * Dz)); return S_ROOT;
             }
             if (A < -tolA && V <= tolV) { *te = t; return S_NOW; }
-            return graze(E, g, t, t0, tolD, scale0, M1, D, V, A, te);
+            return graze(E, g, t, t0, tolD, scale0, M1, D, V, A, J, te);
         }
         double Dl = D - tolD;
         if (V < 0) {
             double Vm = -V - tolV, Dp = D + tolD;
             if (Vm > 0 && 2 * M2 * Dp < Vm * Vm) {
-                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1, D, V, A);
+                *te = refine(E, g, t, t + 2 * Dp / Vm, scale0, M1, D, V, A, J);
                 return S_ROOT;
             }
         }
         double Vl = V - tolV;
-        double h = (Vl + sqrt(Vl * Vl + 2 * M2 * Dl)) / M2;
+        double h = (Vl + sqrt(Vl * Vl + 2 * M2 * Dl)) * iM2;
         double Al = A - tolA, H = 2 * h;
         for (int k = 0; k < 5; k++) {
-            double c = (Al - M3 * H / 3) / 2;
+            double c = (Al - M3_3 * H) * 0.5;
             if (Dl + Vl * H + c * H * H <= 0) break;
-            if (c > 0 && Vl < 0 && -Vl < 2 * c * H && Dl - Vl * Vl / (4 * c) <= 0) break;
+            if (c > 0 && Vl < 0 && -Vl < 2 * c * H && 4 * c * Dl <= Vl * Vl) break;
             h = H;
             H = 2 * H;
         }
@@ -314,14 +315,25 @@ static void record_update(Eng *E, int j, double t) {
     E->nup++;
 }
 
+/* one event record: the layout of engine.EVENT_DTYPE (48 bytes, numpy reads the fields as
+ * arrays without copies) */
+typedef struct {
+    double t;
+    long long site;
+    signed char kind, pad[7];
+    double u0, u1, aux;
+} EvRec;
+typedef char evrec_is_48_bytes[sizeof(EvRec) == 6 * sizeof(double) ? 1 : -1];
+
 static void record_event(Eng *E, double t, int site, int kind, double u0, double u1, double aux) {
     if (kind == K_IMPACT || kind == K_STICK) {
         if (t >= E->t_from) E->counts[site]++;
     }
     if (!E->record) return;
     if (grow(&E->ev, &E->cap_ev, (E->nev + 1) * 6)) { E->err = 2; return; }
-    double *p = E->ev + E->nev * 6;
-    p[0] = t; p[1] = site; p[2] = kind; p[3] = u0; p[4] = u1; p[5] = aux;
+    EvRec *p = (EvRec *)(E->ev + E->nev * 6);
+    memset(p, 0, sizeof *p);
+    p->t = t; p->site = site; p->kind = (signed char)kind; p->u0 = u0; p->u1 = u1; p->aux = aux;
     E->nev++;
 }
 
@@ -433,9 +445,19 @@ static void hfix(Eng *E, int i) {
     heap[p] = i; hpos[i] = p;
 }
 
+/* earliest scheduled time of the sites other than i (the heap's top, or its best child) */
+static inline double next_other(const Eng *E, int i) {
+    int h = E->heap[0], size = E->n + 1;
+    if (h != i) return E->nt[h];
+    double a = size > 1 ? E->nt[E->heap[1]] : INFINITY, b = size > 2 ? E->nt[E->heap[2]] : INFINITY;
+    return a < b ? a : b;
+}
+
 static void schedule(Eng *E, int i, double t, int graze_restart, int reuse) {
     double thi = t + E->chunk, te;
     if (thi > E->tend) thi = E->tend;
+    double tn = next_other(E, i);   /* engine.Engine.run.schedule: search no further than that */
+    if (tn > t && tn < thi) thi = tn;
     double *g = E->gc + (size_t)i * E->L, *b = E->bc + (size_t)i * 6;
     if (!reuse) {
         if (E->stuck[i]) contact_force(E, i, g);
@@ -507,7 +529,7 @@ static void impact(Eng *E, int i, double t, int *plo, int *phi) {
 static void run(Eng *E) {
     int n = E->n;
     for (int i = 0; i <= n; i++) {
-        E->nt[i] = -INFINITY;
+        E->nt[i] = INFINITY;
         E->heap[i] = i;
         E->hpos[i] = i;
     }
@@ -582,43 +604,111 @@ static void run(Eng *E) {
     }
 }
 
-/* run(n, omega, d, r, v_stick, chunk, t_end, t_from, record, max_events,
- *     F: bytes nf doubles, coef/forced/raw: bytes (n+2)*L doubles)
- * -> (counts bytes (n+1) int64, events bytes, updates bytes, n_events) */
+/* The closed-form arrays of a row from its float64 inputs: the same IEEE operations in the same
+ * order as the float64 path of engine.row_arrays (tests check bit-identity), so the C engine pays
+ * its own set-up without numpy.  F = (omega, Omega_1..Omega_K); alpha, beta: n x K (C order). */
+static void row_setup(Eng *E, const double *alpha, const double *beta, const double *x0,
+                      const double *v0) {
+    int n = E->n, K = E->nf - 1, L = E->L;
+    size_t sz = (size_t)(n + 2) * L;
+    memset(E->coef, 0, sz * sizeof(double));
+    memset(E->forced, 0, sz * sizeof(double));
+    memset(E->raw, 0, sz * sizeof(double));
+    double om = E->om, om2 = om * om;
+    for (int j = 1; j <= n; j++) {
+        const double *a = alpha + (size_t)(j - 1) * K, *b = beta + (size_t)(j - 1) * K;
+        double *fo = E->forced + (size_t)j * L, *ra = E->raw + (size_t)j * L;
+        double fx = 0, fv = 0;
+        for (int m = 0; m < K; m++) {
+            double f = E->F[m + 1], den = om2 - f * f;
+            double fa = a[m] / den, fb = b[m] / den;
+            fo[3 + 2 * m] = fa; fo[4 + 2 * m] = fb;
+            ra[3 + 2 * m] = a[m]; ra[4 + 2 * m] = b[m];
+            fx = m == 0 ? fa : fx + fa;
+            fv = m == 0 ? fb * f : fv + fb * f;
+        }
+        double *c = E->coef + (size_t)j * L, jd = (double)j * E->d;
+        memcpy(c, fo, L * sizeof(double));
+        c[0] = jd;
+        c[1] = (x0[j - 1] - jd) - fx;
+        c[2] = (v0[j - 1] - fv) / om;
+    }
+    E->coef[(size_t)(n + 1) * L] = (double)(n + 1) * E->d;
+}
+
+/* run(n, omega, d, r, v_stick, t_end, t_from, record, max_events, F, alpha, beta, x0, v0)
+ * F: sequence of the nf = K + 1 frequencies (omega, Omega_1..Omega_K) as floats; alpha, beta:
+ * buffers of n*K doubles (C order), x0, v0: n doubles.  The search horizon is engine.row_arrays'
+ * chunk 2 / omega.
+ * -> (counts bytes (n+1) int64, events bytes, updates bytes, n_events, coef0 bytes or None)
+ * (coef0: the (n+2) x L coefficients at t = 0, returned when record) */
 static PyObject *py_run(PyObject *self, PyObject *args) {
     int n, record;
-    double om, d, r, vstick, chunk, tend, tfrom;
+    double om, d, r, vstick, tend, tfrom;
     long long max_events;
-    Py_buffer bF, bc, bf, br;
-    if (!PyArg_ParseTuple(args, "idddddddpLy*y*y*y*", &n, &om, &d, &r, &vstick, &chunk, &tend,
-                          &tfrom, &record, &max_events, &bF, &bc, &bf, &br))
+    PyObject *Fobj;
+    Py_buffer ba, bb, bx, bv;
+    if (!PyArg_ParseTuple(args, "iddddddpLOy*y*y*y*", &n, &om, &d, &r, &vstick, &tend, &tfrom,
+                          &record, &max_events, &Fobj, &ba, &bb, &bx, &bv))
         return NULL;
     Eng E;
     memset(&E, 0, sizeof E);
-    E.n = n; E.om = om; E.d = d; E.r = r; E.vstick = vstick; E.chunk = chunk; E.tend = tend;
-    E.t_from = tfrom; E.record = record; E.max_events = max_events;
-    E.nf = (int)(bF.len / sizeof(double));
-    E.L = 1 + 2 * E.nf;
-    size_t sz = (size_t)(n + 2) * E.L * sizeof(double);
-    PyObject *res = NULL;
-    if ((size_t)bc.len != sz || (size_t)bf.len != sz || (size_t)br.len != sz) {
-        PyErr_SetString(PyExc_ValueError, "coefficient buffers have the wrong size");
+    PyObject *res = NULL, *Fseq = NULL, *coef0 = NULL;
+    double *Fv = NULL;
+    if (n < 1) {
+        PyErr_SetString(PyExc_ValueError, "n must be >= 1");
         goto done;
     }
-    E.F = (const double *)bF.buf;
-    E.coef = malloc(sz); E.forced = malloc(sz); E.raw = malloc(sz);
-    E.stuck = calloc(n + 1, 1);
-    E.nt = malloc((n + 1) * sizeof(double));
-    E.nk = malloc((n + 1) * sizeof(int));
-    E.heap = malloc((n + 1) * sizeof(int));
-    E.hpos = malloc((n + 1) * sizeof(int));
-    E.counts = calloc(n + 1, sizeof(long long));
-    E.g = malloc(E.L * sizeof(double));
-    E.gc = malloc((size_t)(n + 1) * E.L * sizeof(double));
-    E.bc = malloc((size_t)(n + 1) * 6 * sizeof(double));
-    E.F2 = malloc(E.nf * sizeof(double));
-    E.F3 = malloc(E.nf * sizeof(double));
-    E.tc = malloc(4 * E.nf * sizeof(double));
+    Fseq = PySequence_Fast(Fobj, "F must be a sequence of floats");
+    if (!Fseq) goto done;
+    E.nf = (int)PySequence_Fast_GET_SIZE(Fseq);
+    if (E.nf < 2) {
+        PyErr_SetString(PyExc_ValueError, "F must hold omega and at least one forcing frequency");
+        goto done;
+    }
+    Fv = malloc(E.nf * sizeof(double));
+    if (!Fv) { PyErr_NoMemory(); goto done; }
+    for (int m = 0; m < E.nf; m++) {
+        Fv[m] = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(Fseq, m));
+        if (Fv[m] == -1.0 && PyErr_Occurred()) goto done;
+    }
+    int K = E.nf - 1;
+    if ((size_t)ba.len != (size_t)n * K * sizeof(double) || ba.len != bb.len
+        || (size_t)bx.len != (size_t)n * sizeof(double) || bx.len != bv.len) {
+        PyErr_SetString(PyExc_ValueError, "alpha, beta, x0 or v0 has the wrong size");
+        goto done;
+    }
+    E.n = n; E.om = om; E.d = d; E.r = r; E.vstick = vstick; E.chunk = 2 / om; E.tend = tend;
+    E.t_from = tfrom; E.record = record; E.max_events = max_events;
+    E.L = 1 + 2 * E.nf;
+    E.F = Fv;
+    size_t sz = (size_t)(n + 2) * E.L * sizeof(double);
+    /* one block for every per-run array (fewer allocator calls): doubles first, then ints */
+    size_t nd = 3 * sz / sizeof(double) + (n + 1) + E.L + (size_t)(n + 1) * E.L
+                + (size_t)(n + 1) * 6 + 2 * E.nf + 4 * E.nf;
+    size_t ni = 3 * (size_t)(n + 1);
+    char *blk = malloc(nd * sizeof(double) + ni * sizeof(int) + (n + 1)
+                       + (n + 1) * sizeof(long long));
+    if (!blk) { PyErr_NoMemory(); goto done; }
+    double *p = (double *)blk;
+    E.coef = p; p += sz / sizeof(double);
+    E.forced = p; p += sz / sizeof(double);
+    E.raw = p; p += sz / sizeof(double);
+    E.nt = p; p += n + 1;
+    E.g = p; p += E.L;
+    E.gc = p; p += (size_t)(n + 1) * E.L;
+    E.bc = p; p += (size_t)(n + 1) * 6;
+    E.F2 = p; p += E.nf;
+    E.F3 = p; p += E.nf;
+    E.tc = p; p += 4 * E.nf;
+    E.counts = (long long *)p;
+    int *q = (int *)(E.counts + (n + 1));
+    E.nk = q; q += n + 1;
+    E.heap = q; q += n + 1;
+    E.hpos = q; q += n + 1;
+    E.stuck = (unsigned char *)q;
+    memset(E.stuck, 0, n + 1);
+    memset(E.counts, 0, (n + 1) * sizeof(long long));
     E.tc_t[0] = E.tc_t[1] = NAN;
     E.pin = 0.0;
     E.plastic_at = NAN;
@@ -626,20 +716,26 @@ static PyObject *py_run(PyObject *self, PyObject *args) {
         E.F2[m] = E.F[m] * E.F[m];
         E.F3[m] = E.F2[m] * E.F[m];
     }
-    memcpy(E.coef, bc.buf, sz); memcpy(E.forced, bf.buf, sz); memcpy(E.raw, br.buf, sz);
+    row_setup(&E, (const double *)ba.buf, (const double *)bb.buf, (const double *)bx.buf,
+              (const double *)bv.buf);
+    if (record) {
+        coef0 = PyBytes_FromStringAndSize((const char *)E.coef, (Py_ssize_t)sz);
+        if (!coef0) goto done;
+    }
     Py_BEGIN_ALLOW_THREADS
     run(&E);
     Py_END_ALLOW_THREADS
     if (E.err == 2) { PyErr_NoMemory(); goto done; }
     if (E.err) { PyErr_SetString(PyExc_RuntimeError, E.errmsg); goto done; }
-    res = Py_BuildValue("(y#y#y#L)", (const char *)E.counts, (Py_ssize_t)((n + 1) * sizeof(long long)),
+    res = Py_BuildValue("(y#y#y#LO)", (const char *)E.counts, (Py_ssize_t)((n + 1) * sizeof(long long)),
                         (const char *)E.ev, (Py_ssize_t)(E.nev * 6 * sizeof(double)),
                         (const char *)E.up, (Py_ssize_t)(E.nup * (2 + E.L) * sizeof(double)),
-                        E.nevents);
+                        E.nevents, coef0 ? coef0 : Py_None);
 done:
-    free(E.coef); free(E.forced); free(E.raw); free(E.stuck); free(E.nt); free(E.nk); free(E.heap); free(E.hpos);
-    free(E.counts); free(E.g); free(E.gc); free(E.bc); free(E.F2); free(E.F3); free(E.tc); free(E.ev); free(E.up);
-    PyBuffer_Release(&bF); PyBuffer_Release(&bc); PyBuffer_Release(&bf); PyBuffer_Release(&br);
+    free(E.coef);   /* the block */
+    free(Fv); free(E.ev); free(E.up);
+    Py_XDECREF(Fseq); Py_XDECREF(coef0);
+    PyBuffer_Release(&ba); PyBuffer_Release(&bb); PyBuffer_Release(&bx); PyBuffer_Release(&bv);
     return res;
 }
 

@@ -28,6 +28,12 @@ For ``g(t) = c0 + sum_m (a_m cos + b_m sin)`` put ``c_m = |(a_m, b_m)|`` and
   located (Newton on ``g'``): a true dip below rounding is a (small-velocity) impact, otherwise a
   **graze** (tangential contact, relative velocity zero within rounding) which is reported as an
   event of its own and changes no velocity.
+* A gap within rounding of zero that is closing (``V < 0``) has its root at the first root of
+  ``D + V s + A s^2 / 2`` (a small ``|V|`` under a closing curvature makes ``D / |V|`` far too
+  late).
+* Each (re)search stops at the first certified point beyond the next scheduled event of the other
+  sites (an event there may change this gap: then it is searched again from scratch; if not, the
+  search resumes where it stopped, so no step is repeated).
 * At a contact (``g = 0`` after an impact, graze or release) the search starts one-sidedly from
   the Taylor bound ``V s + g'' s^2/2 - M_3 s^3/6`` (or the next non-vanishing derivative), so it
   never rediscovers the same root.
@@ -84,9 +90,9 @@ import numpy as np
 from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 from symhx.validation import check_dps
 
-__all__ = ["GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "Engine", "EventKind", "EventLog",
-           "FloatContext", "MPContext", "Outcome", "RowArrays", "default_v_stick", "row_arrays",
-           "work_dps"]
+__all__ = ["EVENT_DTYPE", "GRAZE", "IMPACT", "KIND_NAMES", "RELEASE", "STICK", "V_STICK_FLOAT64",
+           "Engine", "EventKind", "EventLog", "FloatContext", "MPContext", "Outcome", "RowArrays",
+           "default_v_stick", "row_arrays", "work_dps"]
 
 
 class EventKind(IntEnum):
@@ -133,6 +139,10 @@ def work_dps(dps: int) -> int:
     return 2 * check_dps(dps) + 10
 
 
+#: the factor of ``omega d`` in the float64 chatter threshold (:func:`default_v_stick`)
+V_STICK_FLOAT64 = 10.0 ** (-10 / 2 - 1)
+
+
 def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
     """Relative speed below which a contact sticks (chatter ends): ``omega d 10**(-dps/2 - 1)``.
 
@@ -150,34 +160,39 @@ def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
         raise TypeError(f"row must be a PipeRow, got {type(row).__name__} {row!r:.60}")
     dps = check_dps(dps, allow_none=True)
     if dps is None:
-        return row.omega * row.d * 10.0 ** (-10 / 2 - 1)
+        return row.omega * row.d * V_STICK_FLOAT64
     with mpmath.workdps(20):
         return mpmath.mpf(row.omega) * row.d * mpmath.power(10, -mpmath.mpf(dps) / 2 - 1)
 
 
 def _cos_sin(x: float) -> tuple[float, float]:
-    """``(cos x, sin x)`` in float64, error below one ulp: Cody-Waite reduction by pi/2 (three
-    33-bit parts: exact products for ``|x| < 2**19 pi/2``) and the fdlibm minimax kernels on
-    ``[-pi/4, pi/4]``.  The C engine (``_fast.c``) runs the same IEEE operations in the same order,
-    so both float64 engines see identical values; larger ``|x|`` use libm in both.
+    """``(cos x, sin x)`` in float64, absolute error below ``2**-52`` (tests: against mpmath):
+    Cody-Waite reduction to the nearest multiple of pi/2 (three 33-bit parts: exact products
+    for ``|x| < 2**19 pi/2``; the two small ones summed first) and the fdlibm minimax
+    polynomials on ``[-pi/4, pi/4]`` (their tails by Estrin's scheme: shorter dependency
+    chains, same accuracy).  The C engine (``_fast.c``) runs the same IEEE
+    operations in the same order, so both float64 engines see identical values; larger ``|x|``
+    use libm in both.
     """
     if not abs(x) < 823549.6:
         return math.cos(x), math.sin(x)
-    fn = float(math.floor(x * 6.36619772367581382433e-01 + 0.5))
-    y = x - fn * 1.57079632673412561417e+00
-    y = y - fn * 6.07710050630396597660e-11
-    y = y - fn * 2.02226624871116645580e-21
+    # nearest integer to x 2/pi by the 1.5 * 2**52 shift (exact for |x 2/pi| < 2**19)
+    fn = (x * 6.36619772367581382433e-01 + 6755399441055744.0) - 6755399441055744.0
+    y = ((x - fn * 1.57079632673412561417e+00)
+         - (fn * 6.07710050630396597660e-11 + fn * 2.02226624871116645580e-21))
     z = y * y
-    sr = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
-        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z
-                                          * 1.58969099521155010221e-10)))
-    sv = y + z * y * (-1.66666666666666324348e-01 + z * sr)
-    cr = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
-        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
-            2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))))
+    z2 = z * z   # Estrin's scheme: shorter dependency chains than Horner, the same accuracy
+    z4 = z2 * z2
+    sr = ((8.33333333332248946124e-03 + z * -1.98412698298579493134e-04)
+          + (z2 * (2.75573137070700676789e-06 + z * -2.50507602534068634195e-08)
+             + z4 * 1.58969099521155010221e-10))
+    sv = y + (z * y * -1.66666666666666324348e-01 + z2 * y * sr)
+    cp = ((4.16666666666666019037e-02 + z * -1.38888888888741095749e-03)
+          + (z2 * (2.48015872894767294178e-05 + z * -2.75573143513906633035e-07)
+             + z4 * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))
     hz = 0.5 * z
     w = 1.0 - hz
-    cv = w + (((1.0 - w) - hz) + z * cr)
+    cv = w + (((1.0 - w) - hz) + z2 * cp)
     q = int(fn) & 3
     if q == 0:
         return cv, sv
@@ -285,7 +300,7 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     for m in range(K):
         a = alpha[:, m]
         b = beta[:, m]
-        den = om2 - F[m + 1] ** 2
+        den = om2 - F[m + 1] * F[m + 1]
         fa = a / den
         fb = b / den
         forced[1:n + 1, 3 + 2 * m] = fa
@@ -303,6 +318,12 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     return RowArrays(F=F, coef=coef, forced=forced, raw=raw, chunk=2 / om)
 
 
+#: one event record of the C engine (48 bytes: ``_fast.c`` writes this layout)
+EVENT_DTYPE = np.dtype({"names": ["t", "site", "kind", "u0", "u1", "aux"],
+                        "formats": ["f8", "i8", "i1", "f8", "f8", "f8"],
+                        "offsets": [0, 8, 16, 24, 32, 40], "itemsize": 48})
+
+
 class EventLog:
     """The typed record of one run, filled by either engine through :meth:`add_event`,
     :meth:`add_update` (one at a time, the Python engines) or :meth:`extend` (the arrays of the C
@@ -316,14 +337,41 @@ class EventLog:
     def __init__(self, coef0: Any) -> None:
         self._coef0 = coef0
         self._events: list[tuple[Any, ...]] = []
-        zero = coef0[0][0] * 0
-        self._upd_t: list[list[Any]] = [[zero] for _ in range(len(coef0))]
-        self._upd_c: list[list[Any]] = [[list(c)] for c in coef0]
+        self._upd_t: list[list[Any]] | None = None   # per-pipe lists: built on first use
+        self._upd_c: list[list[Any]] | None = None
         self._ev_arr: np.ndarray | None = None
         self._up_arr: np.ndarray | None = None
+        self._width = 0
+
+    @classmethod
+    def from_buffers(cls, coef0: bytes, events: bytes, updates: bytes, width: int) -> EventLog:
+        """The C engine's record as it comes: buffers of ``coef0`` (float64, ``(n + 2) x width``,
+        the coefficients at ``t = 0``), ``events`` (records of :data:`EVENT_DTYPE`) and
+        ``updates`` (float64 rows ``j, t, coef...``).  The events become an array at once, the
+        updates only when :meth:`updates` is first called (a run that is never asked for states
+        does not pay for them)."""
+        log = cls(coef0)
+        log._width = width
+        log._ev_arr = np.frombuffer(events, dtype=EVENT_DTYPE)
+        log._up_arr = updates   # type: ignore[assignment]
+        return log
+
+    def _coef0_rows(self) -> Any:
+        c = self._coef0
+        if isinstance(c, bytes):
+            c = self._coef0 = np.frombuffer(c, dtype=np.float64).reshape(-1, self._width)
+        return c
 
     def __len__(self) -> int:
         return len(self._events) if self._ev_arr is None else len(self._ev_arr)
+
+    def _lists(self) -> tuple[list[list[Any]], list[list[Any]]]:
+        if self._upd_t is None or self._upd_c is None:
+            coef0 = self._coef0_rows()
+            zero = coef0[0][0] * 0
+            self._upd_t = [[zero] for _ in range(len(coef0))]
+            self._upd_c = [[list(c)] for c in coef0]
+        return self._upd_t, self._upd_c
 
     def add_event(self, t: Any, site: int, kind: EventKind, u_before: Any, u_after: Any,
                   aux: Any) -> None:
@@ -332,13 +380,15 @@ class EventLog:
 
     def add_update(self, j: int, t: Any, coef: Any) -> None:
         """Pipe ``j`` follows the coefficient vector ``coef`` from time ``t`` on."""
-        self._upd_t[j].append(t)
-        self._upd_c[j].append(coef)
+        upd_t, upd_c = self._lists()
+        upd_t[j].append(t)
+        upd_c[j].append(coef)
 
     def extend(self, events: np.ndarray, updates: np.ndarray) -> None:
         """Take the C engine's arrays (into an empty log): ``events`` rows ``(t, site, kind, u0,
         u1, aux)``, ``updates`` rows ``(j, t, coef...)``."""
-        if self._events or self._ev_arr is not None or any(len(u) > 1 for u in self._upd_t):
+        if (self._events or self._ev_arr is not None
+                or (self._upd_t is not None and any(len(u) > 1 for u in self._upd_t))):
             raise ValueError("extend needs an empty EventLog")
         self._ev_arr = events
         self._up_arr = updates
@@ -348,6 +398,8 @@ class EventLog:
         columns: ``float`` or ``object`` for mpf; sites int64, kinds int8)."""
         if self._ev_arr is not None:
             ev = self._ev_arr
+            if ev.dtype.names:   # the C engine's records: the fields as they are (no copies)
+                return (ev["t"], ev["site"], ev["kind"], ev["u0"], ev["u1"], ev["aux"])
             return (ev[:, 0], ev[:, 1].astype(np.int64), ev[:, 2].astype(np.int8), ev[:, 3],
                     ev[:, 4], ev[:, 5])
         cols = list(zip(*self._events, strict=True)) if self._events else [()] * 6
@@ -358,18 +410,23 @@ class EventLog:
     def updates(self) -> tuple[list[list[Any]], list[Any]]:
         """``(upd_t, upd_c)``: per pipe ``j = 0..n+1`` the start times and coefficient vectors
         of its closed-form pieces (C logs: built on first use, then cached)."""
-        up = self._up_arr
+        up: Any = self._up_arr
         if up is not None:
-            coef0 = np.asarray(self._coef0, dtype=float)
+            coef0 = np.asarray(self._coef0_rows(), dtype=float)
+            if isinstance(up, bytes):
+                up = np.frombuffer(up, dtype=np.float64).reshape(-1, 2 + coef0.shape[1])
             j = up[:, 0].astype(np.int64)
             order = np.argsort(j, kind="stable")
             cuts = np.searchsorted(j[order], np.arange(len(coef0) + 1))
+            upd_t: list[list[Any]] = []
+            upd_c: list[Any] = []
             for k in range(len(coef0)):
                 sel = order[cuts[k]:cuts[k + 1]]
-                self._upd_t[k] = [0.0, *up[sel, 1].tolist()]
-                self._upd_c[k] = np.vstack((coef0[k:k + 1], up[sel, 2:]))  # type: ignore
+                upd_t.append([0.0, *up[sel, 1].tolist()])
+                upd_c.append(np.vstack((coef0[k:k + 1], up[sel, 2:])))
+            self._upd_t, self._upd_c = upd_t, upd_c
             self._up_arr = None
-        return self._upd_t, self._upd_c
+        return self._lists()
 
 
 def cascade_bound(n: int) -> int:
@@ -408,7 +465,7 @@ class Engine:
         # every 1/omega to 3/omega at sigma = 0.3, so certifying further ahead is mostly wasted
         # (benchmarks/bench_impact.py: 2/omega is ~1.7x faster than 2 pi/omega)
         self.chunk = num(chunk) if chunk is not None else ra.chunk
-        self.log = EventLog(self.coef)
+        self.log = EventLog(ra.coef.tolist())   # its own copy: self.coef changes in the run
         self.plastic_at: Any = None   # instant at which the cascade backstop is active
 
     # ---------------------------------------------------------------- trig polynomials
@@ -466,6 +523,8 @@ class Engine:
         if c0 - S > _TOL * eps * scale0:  # amplitude bound: can never reach zero
             return ctx.inf, _NONE
         t = t0
+        iM2 = 1 / M2       # per search: multiplications in the step loop, not divisions
+        M3_3 = M3 / 3
         first = True
         for _it in range(_MAXIT):
             if t >= t_hi:   # certified up to t (>= t_hi): resume there, nothing is redone
@@ -508,7 +567,10 @@ class Engine:
                 # came within rounding of zero from above (all earlier steps were certified), or
                 # crawled _CRAWL steps along a gap that stays just above it: a touch there
                 if V < -tolV and (A <= 0 or V * V > 8 * M2 * tolD):
-                    return t + max(D, self.zero) / (-V), _ROOT
+                    # first root of D + V s + A s^2/2 (not D / -V: with a small |V| and a
+                    # closing curvature that is far too late, and the gap overlaps meanwhile)
+                    Dz = max(D, self.zero)
+                    return t + 2 * Dz / (-V + ctx.sqrt(V * V - 2 * A * Dz)), _ROOT
                 if A < -tolA and V <= tolV:   # compressed at zero speed: contact now
                     return t, _NOW
                 return self._graze(g, t, t0, tolD)
@@ -520,15 +582,16 @@ class Engine:
                 if Vm > 0 and 2 * M2 * Dp < Vm * Vm:
                     return self.refine(g, t, t + 2 * Dp / Vm), _ROOT
             Vl = V - tolV
-            h = (Vl + ctx.sqrt(Vl * Vl + 2 * M2 * Dl)) / M2
+            h = (Vl + ctx.sqrt(Vl * Vl + 2 * M2 * Dl)) * iM2
             # cubic-improved step: on [0, H], g >= Dl + Vl s + (A - tolA - M3 H/3) s^2/2
             Al = A - tolA
             H = 2 * h
             for _k in range(5):
-                c = (Al - M3 * H / 3) / 2
+                c = (Al - M3_3 * H) / 2
                 if Dl + Vl * H + c * H * H <= 0:
                     break
-                if c > 0 and Vl < 0 and -Vl < 2 * c * H and Dl - Vl * Vl / (4 * c) <= 0:
+                # the bound's minimum (at s = -Vl / (2 c) inside [0, H]) is <= 0
+                if c > 0 and Vl < 0 and -Vl < 2 * c * H and 4 * c * Dl <= Vl * Vl:
                     break
                 h = H
                 H = 2 * H
@@ -565,15 +628,17 @@ class Engine:
     def refine(self, g: list[Any], lo: Any, hi: Any) -> Any:
         """Root of ``g`` in ``[lo, hi]`` where ``g(lo) > 0 > g(hi)`` and ``g`` is monotone.
 
-        Safeguarded Halley (``g''`` comes free with ``g, g'``: cubic convergence, about one
-        evaluation fewer than Newton); stops when ``|g|`` is within its rounding bound (then a
-        last Newton step) or the step is below the resolution of ``t``.
+        Safeguarded Householder iteration of order 3 (``g'', g'''`` come free with ``g, g'``:
+        quartic convergence, one evaluation fewer than Halley on most roots of the benchmark
+        rows), Halley or Newton where its denominator has the wrong sign, bisection where a step
+        leaves the bracket; stops when ``|g|`` is within its rounding bound (then a last Newton
+        step) or the step is below the resolution of ``t``.
         """
         eps = self.ctx.eps
         c0, S, M1, _, _, _ = self.bounds(g)
         x = lo
         for _ in range(400):
-            D, V, A, _ = self.derivs(g, x)
+            D, V, A, J = self.derivs(g, x)
             if abs(D) <= _TOL * eps * (abs(c0) + S + M1 * abs(x)) and V < 0:
                 return x - D / V
             if D > 0:
@@ -582,9 +647,13 @@ class Engine:
                 hi = x
             else:
                 return x
-            if V < 0:
-                den = 2 * V * V - D * A
-                xn = x - 2 * D * V / den if den > 0 else x - D / V
+            if V < 0:   # Householder of order 3 (J comes free too), else Halley, else Newton
+                den3 = 6 * V * V * V - 6 * D * V * A + D * D * J
+                if den3 < 0:
+                    xn = x - D * (6 * V * V - 3 * D * A) / den3
+                else:
+                    den = 2 * V * V - D * A
+                    xn = x - 2 * D * V / den if den > 0 else x - D / V
             else:
                 xn = (lo + hi) / 2
             if not lo < xn < hi:
@@ -685,6 +754,12 @@ class Engine:
 
         def schedule(i: int, t: Any, graze_restart: bool = False) -> None:
             t_hi = min(t + self.chunk, t_end)
+            # no further than the next event of the other sites: it may well change this gap
+            # (then the search restarts from scratch), and a search stopped there resumes
+            # where it stopped (certified up to that point), so nothing is lost either way
+            t_next = min((nt[k] for k in range(n + 1) if k != i), default=ctx.inf)
+            if t < t_next < t_hi:
+                t_hi = t_next
             if self.stuck[i]:
                 te, code = self.search(self.contact_force(i), t, t_hi, is_gap=False,
                                        graze_restart=graze_restart)

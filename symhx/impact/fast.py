@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from symhx.impact.engine import Engine, EventLog, FloatContext, default_v_stick, row_arrays
+from symhx.impact.engine import Engine, EventLog, FloatContext, default_v_stick
 from symhx.impact.history import History
 from symhx.impact.model import PipeRow, SimulationError
 
@@ -34,17 +34,24 @@ def available() -> bool:
 
 def _call(row: PipeRow, t_end: float, t_from: float, v_stick: float, record: bool,
           max_events: int | None) -> tuple[Any, ...]:
+    """One run of the C engine; it builds the row's closed-form arrays itself (bit-identical to
+    :func:`~symhx.impact.engine.row_arrays`) from the row's float64 inputs."""
     if _fast is None:
         raise SimulationError("the C extension symhx.impact._fast is not built")
-    ra = row_arrays(row, FloatContext())
+    F = [row.omega, *map(float, row.Omega)]
+    alpha, beta = row.alpha, row.beta
     try:
-        out = _fast.run(row.n, float(row.omega), float(row.d), float(row.restitution),
-                        float(v_stick), float(ra.chunk), float(t_end), float(t_from), bool(record),
-                        int(max_events or 0), ra.F.tobytes(), ra.coef.tobytes(),
-                        ra.forced.tobytes(), ra.raw.tobytes())
+        try:
+            out = _fast.run(row.n, row.omega, row.d, row.restitution, v_stick, t_end, t_from,
+                            record, max_events or 0, F, alpha, beta, row.x0, row.v0)
+        except (BufferError, ValueError):   # not C-contiguous (a Fortran-ordered input array)
+            alpha, beta = np.ascontiguousarray(alpha), np.ascontiguousarray(beta)
+            out = _fast.run(row.n, row.omega, row.d, row.restitution, v_stick, t_end, t_from,
+                            record, max_events or 0, F, alpha, beta, np.ascontiguousarray(row.x0),
+                            np.ascontiguousarray(row.v0))
     except RuntimeError as exc:
         raise SimulationError(str(exc)) from None
-    return ra, out
+    return F, out
 
 
 def simulate_python(row: PipeRow, t_end: float, *, v_stick: float,
@@ -58,12 +65,10 @@ def simulate_python(row: PipeRow, t_end: float, *, v_stick: float,
 def simulate_c(row: PipeRow, t_end: float, *, v_stick: float, max_events: int | None = None
                ) -> History:
     """Full history from the C engine (used by :func:`symhx.impact.simulate` with dps=None)."""
-    ra, (_, ev, up, _) = _call(row, t_end, 0.0, v_stick, True, max_events)
-    L = ra.coef.shape[1]
-    log = EventLog(ra.coef)
-    log.extend(np.frombuffer(ev or b"", dtype=np.float64).reshape(-1, 6),
-               np.frombuffer(up or b"", dtype=np.float64).reshape(-1, 2 + L))
-    return History.from_log(row, float(t_end), None, log, ra.F.tolist())
+    t_end = float(t_end)
+    F, (_, ev, up, _, coef0) = _call(row, t_end, 0.0, v_stick, True, max_events)
+    return History.from_log(row, t_end, None,
+                            EventLog.from_buffers(coef0, ev or b"", up or b"", 1 + 2 * len(F)), F)
 
 
 def count_impacts(row: PipeRow, t_end: float, t_from: float, *, v_stick: float | None = None,
@@ -82,5 +87,5 @@ def count_impacts(row: PipeRow, t_end: float, t_from: float, *, v_stick: float |
     if _fast is None:
         h = simulate_python(row, t_end, v_stick=vs, max_events=max_events)
         return h.impacts_per_site(t_from), len(h)
-    _, (counts, _, _, nev) = _call(row, t_end, t_from, vs, False, max_events)
+    _, (counts, _, _, nev, _) = _call(row, float(t_end), float(t_from), vs, False, max_events)
     return np.frombuffer(counts, dtype=np.int64).copy(), int(nev)

@@ -8,12 +8,24 @@ from typing import Any
 import mpmath
 
 from symhx.impact import fast
-from symhx.impact.engine import Engine, MPContext, default_v_stick, work_dps
+from symhx.impact.engine import V_STICK_FLOAT64, Engine, MPContext, default_v_stick, work_dps
 from symhx.impact.history import History
-from symhx.impact.model import MAX_EVENTS, PipeRow, SimulationError, check_horizon, exact_to_mpf
+from symhx.impact.model import (
+    MAX_EVENTS,
+    MAX_HORIZON,
+    PipeRow,
+    SimulationError,
+    check_horizon,
+    exact_to_mpf,
+)
 from symhx.validation import check_choice, check_dps, check_int, check_real
 
 __all__ = ["default_v_stick", "simulate", "work_dps"]
+
+_FLOAT_ENGINES = ("auto", "c", "python")
+#: below this, the float64 product ``omega * t_end`` (relative error <= 2**-53) certainly has an
+#: exact value <= MAX_HORIZON; at or above it the exact ``Fraction`` check decides
+_HORIZON_SAFE = MAX_HORIZON * (1 - 2.0**-50)
 
 
 def simulate(
@@ -66,6 +78,17 @@ def simulate(
     """
     if not isinstance(row, PipeRow):
         raise TypeError(f"row must be a PipeRow, got {type(row).__name__} {row!r:.60}")
+    if (dps is None and v_stick is None and max_events is None and engine.__class__ is str
+            and engine in _FLOAT_ENGINES and t_end.__class__ is float
+            and 0.0 < t_end * row.omega < _HORIZON_SAFE):
+        # the common float64 call, validated without Fractions: a float t_end > 0 whose
+        # omega * t_end is clearly inside MAX_HORIZON (the rounded product cannot cross it)
+        vs = row.omega * row.d * V_STICK_FLOAT64   # = default_v_stick(row, None)
+        if engine != "python" and fast.available():
+            return fast.simulate_c(row, t_end, v_stick=vs, max_events=MAX_EVENTS)
+        if engine == "c":
+            raise SimulationError("the C extension symhx.impact._fast is not built")
+        return fast.simulate_python(row, t_end, v_stick=vs, max_events=MAX_EVENTS)
     t_end_x = check_horizon(t_end, "t_end", row.omega)
     t_end_f = float(t_end_x)
     dps = check_dps(dps, allow_none=True)
