@@ -44,7 +44,7 @@ def check_row(k, r, sigma, omega, n, rng, engine="auto"):
 @pytest.mark.slow
 @pytest.mark.skipif(not available(), reason="C extension not built")
 def test_sweep_1000_random_rows_never_abort_never_overlap():
-    t0 = time.perf_counter()
+    t0 = time.process_time()   # CPU seconds: a loaded machine does not make the test fail
     events = 0
     undrawable = 0
     failures = []
@@ -60,7 +60,7 @@ def test_sweep_1000_random_rows_never_abort_never_overlap():
             events += m
     assert failures == [], failures[:5]
     assert 1050 - undrawable >= 1000 and events > 10**6
-    assert time.perf_counter() - t0 < 240   # ~110 s measured on 2 shared cores
+    assert time.process_time() - t0 < 240   # ~110 s measured on 2 shared cores
 
 
 @pytest.mark.parametrize("k", [0, 5, 10, 15, 20])   # r = 0 rows: the Python float engine too
