@@ -472,3 +472,151 @@ def test_random_redraw_budgets():
     # hopeless within the budgets: 10 forcings, each at most 20 max_redraws draws
     with pytest.raises(ValueError, match="could not draw"):
         PipeRow.random(40, 0.05, seed=3, sigma0=2.0, max_redraws=1)
+
+
+def test_energy_by_hand_at_another_omega():
+    row = PipeRow(2, omega=3.0, d=0.75, restitution=1, Omega=(1.0,), alpha=[[0], [0]],
+                  beta=[[0], [0]], x0=[0.25, 2.0], v0=[0.5, -2.0])
+    # j d = 0.75, 1.5: displacements -0.5, 0.5
+    assert row.energy0() == 0.5 * (0.25 + 4.0) + 0.5 * 9.0 * (0.25 + 0.25)
+
+
+def test_documented_defaults():
+    import inspect
+
+    sig = inspect.signature(PipeRow.random).parameters
+    assert {k: sig[k].default for k in ("seed", "restitution", "omega", "d", "Omega",
+                                        "sigma0", "max_redraws")} == {
+        "seed": None, "restitution": 0.8, "omega": 1.0, "d": 1.0, "Omega": (SQRT2,),
+        "sigma0": None, "max_redraws": 10_000}
+    sig = inspect.signature(PipeRow.__init__).parameters
+    assert (sig["omega"].default, sig["d"].default, sig["Omega"].default) == (1.0, 1.0,
+                                                                              (SQRT2,))
+
+
+class _CountingRng:
+    """A numpy Generator that counts its draws: forcing matrices and (alpha_0j, beta_0j) pairs."""
+
+    def __init__(self, rng, log):
+        self.rng, self.log = rng, log
+
+    def normal(self, loc, scale, size=None):
+        self.log.append("pair" if size == 2 else "forcing")
+        return self.rng.normal(loc, scale, size=size)
+
+
+@pytest.fixture
+def draws(monkeypatch):
+    log = []
+    real = np.random.default_rng
+    monkeypatch.setattr(np.random, "default_rng", lambda seed=None: _CountingRng(real(seed),
+                                                                                 log))
+    return log
+
+
+def test_random_draw_budgets_counted(draws):
+    # hopeless rows within the documented budgets; the draws are counted
+    # (a) max_redraws = 1: 20 max_redraws = 20 pair draws per forcing, 10 forcings
+    with pytest.raises(ValueError, match="could not draw"):
+        PipeRow.random(40, 0.05, seed=3, sigma0=2.0, max_redraws=1)
+    assert draws.count("forcing") == 20 and draws.count("pair") == 200
+    draws.clear()
+    # (b) the forced displacement puts the single pipe far outside the walls: all
+    # _DRAWS_PER_PIPE * n = 4000 draws go to the first forcing, then the row is refused
+    with pytest.raises(ValueError, match="could not draw"):
+        PipeRow.random(1, 100.0, seed=0, sigma0=0.1, Omega=(1.05,))
+    assert draws.count("forcing") == 2 and draws.count("pair") == 4000
+    draws.clear()
+    # (c) sigma0 = 0: one deterministic try per pipe and pass, all 10 forcings are drawn
+    with pytest.raises(ValueError, match="could not draw"):
+        PipeRow.random(6, 3.0, sigma0=0.0, Omega=(1.05,), seed=0)
+    assert draws.count("forcing") == 20 and draws.count("pair") == 0
+    draws.clear()
+    # (d) a forced velocity beyond float64 (beta Omega overflows, alpha / den does not):
+    # refused at the first forcing, before any pair is drawn
+    den = 1.0 - 1e5**2
+    with pytest.raises(ValueError) as info, np.errstate(over="ignore"):
+        PipeRow.random(2, 1e304, seed=0, Omega=(1e5,), sigma0=0.1)
+    scale = 1e304 / abs(den) + 0.1
+    assert str(info.value) == _too_large_msg(1e304, 0.1, 1.0, (1e5,), 1.0, scale)
+    assert draws == ["forcing", "forcing"]
+    draws.clear()
+    # (e) refused up front (each draw would land with probability < 1e-3): nothing drawn
+    with pytest.raises(ValueError, match="could not draw"):
+        PipeRow.random(1, 0.0, seed=0, sigma0=0.5, d=1e-4)
+    assert draws == []
+    # (f) just above that bound the draw is attempted: (n + 1) d / (sigma0 sqrt(2 pi)) =
+    # 1.2e-3 (it would be 0.98e-3 with sqrt(3 pi) in place of sqrt(2 pi))
+    sig0 = 2.0 / (1.2e-3 * math.sqrt(2 * math.pi))
+    try:
+        PipeRow.random(1, 0.0, seed=0, sigma0=sig0)
+    except ValueError:
+        pass
+    assert draws.count("pair") > 0
+    draws.clear()
+    # (g) far above it (probability ~ 0.8 per draw) the row is drawn at once
+    assert PipeRow.random(1, 0.0, seed=0, sigma0=1.0).n == 1 and len(draws) == 1
+
+
+def _documented_redraws(n, sigma, seed, sigma0, max_redraws, *, d=1.0, omega=1.0,
+                        Omega=(math.sqrt(2),)):
+    """The documented non-overlap rule, written out from the docstring: per forcing up to 100
+    passes over the pipes from the left, each pipe at most max_redraws draws per pass, at most
+    20 max_redraws draws per forcing and 4000 n in all; at most 10 forcings.  Returns
+    (alpha, beta, x0, v0) or None."""
+    rng = np.random.default_rng(seed)
+    Om = np.array(Omega)
+    den = omega**2 - Om**2
+    right = (n + 1) * d
+    left_in_all = 4000 * n
+    for _ in range(10):
+        alpha = rng.normal(0.0, sigma, size=(n, len(Om)))
+        beta = rng.normal(0.0, sigma, size=(n, len(Om)))
+        f0, fv0 = (alpha / den).sum(axis=1), (beta * Om / den).sum(axis=1)
+        left = 20 * max_redraws
+        for _ in range(100):
+            x0, v0, prev = [], [], 0.0
+            for j in range(n):
+                placed = False
+                for _ in range(min(max_redraws, left, left_in_all)):
+                    left -= 1
+                    left_in_all -= 1
+                    a0, b0 = rng.normal(0.0, sigma0, size=2)
+                    xj = (j + 1) * d + a0 + f0[j]
+                    if prev < xj < right:
+                        placed = True
+                        break
+                if not placed:
+                    break
+                x0.append(xj)
+                v0.append(omega * b0 + fv0[j])
+                prev = xj
+            else:
+                return alpha, beta, np.array(x0), np.array(v0)
+            if left_in_all <= 0:
+                return None
+    return None
+
+
+@pytest.mark.parametrize("n, sigma, seed, sigma0, max_redraws", [
+    (2, 0.05, 3, 0.45, 1), (3, 0.1, 1, 0.6, 2), (5, 0.1, 2, 0.5, 1), (4, 0.2, 7, 0.7, 3),
+    (6, 0.05, 4, 0.4, 5), (8, 0.1, 0, 0.6, 10_000), (3, 0.3, 9, 0.9, 1),
+])
+def test_random_redraws_follow_the_documented_rule(n, sigma, seed, sigma0, max_redraws):
+    ref = _documented_redraws(n, sigma, seed, sigma0, max_redraws)
+    if ref is None:
+        with pytest.raises(ValueError, match="could not draw"):
+            PipeRow.random(n, sigma, seed=seed, sigma0=sigma0, max_redraws=max_redraws)
+        return
+    row = PipeRow.random(n, sigma, seed=seed, sigma0=sigma0, max_redraws=max_redraws)
+    for got, want in zip((row.alpha, row.beta, row.x0, row.v0), ref, strict=True):
+        assert np.array_equal(got, want)
+
+
+def test_more_refusals():
+    _raises(ValueError, "omega must be > 0, got 0", PipeRow.random, 2, 0.1, omega=0)
+    _raises(ValueError, "Omega[0] = 10.0000000000001 equals omega = 10.0 (resonance): the "
+            "forced response is unbounded; choose Omega[i] != omega", PipeRow.random, 2, 0.1,
+            omega=10.0, Omega=(10.0 * (1 + 1e-14),))
+    with pytest.raises(ValueError, match=r"^sigma0 = '1e400' is beyond the float64 range$"):
+        PipeRow.random(2, 0.1, sigma0="1e400")
