@@ -559,7 +559,7 @@ def test_random_draw_budgets_counted(draws):
 
 
 def _documented_redraws(n, sigma, seed, sigma0, max_redraws, *, d=1.0, omega=1.0,
-                        Omega=(math.sqrt(2),)):
+                        Omega=(1.4142135623730951,)):
     """The documented non-overlap rule, written out from the docstring: per forcing up to 100
     passes over the pipes from the left, each pipe at most max_redraws draws per pass, at most
     20 max_redraws draws per forcing and 4000 n in all; at most 10 forcings.  Returns
