@@ -620,3 +620,61 @@ def test_more_refusals():
             omega=10.0, Omega=(10.0 * (1 + 1e-14),))
     with pytest.raises(ValueError, match=r"^sigma0 = '1e400' is beyond the float64 range$"):
         PipeRow.random(2, 0.1, sigma0="1e400")
+
+
+def test_exact_to_mpf_sympy_rationals_rounded_once():
+    # p/q just below or above the midpoint of two doubles: rounding it first to dps + 10
+    # decimal digits and then to 53 bits gives the wrong neighbour; sympy's own conversion
+    # (mpmath's _mpmath_ protocol) rounds once
+    sympy = pytest.importorskip("sympy")
+    for m, sgn in ((2**52 + 1, -1), (2**52 + 2, 1)):
+        p, q = (2 * m + 1) * 10**30 + sgn, 2**53 * 10**30
+        with mpmath.workprec(53):
+            assert exact_to_mpf(sympy.Rational(p, q)) == _nearest_binary(p, q, 53)
+
+
+def test_exact_to_mpf_fallback_types():
+    with mpmath.workdps(20):     # anything else goes to mpmath (decimal strings)
+        assert exact_to_mpf("0.1") == mpmath.mpf(1) / 10
+
+
+def test_integer_arrays_beyond_2_53_and_omega_types():
+    big = np.array([2**53 + 1], dtype=np.int64)      # not a float64: kept exactly
+    row = _row(d=2.0**55, x0=big)
+    assert row.exact("x0").tolist() == [2**53 + 1] and row.x0[0] == 2.0**53
+    exact = np.array([2**53], dtype=np.int64)        # a float64 already: no object array
+    assert _row(d=2.0**55, x0=exact).exact("x0").dtype == np.float64
+    row = _row(Omega=(0.5, 2.0), alpha=[[0, 0]], beta=[[0, 0]])
+    assert repr(row.Omega) == "(0.5, 2.0)"           # floats stay floats
+    row = _row(Omega=("1/2", 2.0, SQRT2), alpha=[[0, 0, 0]], beta=[[0, 0, 0]])
+    assert row.Omega == (Fraction(1, 2), 2.0, SQRT2) and isinstance(row.Omega[0], Fraction)
+    assert row.omega_float().tolist() == [0.5, 2.0, math.sqrt(2)]
+    _raises(ValueError, "d must be > 0, got 0", _row, d=0)
+    _raises(ValueError, "Omega[1] = '1e400' is beyond the float64 range", _row,
+            Omega=(2.0, "1e400"), alpha=[[0, 0]], beta=[[0, 0]])
+
+
+def test_resonance_boundary_is_inclusive():
+    # omega = 1e6: 1e-12 omega^2 == 1.0 exactly, and 999999.9999995**2 == 1e12 - 1 in float64
+    om, w = 1e6, 999999.9999995
+    assert abs(w * w - om * om) == 1e-12 * om * om == 1.0
+    with pytest.raises(ValueError, match="resonance"):
+        _row(omega=om, Omega=(w,), x0=[1.0])
+    with pytest.raises(ValueError, match="resonance"):
+        PipeRow.random(1, 0.1, omega=om, Omega=(w,), seed=0)
+
+
+def test_random_budget_boundaries(draws):
+    # total = 4000 draws for one pipe, 3999 per pass: the second pass still gets the last draw
+    with pytest.raises(ValueError, match="could not draw"):
+        PipeRow.random(1, 100.0, seed=0, sigma0=0.1, Omega=(1.05,), max_redraws=3999)
+    assert draws.count("pair") == 4000 and draws.count("forcing") == 2
+    draws.clear()
+    # the up-front refusal is strict: (n + 1) d / (sigma0 sqrt(2 pi)) == 1e-3 exactly is drawn
+    sig0 = 797.8845608028654
+    assert 2.0 / (sig0 * math.sqrt(2 * math.pi)) == 1e-3
+    try:
+        PipeRow.random(1, 0.0, seed=0, sigma0=sig0)
+    except ValueError:
+        pass
+    assert draws.count("pair") > 0
