@@ -820,3 +820,133 @@ def test_window_counts_chatter_with_the_default_threshold():
         ref = sum(t >= a for t in times) + 1          # the stick happens at the last bounce
         assert window_counts(row, a, 10.0 - a).tolist() == [0, ref]
     assert window_counts(row, 0.0, 1.1).tolist() == [0, 1]     # only the first bounce
+
+
+# ----------------------------------------------------------------- second round (survivors)
+def test_documented_defaults():
+    import inspect
+
+    def defaults(f):
+        return {k: p.default for k, p in inspect.signature(f).parameters.items()
+                if p.default is not inspect.Parameter.empty}
+
+    assert defaults(ensemble) == {
+        "n": 100, "t_transient": 200.0, "t_window": 100.0, "seed": 0, "executor": None,
+        "progress": None, "restitution": 0.8, "omega": 1.0, "d": 1.0, "Omega": (SQRT2,),
+        "sigma0": None, "chunk": 50, "checkpoint": None, "checkpoint_every": 60.0,
+        "keep_runs": True}
+    assert defaults(site_transitions) == {
+        "n": 100, "t_transient": 200.0, "t_window": 100.0, "seed": 0, "restitution": 0.8,
+        "sigma0": None, "i_sigma": 0}
+    assert defaults(thresholds) == {"level": 10, "min_kept": 20, "boot": 400, "seed": 0}
+    assert defaults(free_flight_closure_fraction) == {
+        "horizon": 400.0, "seed": 0, "omega": 1.0, "d": 1.0, "Omega": math.sqrt(2)}
+    assert defaults(transition_dependence) == {"shuffles": 50, "seed": 0, "stat": None}
+    assert defaults(describe_histogram) == {"rng": None, "boot": 2000}
+
+
+def test_site_transitions_window_start_is_inclusive():
+    # t_transient set to the exact time of an impact: that impact belongs to the window
+    ss = np.random.SeedSequence([6, 0, 0])
+    row = PipeRow.random(5, 0.35, seed=ss)
+    h = simulate(row, 9.0)
+    k = next(i for i in range(len(h)) if h.kinds[i] == IMPACT and h.times[i] > 1.0)
+    t_k = float(h.times[k])
+    (seq,) = site_transitions(0.35, 1, n=5, t_transient=t_k, t_window=9.0 - t_k, seed=6)
+    ref = [int(s) for s, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
+           if kind in (IMPACT, STICK) and t_k <= t]
+    assert seq.tolist()[0] == int(h.sites[k]) and seq.tolist() == ref[:len(seq)]
+
+
+def test_thresholds_more_cases():
+    # every sigma above the level: the threshold is the smallest sigma of the grid
+    res = _result([0.1, 0.2], [_point(12, 30), _point(13, 30)])
+    assert thresholds(res, boot=2)["mode"] == [0.1, 0.1, 0.1]
+    # steepest slope, not largest rise: rises 5 (over 0.1) and 4 (over 0.4) -> slopes 50, 10
+    res = _result([0.1, 0.2, 0.6], [_point(1, 30), _point(6, 30), _point(10, 30)])
+    assert thresholds(res, level=20, boot=2)["steep"] == pytest.approx([0.15, 0.15, 0.15])
+    # means are per run: different numbers of kept runs per sigma do not weigh them
+    res = _result([0.1, 0.2, 0.3], [_point(2, 100), _point(3, 20), _point(6, 20)])
+    assert thresholds(res, level=20, boot=2)["steep"][0] == pytest.approx(0.25)
+    res = _result([0.1, 0.2, 0.3], [_point(2, 20), _point(5, 100), _point(6, 20)])
+    assert thresholds(res, level=20, boot=2)["steep"][0] == pytest.approx(0.15)
+
+
+def _est_reference(sig, hists, level, min_kept):
+    """The two estimates as documented (written out independently of the package)."""
+    ok = [h.sum() >= min_kept for h in hists]
+    mode = math.nan
+    for j in reversed(range(len(sig))):
+        if not ok[j] or int(np.argmax(hists[j])) < level:
+            break
+        mode = sig[j]
+    pts = [(s, (h * np.arange(len(h))).sum() / h.sum()) for s, h, k in zip(sig, hists, ok,
+                                                                           strict=True)]
+    slopes = []
+    for (s0, m0), (s1, m1), k0, k1 in zip(pts, pts[1:], ok, ok[1:], strict=False):
+        slopes.append((m1 - m0) / (s1 - s0) if k0 and k1 else -math.inf)
+    if not slopes or max(slopes) == -math.inf:
+        return mode, math.nan
+    j = int(np.argmax(slopes))
+    return mode, (sig[j] + sig[j + 1]) / 2
+
+
+def test_thresholds_bootstrap_percentiles_by_hand():
+    rng = np.random.default_rng(21)
+    sig = [0.1 + 0.02 * i for i in range(12)]
+    hists = [np.bincount(rng.binomial(14, p, size=25), minlength=15).astype(float)
+             for p in np.linspace(0.2, 0.8, 12)]
+    res = _result(sig, [h.astype(int).tolist() for h in hists])
+    out = thresholds(res, level=8, min_kept=20, boot=60, seed=123)
+    m0, s0 = _est_reference(sig, hists, 8, 20)
+    brng = np.random.default_rng(123)
+    bm, bs = [], []
+    for _ in range(60):
+        hb = [brng.multinomial(int(h.sum()), h / h.sum()).astype(float) for h in hists]
+        a, b = _est_reference(sig, hb, 8, 20)
+        bm.append(a)
+        bs.append(b)
+
+    def q(x):
+        x = [v for v in x if not math.isnan(v)]
+        return np.percentile(x, [16, 84]).tolist()
+
+    assert out["mode"][0] == m0 and out["steep"][0] == pytest.approx(s0)
+    assert out["mode"][1:] == pytest.approx(q(bm)) and out["steep"][1:] == pytest.approx(q(bs))
+    # (this seed separates the 16th from the 17th and the 84th from the 85th percentile)
+    assert q(bs)[0] != np.percentile(bs, 17) and q(bs)[1] != np.percentile(bs, 85)
+    assert thresholds(res, level=8, min_kept=20, boot=60, seed=123) == out   # reproducible
+
+
+def test_transition_dependence_short_sequences_and_empty_pairs():
+    import warnings
+
+    seqs = [np.array([4, 5]), np.array([1, 1, 2])]          # a sequence of length 2: one pair
+    out = transition_dependence(seqs, 6, shuffles=3, seed=1)
+    assert out["pairs"] == 3 and out["same"] == pytest.approx(1 / 3)
+    assert out["mi"] == pytest.approx(_mi([4, 1, 1], [5, 1, 2], 6), rel=1e-12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")       # no "mean of empty slice" on the way to nan
+        empty = transition_dependence([np.array([1])], 3, shuffles=2)
+    assert math.isnan(empty["same"]) and math.isnan(empty["adjacent_null"])
+    seen = []
+
+    def stat(a, b):
+        seen.append((a.dtype, b.dtype, len(a), len(b)))
+        return 0.0
+
+    transition_dependence([np.array([1])], 3, shuffles=2, stat=stat)
+    assert seen == [(np.int64, np.int64, 0, 0)] * 3
+
+
+def test_result_dtypes_and_failures_in_dicts():
+    a = _stats(0.3, [1, 0, 2], 3, failed=2, hist_p=(0, 2, 1), hist_s=(0, 3, 0))
+    res = EnsembleResult(params={"n": 2}, per_sigma=[a, _stats(0.4, [1, 1, 1], 3)])
+    assert res.column("pipes", "mode").dtype == float
+    assert res.column("pipes", "mode_ci").dtype == float
+    assert a.as_dict()["failures"] == [[0, "x"], [0, "x"]]
+    back = EnsembleResult.from_dict(json.loads(json.dumps(res.as_dict())))
+    st = back.per_sigma[0]
+    assert st.pipes.dtype == np.int64 and st.sites.dtype == np.int64
+    assert st.pipes.tolist() == [] and st.sites.tolist() == []
+    assert st.failures == [(0, "x"), (0, "x")] and st.failed == 2
