@@ -950,3 +950,82 @@ def test_result_dtypes_and_failures_in_dicts():
     assert st.pipes.dtype == np.int64 and st.sites.dtype == np.int64
     assert st.pipes.tolist() == [] and st.sites.tolist() == []
     assert st.failures == [(0, "x"), (0, "x")] and st.failed == 2
+
+
+def test_defaults_used_by_calls(monkeypatch):
+    # default arguments are checked through calls (a mutated default does not show in the
+    # signature of the wrapper that mutation testing puts around a function)
+    S = importlib.import_module("symhx.impact.simulate")
+    calls = []
+
+    class Hist:
+        times = np.array([199.5, 200.0, 250.0, 260.0, 299.0])
+        kinds = np.array([IMPACT, IMPACT, 1, STICK, 3])
+        sites = np.array([3, 4, 5, 6, 7])
+
+    def fake(row, t_end):
+        calls.append((row, t_end))
+        return Hist()
+
+    monkeypatch.setattr(S, "simulate", fake)
+    (seq,) = site_transitions(0.2, 1)
+    row, t_end = calls[0]
+    assert t_end == 300.0 and row.n == 100 and row.restitution == 0.8
+    ref = PipeRow.random(100, 0.2, seed=np.random.SeedSequence([0, 0, 0]))
+    assert np.array_equal(row.x0, ref.x0) and np.array_equal(row.v0, ref.v0)
+    assert seq.tolist() == [4, 6]
+    monkeypatch.undo()
+    # thresholds: level 10, min_kept 20, 400 resamples from seed 0
+    res = _result([0.1, 0.2, 0.3], [_point(5, 30), [0] * 9 + [9, 11] + [0] * 4,
+                                    _point(12, 30)])
+    out = thresholds(res)
+    assert out == thresholds(res, level=10, min_kept=20, boot=400, seed=0)
+    assert out["mode"][0] == 0.2
+    assert thresholds(res, level=11)["mode"][0] == 0.3
+    assert thresholds(res, min_kept=21)["mode"][0] == 0.3
+    real_rng = np.random.default_rng
+    made = []
+
+    class Counting:
+        def __init__(self, seed):
+            made.append(seed)
+            self.rng, self.calls = real_rng(seed), 0
+            made.append(self)
+
+        def multinomial(self, *a, **kw):
+            self.calls += 1
+            return self.rng.multinomial(*a, **kw)
+
+    monkeypatch.setattr(np.random, "default_rng", Counting)
+    thresholds(res)
+    assert made[0] == 0 and made[1].calls == 400 * 3       # 400 resamples of 3 histograms
+    monkeypatch.undo()
+    # free_flight_closure_fraction: seed 0, horizon 400
+    eng = importlib.import_module("symhx.impact.engine")
+    seen = {"t_hi": [], "seeds": []}
+    real_rng = np.random.default_rng
+
+    def search(self, g, t0, t_hi, **kw):
+        seen["t_hi"].append((t0, t_hi))
+        return math.inf, eng.Outcome.NONE
+
+    monkeypatch.setattr(eng.Engine, "search", search)
+    monkeypatch.setattr(np.random, "default_rng", lambda s=None: seen["seeds"].append(s) or
+                        real_rng(s))
+    assert free_flight_closure_fraction(0.3, 2) == 0.0
+    assert seen["t_hi"] == [(0.0, 400.0)] * 2 and seen["seeds"] == [0]
+    monkeypatch.undo()
+    # the progress bar: None by default
+    got = []
+
+    class Bar:
+        def update(self, k):
+            pass
+
+        def close(self):
+            pass
+
+    monkeypatch.setattr(E, "_make_progress", lambda total, progress: got.append(progress) or
+                        Bar())
+    ensemble([0.0], 1, n=2, t_transient=1, t_window=1, sigma0=0.0)
+    assert got == [None]

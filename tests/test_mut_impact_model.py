@@ -654,7 +654,7 @@ def test_integer_arrays_beyond_2_53_and_omega_types():
             Omega=(2.0, "1e400"), alpha=[[0, 0]], beta=[[0, 0]])
 
 
-def test_resonance_boundary_is_inclusive():
+def test_resonance_boundary_is_inclusive(draws):
     # omega = 1e6: 1e-12 omega^2 == 1.0 exactly, and 999999.9999995**2 == 1e12 - 1 in float64
     om, w = 1e6, 999999.9999995
     assert abs(w * w - om * om) == 1e-12 * om * om == 1.0
@@ -662,6 +662,7 @@ def test_resonance_boundary_is_inclusive():
         _row(omega=om, Omega=(w,), x0=[1.0])
     with pytest.raises(ValueError, match="resonance"):
         PipeRow.random(1, 0.1, omega=om, Omega=(w,), seed=0)
+    assert draws == []          # refused before anything is drawn
 
 
 def test_random_budget_boundaries(draws):
