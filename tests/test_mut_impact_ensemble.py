@@ -60,14 +60,16 @@ def _hand(sigma, i, k, *, n, t_transient, t_window, seed, sigma0, restitution, o
                 where=sites, ever={s for s, _ in hits}, seqs=window)
 
 
-@pytest.fixture(scope="module")
+# function scope on purpose: mutation testing credits a function to the tests that run it, and a
+# module-scoped fixture runs inside the first test only
+@pytest.fixture
 def hand():
     kw = {k: v for k, v in KW.items() if k != "progress"}
     return [[_hand(s, i, k, sigma0=SIGMA0[i], **kw) for k in range(RUNS)]
             for i, s in enumerate(SIGMAS)]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def res():
     return ensemble(SIGMAS, RUNS, chunk=2, sigma0=SIGMA0, **KW)
 
@@ -870,6 +872,8 @@ def test_thresholds_more_cases():
     assert thresholds(res, level=20, boot=2)["steep"][0] == pytest.approx(0.25)
     res = _result([0.1, 0.2, 0.3], [_point(2, 20), _point(5, 100), _point(6, 20)])
     assert thresholds(res, level=20, boot=2)["steep"][0] == pytest.approx(0.15)
+    res = _result([0.1, 0.2, 0.3], [_point(2, 20), _point(5, 20), _point(6, 100)])
+    assert thresholds(res, level=20, boot=2)["steep"][0] == pytest.approx(0.15)
 
 
 def _est_reference(sig, hists, level, min_kept):
@@ -1029,3 +1033,35 @@ def test_defaults_used_by_calls(monkeypatch):
                         Bar())
     ensemble([0.0], 1, n=2, t_transient=1, t_window=1, sigma0=0.0)
     assert got == [None]
+
+
+def test_caps_are_inclusive(monkeypatch):
+    monkeypatch.setattr(E, "MAX_RUNS", 2)
+    monkeypatch.setattr(E, "MAX_TOTAL_RUNS", 4)
+    res = ensemble([0.0, 0.0], 2, n=2, t_transient=1, t_window=1, sigma0=0.0, progress=False)
+    assert [s.runs for s in res.per_sigma] == [2, 2]
+    with pytest.raises(ValueError, match=r"^runs must be <= 2 per sigma"):
+        ensemble([0.0], 3, n=2, t_transient=1, t_window=1, sigma0=0.0, progress=False)
+    with pytest.raises(ValueError, match=r"^runs: len\(sigmas\) \* runs = 6 exceeds"):
+        ensemble([0.0] * 3, 2, n=2, t_transient=1, t_window=1, sigma0=0.0, progress=False)
+
+
+def test_default_checkpoint_interval_is_60_seconds(tmp_path, monkeypatch):
+    saves = []
+    real_save = EnsembleResult.save
+
+    def spy(self, path):
+        saves.append(self.as_dict()["params"].get("partial", False))
+        real_save(self, path)
+
+    class Clock:
+        now = 0.0
+
+        def time(self):       # 60 s between readings: every store is due with the default
+            self.now += 60.0
+            return self.now
+
+    monkeypatch.setattr(EnsembleResult, "save", spy)
+    monkeypatch.setattr(E, "time", Clock())
+    ensemble([0.3], 3, chunk=1, checkpoint=tmp_path / "c.json", **KW)
+    assert saves == [True, True, True, False]
