@@ -1065,3 +1065,11 @@ def test_default_checkpoint_interval_is_60_seconds(tmp_path, monkeypatch):
     monkeypatch.setattr(E, "time", Clock())
     ensemble([0.3], 3, chunk=1, checkpoint=tmp_path / "c.json", **KW)
     assert saves == [True, True, True, False]
+
+
+def test_model_parameters_checked_up_front_with_their_values():
+    # the up-front check uses the given omega and d (resonance at omega = 2, walls at 3 d)
+    with pytest.raises(ValueError, match=r"^Omega\[0\] = 2.0 equals omega = 2.0 \(resonance\)"):
+        ensemble([0.1], 2, **{**KW, "omega": 2.0, "Omega": (2.0,)})
+    res = ensemble([0.0], 1, **{**KW, "d": 3.0, "sigma0": 0.0})
+    assert res.params["d"] == 3.0 and res.per_sigma[0].failed == 0
