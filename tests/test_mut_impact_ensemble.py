@@ -1073,3 +1073,58 @@ def test_model_parameters_checked_up_front_with_their_values():
         ensemble([0.1], 2, **{**KW, "omega": 2.0, "Omega": (2.0,)})
     res = ensemble([0.0], 1, **{**KW, "d": 3.0, "sigma0": 0.0})
     assert res.params["d"] == 3.0 and res.per_sigma[0].failed == 0
+
+
+@pytest.mark.parametrize("hist, seed", [([10, 5, 4], 0), ([4, 6, 3, 8, 8], 1), ([4, 6, 5, 11], 0)])
+def test_mode_interval_percentiles(hist, seed):
+    # histograms whose resampled modes separate the 2.5th from the 3.5th percentile, the 97.5th
+    # from the 98.5th, or the nearest-rank percentile from the interpolated one
+    st = describe_histogram(hist, np.random.default_rng(seed))
+    assert st["mode_ci"] == _boot_reference(np.array(hist), seed, 2000)[1]
+
+
+def test_describe_histogram_types_and_default_stream():
+    st = describe_histogram([0.0, 3.0, 1.0])
+    assert st["hist"] == [0, 3, 1] and all(type(x) is int for x in st["hist"])
+    rng = np.random.default_rng(5)
+    big = np.bincount(rng.binomial(30, 0.3, size=4000), minlength=31)
+    assert describe_histogram(big) == describe_histogram(big, np.random.default_rng(0))
+    assert describe_histogram(big)["mean_ci"] != describe_histogram(
+        big, np.random.default_rng(1))["mean_ci"]
+
+
+def test_engine_name_and_seconds(monkeypatch):
+    monkeypatch.setattr(E, "_c_available", lambda: False)
+    res = ensemble([0.0], 1, **{**KW, "sigma0": 0.0})
+    assert res.params["engine"] == "float64 python"
+    monkeypatch.undo()
+
+    class Clock:
+        now = 1e9
+
+        def time(self):
+            self.now += 60.0
+            return self.now
+
+    monkeypatch.setattr(E, "time", Clock())
+    res = ensemble([0.0], 2, chunk=1, **{**KW, "sigma0": 0.0})
+    assert 0 < res.seconds <= 600 and res.seconds % 60 == 0
+
+
+def test_partial_snapshots_with_chunks_out_of_order(tmp_path, monkeypatch):
+    saves = []
+    real_save = EnsembleResult.save
+
+    def spy(self, path):
+        saves.append(self.as_dict())
+        real_save(self, path)
+
+    monkeypatch.setattr(EnsembleResult, "save", spy)
+    monkeypatch.setattr(E, "as_completed", lambda futs: list(futs)[::-1])
+    final = ensemble([0.3, 0.4], 4, chunk=1, executor=_Reversed(), checkpoint=tmp_path / "p.json",
+                     checkpoint_every=0.0, **KW)
+    partial = [s for s in saves if s["params"].get("partial")]
+    # chunks come back last first: no prefix is complete until chunk 0 of that sigma is in
+    assert [s["params"]["runs"] for s in partial][:6] == [0] * 6
+    assert [p["runs"] for p in partial[6]["per_sigma"]] == [0, 4]      # sigma 1 complete
+    assert final.params["runs"] == 4 and [s.runs for s in final.per_sigma] == [4, 4]
