@@ -1128,3 +1128,17 @@ def test_partial_snapshots_with_chunks_out_of_order(tmp_path, monkeypatch):
     assert [s["params"]["runs"] for s in partial][:6] == [0] * 6
     assert [p["runs"] for p in partial[6]["per_sigma"]] == [0, 4]      # sigma 1 complete
     assert final.params["runs"] == 4 and [s.runs for s in final.per_sigma] == [4, 4]
+
+
+def test_bootstrap_stream_of_each_sigma():
+    # enough kept runs for the bootstrap to depend on its stream: SeedSequence([seed, 10**6, i])
+    kw = dict(n=5, t_transient=2.0, t_window=4.0, seed=8, progress=False)
+    res = ensemble([0.5, 0.7], 12, chunk=5, **kw)
+    for i, st in enumerate(res.per_sigma):
+        assert len(st.pipes) >= 6
+        rng = np.random.default_rng(np.random.SeedSequence([8, 10**6, i]))
+        assert st.stats["pipes"] == describe_histogram(np.bincount(st.pipes, minlength=6), rng)
+        assert st.stats["sites"] == describe_histogram(np.bincount(st.sites, minlength=7), rng)
+        assert st.stats["pipes"]["mode_se"] is not None
+        other = np.random.default_rng(np.random.SeedSequence([8, 10**6, 1 - i]))
+        assert st.stats["pipes"] != describe_histogram(np.bincount(st.pipes, minlength=6), other)
