@@ -1142,3 +1142,19 @@ def test_bootstrap_stream_of_each_sigma():
         assert st.stats["pipes"]["mode_se"] is not None
         other = np.random.default_rng(np.random.SeedSequence([8, 10**6, 1 - i]))
         assert st.stats["pipes"] != describe_histogram(np.bincount(st.pipes, minlength=6), other)
+
+
+def test_progress_bar_resizes_and_gap_cap(monkeypatch):
+    bar = E._make_progress(3, True)
+    assert callable(bar.dynamic_ncols)       # dynamic_ncols=True: the width follows the terminal
+    bar.close()
+    monkeypatch.setattr(E, "MAX_GAPS", 3)
+    assert free_flight_closure_fraction(0.3, 3, horizon=5.0) in (0, 1 / 3, 2 / 3, 1)
+    with pytest.raises(ValueError, match=r"^gaps must be <= 3 "):
+        free_flight_closure_fraction(0.3, 4, horizon=5.0)
+
+
+def test_free_flight_checks_the_given_omega_and_d():
+    with pytest.raises(ValueError, match=r"^Omega\[0\] = 2.0 equals omega = 2.0 \(resonance\)"):
+        free_flight_closure_fraction(0.3, 2, omega=2.0, Omega=2.0, horizon=5.0)
+    assert 0 <= free_flight_closure_fraction(0.3, 2, d=3.0, horizon=5.0) <= 1
