@@ -68,9 +68,10 @@ class _Sqrt2:
         return math.sqrt(2.0)
 
     def _mpmath_(self, prec: int, rounding: str) -> mpmath.mpf:
-        with mpmath.workprec(prec + 10):
-            v = mpmath.sqrt(2)
-        return +v
+        # correctly rounded at ``prec`` bits (a square root at more bits rounded again to
+        # ``prec`` is a double rounding: wrong in the last bit at 1401 bits, for instance)
+        with mpmath.workprec(prec):
+            return mpmath.sqrt(2)
 
     def __repr__(self) -> str:
         return "sqrt(2)"
@@ -132,16 +133,6 @@ def _check_scale(value: float, name: str, positive: bool = False) -> None:
                          "resolve (symhx.impact.model.MAX_SCALE); rescale the units")
 
 
-def _is_irrational(x: Any) -> bool:
-    """Exact irrational inputs kept as objects: :data:`SQRT2`, or sympy real irrationals."""
-    if isinstance(x, _Sqrt2):
-        return True
-    try:
-        return to_rational(x, "x") is None
-    except (TypeError, ValueError):
-        return False
-
-
 def _scalar(value: Any, name: str) -> tuple[float, Any]:
     """``(float64 value, exact value)`` of a scalar input: the exact value is a ``Fraction``
     (ints, decimal strings, Fractions, floats and mpf at their binary value, sympy Rationals) or
@@ -172,8 +163,9 @@ def exact_to_mpf(x: Any) -> mpmath.mpf:
     ...     print(exact_to_mpf(Fraction(1, 3)))
     0.333333333333333333333333333333
     """
-    if isinstance(x, Fraction):
-        return mpmath.mpf(x.numerator) / x.denominator
+    if isinstance(x, Fraction):   # one rounding (numerator and denominator may be huge)
+        return mpmath.mpf(mpmath.libmp.from_rational(x.numerator, x.denominator, mpmath.mp.prec,
+                                                     mpmath.libmp.round_nearest))
     if isinstance(x, (float, int, mpmath.mpf)) or hasattr(x, "_mpmath_"):
         return mpmath.mpf(x)
     if hasattr(x, "evalf"):   # a sympy number (kept as the user gave it)
@@ -296,9 +288,10 @@ class PipeRow:
         Omega = tuple(Omega)
         if len(Omega) < 1:
             raise ValueError("Omega must hold at least one forcing frequency")
-        Omega_x = []
+        Omega_x, Omega_f = [], []
         for i, w in enumerate(Omega):
             wf, wx = _scalar(w, f"Omega[{i}]")
+            Omega_f.append(wf)
             if wf < 0:
                 raise ValueError(f"Omega[{i}] must be >= 0, got {w!r}")
             if wx == omega_x or abs(wf * wf - omega_f * omega_f) <= 1e-12 * omega_f * omega_f:
@@ -314,14 +307,12 @@ class PipeRow:
         v, v_x = _array(v0, "v0", (n,))
         _check_scale(omega_f, "omega", positive=True)
         _check_scale(d_f, "d", positive=True)
-        for name, arr in (("Omega", np.array([float(w) for w in Omega])), ("alpha", a),
+        for name, arr in (("Omega", np.array(Omega_f)), ("alpha", a),
                           ("beta", b), ("v0", v)):
             if arr.size and np.max(np.abs(arr)) > MAX_SCALE:
                 idx = tuple(int(i) for i in np.unravel_index(np.argmax(np.abs(arr)), arr.shape))
                 _check_scale(float(arr[idx]), f"{name}{list(idx)}")
-        if not math.isfinite((n + 1) * d_f):
-            raise ValueError(f"d = {d!r} is too large: the right wall (n + 1) d = {n + 1} d is "
-                             "beyond the float64 range")
+        # the right wall (n + 1) d <= (MAX_PIPES + 1) MAX_SCALE is finite in float64
         walls = np.concatenate(([0.0], x, [(n + 1) * d_f]))
         if not np.all(np.diff(walls) > 0):
             bad = int(np.argmin(np.diff(walls)))
@@ -329,6 +320,9 @@ class PipeRow:
                 f"x0 must be strictly increasing inside (0, (n + 1) d) = (0, {(n + 1) * d_f!r}): "
                 f"pipes overlap at site {bad}"
             )
+        # Omega keeps the user's numbers (SQRT2 stays SQRT2); strings become their Fraction
+        Omega = tuple(wx if isinstance(w, (str, bytes)) else w
+                      for w, wx in zip(Omega, Omega_x, strict=True))
         for name, val in (("n", n), ("omega", omega_f), ("d", d_f), ("restitution", r),
                           ("Omega", Omega), ("alpha", a), ("beta", b), ("x0", x), ("v0", v)):
             object.__setattr__(self, name, val)
@@ -405,9 +399,11 @@ class PipeRow:
         (5, (5, 1), True)
         """
         n = check_pipes(n)
-        sig, _ = _scalar(check_real(sigma, "sigma", low=0), "sigma")
-        sig0 = sig if sigma0 is None else _scalar(check_real(sigma0, "sigma0", low=0),
-                                                  "sigma0")[0]
+        check_real(sigma, "sigma", low=0)   # range and type; the message names the input
+        sig, _ = _scalar(sigma, "sigma")
+        if sigma0 is not None:
+            check_real(sigma0, "sigma0", low=0)
+        sig0 = sig if sigma0 is None else _scalar(sigma0, "sigma0")[0]
         max_redraws = check_int(max_redraws, "max_redraws", minimum=1)
         if not isinstance(seed, (np.random.SeedSequence, np.random.Generator,
                                  np.random.BitGenerator)):
@@ -423,10 +419,7 @@ class PipeRow:
             raise ValueError(f"d must be > 0, got {d!r}")
         _check_scale(om, "omega", positive=True)
         _check_scale(d_f, "d", positive=True)
-        right = (n + 1) * d_f
-        if not math.isfinite(right):
-            raise ValueError(f"d = {d!r} is too large: the right wall (n + 1) d = {n + 1} d is "
-                             "beyond the float64 range")
+        right = (n + 1) * d_f   # finite: d <= MAX_SCALE and n <= MAX_PIPES
         _scalar(restitution, "restitution")   # range checked by the constructor
         if len(Omega) < 1:
             raise ValueError("Omega must hold at least one forcing frequency")
@@ -434,8 +427,8 @@ class PipeRow:
         den = om * om - Om * Om
         if np.any(np.abs(den) <= 1e-12 * om * om):
             i = int(np.argmin(np.abs(den)))
-            raise ValueError(f"Omega[{i}] = {Om[i]!r} equals omega = {om!r} (resonance): the "
-                             "forced response is unbounded; choose Omega[i] != omega")
+            raise ValueError(f"Omega[{i}] = {float(Om[i])!r} equals omega = {om!r} (resonance): "
+                             "the forced response is unbounded; choose Omega[i] != omega")
 
         def too_large(scale: float) -> ValueError:
             return ValueError(
