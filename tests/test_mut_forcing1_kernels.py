@@ -13,7 +13,12 @@ of the value (the roundings of ``x`` and ``y`` are amplified by it):
 
 from __future__ import annotations
 
+import hashlib
+import inspect
+import json
 import math
+import os
+import tempfile
 
 import mpmath
 import numpy as np
@@ -67,8 +72,7 @@ def _work_dps(s0, s1, om, Om, d):
     return int(45 + lost + e)
 
 
-def ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
-    """``(p, q, log p, log q, kappa_p, kappa_q)`` as mpf (30+ correct digits)."""
+def _ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
     w = _work_dps(s0, s1, om, Om, d)
     with mpmath.workdps(w):
         x, y = _xy(s0, s1, om, Om, d)
@@ -79,6 +83,42 @@ def ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
         dp = (_closed_p(x * (1 + h) ** 2, y * (1 + h) ** 2)
               - _closed_p(x * (1 - h) ** 2, y * (1 - h) ** 2)) / (2 * h)
         return p, q, mpmath.log(p), mpmath.log(q), abs(dp / p), abs(dp / q)
+
+
+_CACHE: dict | None = None
+_CACHE_FILE = ""
+
+
+def _cached(fn, *args):
+    """``fn(*args)`` (a tuple of mpf) through a cache file keyed by a hash of this file's
+    reference code: the values depend only on the exact inputs and that code (no package
+    code), and repeated runs (mutation testing) need not recompute them."""
+    global _CACHE, _CACHE_FILE
+    if _CACHE is None:
+        src = "".join(inspect.getsource(f) for f in (_xy, _closed_p, _work_dps, _ref_values,
+                                                      _i_ref_values))
+        h = hashlib.sha256(src.encode()).hexdigest()[:16]
+        _CACHE_FILE = os.path.join(tempfile.gettempdir(), f"symhx-mut-forcing1-ref-{h}.json")
+        try:
+            with open(_CACHE_FILE) as fh:
+                _CACHE = json.load(fh)
+        except (OSError, ValueError):
+            _CACHE = {}
+    key = repr((fn.__name__, *args))
+    if key not in _CACHE:
+        with mpmath.workdps(40):
+            _CACHE[key] = [mpmath.nstr(v, 40) for v in fn(*args)]
+        tmp = f"{_CACHE_FILE}.{os.getpid()}"
+        with open(tmp, "w") as fh:
+            json.dump(_CACHE, fh)
+        os.replace(tmp, _CACHE_FILE)
+    with mpmath.workdps(40):
+        return tuple(mpmath.mpf(v) for v in _CACHE[key])
+
+
+def ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
+    """``(p, q, log p, log q, kappa_p, kappa_q)`` as mpf (30+ correct digits)."""
+    return _cached(_ref_values, s0, s1, om, Om, d)
 
 
 def conv_reference(s0, s1, om, Om, d, dps=30):
@@ -305,11 +345,15 @@ def test_uv_building_blocks():
         assert rel(q[i], ref[1]) < C * EPS * (1 + float(ref[5]))
 
 
-def _i_ref(u, v, power):
+def _i_ref_values(u, v, power):
     with mpmath.workdps(40):
         u, v = mpmath.mpf(u), mpmath.mpf(v)
         f = lambda z: (v + z) ** power * (u - z) * mpmath.exp(-z * z)  # noqa: E731
-        return mpmath.quad(f, mpmath.linspace(-v, u, 9))
+        return (mpmath.quad(f, mpmath.linspace(-v, u, 9)),)
+
+
+def _i_ref(u, v, power):
+    return _cached(_i_ref_values, float(u), float(v), power)[0]
 
 
 def test_i2_i3_against_quadrature():
