@@ -243,6 +243,35 @@ def test_float64_extreme_scales_every_region(pt):
     _check(vals, pt, {})
 
 
+#: scales whose sqrt(x) or sqrt(y) is beyond 1e154 (x or y not a float) or below 1e-154,
+#: with results that are normal floats or finite logs: every region of the mantissa path
+#: (both orders of the two scales, a given Omega and omega above 1e100)
+_HUGE_SMALL = [1e-200, 3e-170, 2e-77]
+_OTHER = [0.05, 0.3, 2.0, 1e3, 1e80, 1e200]
+MANTISSA = ([(a, b, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
+            + [(b, a, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
+            + [(1e-180, 0.4, 1.0, 1.7, 2.0), (0.4, 1e-180, 1.3, 0.6, 0.5),
+               (1e180, 0.4, 1.0, 1.7, 2.0), (0.4, 3e190, 1.0, 2.5, 1.0),
+               (1e-190, 1e150, 2.0, 1.0, 1.0), (2.0, 1e150, 3e105, None, 1.0),
+               (1e210, 1e80, 2e105, None, 1.0), (1e-10, 1e150, 1e120, None, 1e-30),
+               (0.3, 0.2, 1e160, None, 1e-160), (0.3, 1e200, 1.5e180, 1e180, 1.0)])
+
+
+@pytest.mark.parametrize("pt", MANTISSA)
+def test_float64_mantissa_exponent_path(pt):
+    s0, s1, om, Om, d = pt
+    vals = [float(getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d)) for f in
+            ("impact_probability", "no_impact_probability", "log_impact_probability",
+             "log_no_impact_probability")]
+    with mpmath.workprec(80):
+        x, y = _xy(s0, s1, om, Om, d)
+        e = x * y / (x + y)
+    if e > 1e308:
+        assert vals == [0.0, 1.0, -math.inf, 0.0]
+        return
+    _check(vals, pt, {})
+
+
 def test_mixed_chunks_and_chunk_boundaries():
     """More values than one chunk (16384), entries of every region interleaved: every value
     equals its scalar evaluation and the reference."""
