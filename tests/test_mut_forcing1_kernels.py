@@ -168,6 +168,8 @@ RATIOS = [None, 1e-8, 1e-4, 0.1, 1.0, 3.0, 1e4, 1e8]
 def _check(vals, point, worst, c=C):
     refs = ref_values(*point)
     p, q, lp, lq, kp, kq = refs
+    assert 0.0 <= vals[0] <= 1.0 and 0.0 <= vals[1] <= 1.0, (point, vals)
+    assert vals[2] <= 0.0 and vals[3] <= 0.0, (point, vals)
     for name, val, ref, kappa in (("p", vals[0], p, kp), ("q", vals[1], q, kq),
                                   ("logp", vals[2], lp, kp), ("logq", vals[3], lq, kq)):
         assert not math.isnan(val), (name, point)
@@ -255,7 +257,15 @@ MANTISSA = ([(a, b, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
                (1e180, 0.4, 1.0, 1.7, 2.0), (0.4, 3e190, 1.0, 2.5, 1.0),
                (1e-190, 1e150, 2.0, 1.0, 1.0), (2.0, 1e150, 3e105, None, 1.0),
                (1e210, 1e80, 2e105, None, 1.0), (1e-10, 1e150, 1e120, None, 1e-30),
-               (0.3, 0.2, 1e160, None, 1e-160), (0.3, 1e200, 1.5e180, 1e180, 1.0)])
+               (0.3, 0.2, 1e160, None, 1e-160), (0.3, 1e200, 1.5e180, 1e180, 1.0),
+               # omega != 1 with Omega None (|omega^2 - 2| != omega^2)
+               (1e-200, 0.3, 0.5, None, 1.0), (0.3, 1e-200, 3.0, None, 1.0),
+               (1e200, 0.4, 1.7, None, 1.0), (0.4, 1e200, 0.2, None, 1.0),
+               # both scales moderate against d, d and |Delta| outside [1e-100, 1e100]
+               (1e-120, 0.7, 1e60, None, 1e-120), (1e-120, 0.2, 1e60, 2.0, 1e-120),
+               (2e-120, 3.0, 1e60, None, 1e-120),
+               # both sqrt(x), sqrt(y) above 1e75 and comparable: log p = -uv, finite
+               (1e-100, 1.5e-100, 1.0, None, 1.0), (2e-90, 1e-90, 0.5, None, 1.0)])
 
 
 @pytest.mark.parametrize("pt", MANTISSA)
@@ -437,3 +447,15 @@ def test_gauss_legendre_fresh_orders():
         xs, _ = mpmath.mp.gauss_quadrature(n, "legendre")
         assert np.allclose(x, sorted(float(v) for v in xs), rtol=0, atol=1e-15)
         assert abs(w.sum() - 2) < 1e-14 and len(w) == n
+
+
+def test_pq_float_keeps_the_shape_of_2d_input():
+    s0 = np.array([[0.1, 0.5, 3.0], [0.2, 1.0, 20.0]])
+    uv = uv_forcing(s0, s0 * 0.7, np.array(1.0), None, np.array(1.0))
+    for want, k in (("p", 0), ("q", 1)):
+        out = pq_float(uv, want)
+        assert out.shape == (2, 3)
+        for i in range(2):
+            for j in range(3):
+                r = ref_values(float(s0[i, j]), float(s0[i, j] * 0.7))
+                assert rel(out[i, j], r[k]) < C * EPS * (1 + float(r[4 + k])), (want, i, j)
