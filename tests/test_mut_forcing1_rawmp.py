@@ -161,3 +161,19 @@ def test_large_erf_arguments_keep_full_precision():
                     assert abs(val / ref - 1) < mpmath.mpf(10) ** -60, (pt, want)
                     assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 12) * (
                         1 + abs(mpmath.log(abs(ref)))), (pt, want)
+
+
+def test_sqrt_pi_at_fresh_precisions(monkeypatch):
+    """The cached sqrt(pi) is computed right at a precision not seen before (empty cache)."""
+    from symhx.forcing import rawmp
+
+    monkeypatch.setattr(rawmp, "_SQRT_PI_CACHE", {})
+    pt = (0.3, 0.2, 1.0, None, 1.0)
+    args = tuple(_fr(v) for v in pt)
+    for dps in (23, 23, 61):
+        val = single_mp_fast(*args, dps, "p")
+        obj, prec = _object_code(args, "p", dps)
+        with mpmath.workdps(120):
+            assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 8), dps
+            assert abs(val / _ref(*pt, "p", dps) - 1) < mpmath.mpf(10) ** -dps
+    assert len(rawmp._SQRT_PI_CACHE) == 2
