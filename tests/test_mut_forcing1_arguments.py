@@ -4,6 +4,7 @@ broadcasting. References are exact rational arithmetic and hand-written expectat
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 
 import mpmath
@@ -216,3 +217,36 @@ def test_elementwise():
     fp2 = ForcingParams.validated([[0.5, 2]], dps=10)
     with pytest.raises(ValueError, match=r"^boom at index \(0, 1\)$"):
         elementwise(fp2, fail_at_two)
+
+
+@pytest.mark.parametrize("dps", [None, 10])
+def test_every_argument_is_named_in_its_error(dps):
+    base = dict(sigma=0.5, sigma1=0.25, omega=1.0, Omega=3.0, d=1.0)
+    for comps in (False, True):
+        for name in base:
+            kw = dict(base)
+            if comps:
+                kw["Omega"] = [3.0, 2.0]
+                kw["sigma1"] = 0.25
+            kw[name] = -1.0 if not (comps and name == "Omega") else [3.0, -1.0]
+            label = "Omega[1]" if comps and name == "Omega" else name
+            pattern = "^" + re.escape(label) + r" must be > 0, got -1\.0$"
+            with pytest.raises(ValueError, match=pattern):
+                ForcingParams.validated(kw["sigma"], kw["sigma1"], kw["omega"], kw["Omega"],
+                                        kw["d"], dps=dps)
+
+
+def test_components_keep_every_field():
+    fp = ForcingParams.validated("0.5", "0.25", "1.5", ["3", "2"], "0.75", dps=10)
+    assert (fp.sigma, fp.sigma1, fp.omega, fp.Omega, fp.d, fp.exact) == (
+        Fraction(1, 2), Fraction(1, 4), Fraction(3, 2), (3, 2), Fraction(3, 4), True)
+    fp = ForcingParams.validated(0.5, 0.25, 1.5, [3.0, 2.0], 0.75)
+    assert [float(v) for v in (fp.sigma, fp.sigma1, fp.omega, fp.d)] == [0.5, 0.25, 1.5, 0.75]
+    assert [float(v) for v in fp.Omega] == [3.0, 2.0] and fp.exact is False
+
+
+def test_zero_dimensional_object_input_has_no_index():
+    with pytest.raises(ValueError, match=r"^sigma must be > 0, got -1\.0$"):
+        ForcingParams.validated(np.array(-1.0), dps=10)
+    fp = ForcingParams.validated(np.array(0.5), dps=10)
+    assert fp.sigma.shape == () and fp.sigma[()] == Fraction(1, 2)
