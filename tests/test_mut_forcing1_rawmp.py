@@ -187,7 +187,9 @@ def test_erf_raw_is_within_one_ulp_of_prec():
 
     lm = mpmath.libmp
     for prec in (60, 120, 200, 400):
-        for uf in (0.013, 0.7, 1.9, 2.1, 3.3, 5.0, 7.5, 9.9, 12.5, 17.0, 23.0, 31.0, 60.0):
+        # and u just below the point where erf(u) rounds to 1 at prec bits (u^2 log2(e) ~ prec)
+        edge = [math.sqrt((prec + k) / 1.4426950408889634) for k in (-2.5, -1, 0.5, 2)]
+        for uf in (0.013, 0.7, 1.9, 2.1, 3.3, 5.0, 7.5, 9.9, 12.5, 17.0, 23.0, 31.0, 60.0, *edge):
             u = lm.from_float(uf)
             got = mpmath.mp.make_mpf(_erf_raw(u, prec))  # exact, no rounding
             with mpmath.workprec(3 * prec):
