@@ -250,3 +250,20 @@ def test_zero_dimensional_object_input_has_no_index():
         ForcingParams.validated(np.array(-1.0), dps=10)
     fp = ForcingParams.validated(np.array(0.5), dps=10)
     assert fp.sigma.shape == () and fp.sigma[()] == Fraction(1, 2)
+
+
+def test_float_arg_zero_and_names():
+    with pytest.raises(ValueError, match=r"^x must be > 0, got 0\.0 at index 1$"):
+        float_arg("x", np.array([1.0, 0.0]))
+    with pytest.raises(ValueError, match=r"^x"):
+        float_arg("x", [1.0, -1.0])
+    with pytest.raises(TypeError, match=r"^x"):
+        float_arg("x", True, positive=False)
+    assert (float_arg("x", np.array([1.0, 0.0]), positive=False) == [1.0, 0.0]).all()
+
+
+def test_sympy_irrationals_take_40_digits():
+    sympy = pytest.importorskip("sympy")
+    got = rational_arg("s", sympy.sqrt(2))
+    assert got == Fraction("1.414213562373095048801688724209698078570")  # 40 digits
+    assert float(float_arg("x", sympy.pi)) == 3.141592653589793
