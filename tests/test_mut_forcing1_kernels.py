@@ -79,11 +79,14 @@ def _ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
         x, y = _xy(s0, s1, om, Om, d)
         p = _closed_p(x, y)
         q = 1 - p
-        # kappa = |d ln p/d ln d|: x, y scale as d^2; central difference in ln d
-        h = mpmath.mpf(10) ** (-(w // 3))
-        dp = (_closed_p(x * (1 + h) ** 2, y * (1 + h) ** 2)
-              - _closed_p(x * (1 - h) ** 2, y * (1 - h) ** 2)) / (2 * h)
-        return p, q, mpmath.log(p), mpmath.log(q), abs(dp / p), abs(dp / q)
+        # kappa = |d ln p/d ln d|: x, y scale as d^2; central difference of ln p in ln d with
+        # h = 1e-20 (ln p is smooth in ln d: the truncation error is O(h^2) relative; the
+        # working precision keeps ~w - 20 digits of the difference even for ln p ~ -1e200)
+        h = mpmath.mpf(10) ** -20
+        lp = mpmath.log(p)
+        kp = abs(mpmath.log(_closed_p(x * mpmath.exp(2 * h), y * mpmath.exp(2 * h)))
+                 - mpmath.log(_closed_p(x * mpmath.exp(-2 * h), y * mpmath.exp(-2 * h)))) / (2 * h)
+        return p, q, lp, mpmath.log(q), kp, kp * p / q
 
 
 _CACHE: dict | None = None
