@@ -253,7 +253,7 @@ def test_float64_extreme_scales_every_region(pt):
 #: with results that are normal floats or finite logs: every region of the mantissa path
 #: (both orders of the two scales, a given Omega and omega above 1e100)
 _HUGE_SMALL = [1e-200, 3e-170, 2e-77, 1e200, 5e160, 3e76]
-_OTHER = [0.05, 0.3, 0.4, 0.55, 0.9, 2.0, 1e3, 1e80, 1e200]  # 0.55, 0.9: G series near z = 1
+_OTHER = [0.05, 0.3, 0.36, 0.4, 0.55, 0.9, 2.0, 1e3, 1e80, 1e200]  # G(z) near z = 1, 2
 MANTISSA = ([(a, b, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
             + [(b, a, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
             + [(1e-180, 0.4, 1.0, 1.7, 2.0), (0.4, 1e-180, 1.3, 0.6, 0.5),
