@@ -30,6 +30,7 @@ __all__ = [
 
 SQRT_PI = math.sqrt(math.pi)
 _SPLIT = 134217729.0  # 2**27 + 1, Dekker splitting constant
+_TINY = float(np.finfo(float).tiny)
 
 
 def delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
@@ -318,10 +319,18 @@ def _q_comp(uv: UV, want: str) -> np.ndarray:
         xy = uv.x * uv.y
         qs *= xy
         return qs
+    # log of the product where it is a normal float (an error of a few ulps of q); the sum of
+    # the logs (no under/overflow for huge or tiny scales) only where it is not
+    q = qs * uv.x
+    q *= uv.y
+    ok = (q >= _TINY) & (q < math.inf)
+    if ok.all():
+        return np.log(q, out=q)
     lq = np.log(uv.x)
     lq += np.log(uv.y)
     lq += np.log(qs, out=qs)
-    return lq
+    np.log(q, out=q, where=ok)
+    return np.where(ok, q, lq)
 
 
 def _q_direct(uv: UV, want: str) -> np.ndarray:

@@ -1,0 +1,467 @@
+"""float64 kernels of one forcing component (``symhx.forcing.kernels_float``) against an
+independent high-precision reference, on dense log grids that reach every code path.
+
+The reference (:func:`ref_values`) evaluates the closed form of eq. (27) written out here (no
+package code) at a working precision raised by the digits that cancel in ``1 - p`` and by those
+that ``exp(-uv)`` needs, from the *exact* binary values of the float inputs; it is itself
+checked against direct quadrature of the convolution of the two Rayleigh densities
+(``mpmath.quad``, both tails as positive integrands). The tolerance is the documented contract
+"a few ulps for every normal result", scaled by the condition number ``kappa = |d ln p/d ln d|``
+of the value (the roundings of ``x`` and ``y`` are amplified by it):
+``|rel. error| <= C eps (1 + kappa)``, ``C = 8`` (observed worst cases are quoted per test).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import itertools
+import json
+import math
+import os
+import tempfile
+
+import mpmath
+import numpy as np
+import pytest
+
+from symhx import forcing as F
+from symhx.forcing.arguments import ForcingParams
+from symhx.forcing.kernels_float import (
+    delta_float,
+    gauss_legendre,
+    i2_float,
+    i3_float,
+    pq_float,
+    single_float,
+    uv_forcing,
+    uv_from_h,
+)
+
+EPS = float(np.finfo(float).eps)
+TINY = float(np.finfo(float).tiny)
+C = 8.0
+WANTS = ("p", "q", "logp", "logq")
+
+
+# ------------------------------------------------------------------------------ the reference
+def _xy(s0, s1, om, Om, d):
+    """Exact-input x = d^2/(4 s0^2), y = d^2 (om^2 - Om^2)^2/(4 s1^2) at the current precision
+    (``Om=None``: Om^2 = 2 exactly)."""
+    s0, om, d = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
+    s1 = s0 if s1 is None else mpmath.mpf(s1)
+    om2 = mpmath.mpf(2) if Om is None else mpmath.mpf(Om) ** 2
+    delta = om * om - om2
+    return d * d / (4 * s0 * s0), (d * delta) ** 2 / (4 * s1 * s1)
+
+
+def _closed_p(x, y):
+    r = mpmath.sqrt(x + y)
+    u, v = x / r, y / r
+    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+    return mpmath.exp(-u * v) * b / r
+
+
+def _work_dps(s0, s1, om, Om, d):
+    with mpmath.workprec(80):
+        x, y = _xy(s0, s1, om, Om, d)
+        # 1 - p ~ min(x, y, 1) * min(max(x, y), 1): the digits that cancel in 1 - p
+        lost = (max(0.0, -float(mpmath.log10(min(x, y))))
+                + max(0.0, -float(mpmath.log10(max(x, y)))))
+        e = float(mpmath.log10(1 + x * y / (x + y)))
+    return int(45 + lost + e)
+
+
+def _ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
+    w = _work_dps(s0, s1, om, Om, d)
+    with mpmath.workdps(w):
+        x, y = _xy(s0, s1, om, Om, d)
+        p = _closed_p(x, y)
+        q = 1 - p
+        # kappa = |d ln p/d ln d|: x, y scale as d^2; central difference of ln p in ln d with
+        # h = 1e-20 (ln p is smooth in ln d: the truncation error is O(h^2) relative; the
+        # working precision keeps ~w - 20 digits of the difference even for ln p ~ -1e200)
+        h = mpmath.mpf(10) ** -20
+        lp = mpmath.log(p)
+        kp = abs(mpmath.log(_closed_p(x * mpmath.exp(2 * h), y * mpmath.exp(2 * h)))
+                 - mpmath.log(_closed_p(x * mpmath.exp(-2 * h), y * mpmath.exp(-2 * h)))) / (2 * h)
+        return p, q, lp, mpmath.log(q), kp, kp * p / q
+
+
+_CACHE: dict | None = None
+_CACHE_FILE = ""
+
+
+def _cached(fn, *args):
+    """``fn(*args)`` (a tuple of mpf) through a cache file keyed by a hash of this file's
+    reference code: the values depend only on the exact inputs and that code (no package
+    code), and repeated runs (mutation testing) need not recompute them."""
+    global _CACHE, _CACHE_FILE
+    if _CACHE is None:
+        src = "".join(inspect.getsource(f) for f in (_xy, _closed_p, _work_dps, _ref_values,
+                                                      _i_ref_values))
+        h = hashlib.sha256(src.encode()).hexdigest()[:16]
+        _CACHE_FILE = os.path.join(tempfile.gettempdir(), f"symhx-mut-forcing1-ref-{h}.json")
+        try:
+            with open(_CACHE_FILE) as fh:
+                _CACHE = json.load(fh)
+        except (OSError, ValueError):
+            _CACHE = {}
+    key = repr((fn.__name__, *args))
+    if key not in _CACHE:
+        with mpmath.workdps(40):
+            _CACHE[key] = [mpmath.nstr(v, 40) for v in fn(*args)]
+        tmp = f"{_CACHE_FILE}.{os.getpid()}"
+        with open(tmp, "w") as fh:
+            json.dump(_CACHE, fh)
+        os.replace(tmp, _CACHE_FILE)
+    with mpmath.workdps(40):
+        return tuple(mpmath.mpf(v) for v in _CACHE[key])
+
+
+def ref_values(s0, s1=None, om=1.0, Om=None, d=1.0):
+    """``(p, q, log p, log q, kappa_p, kappa_q)`` as mpf (30+ correct digits)."""
+    return _cached(_ref_values, s0, s1, om, Om, d)
+
+
+def conv_reference(s0, s1, om, Om, d, dps=30):
+    """p and 1 - p by quadrature of the convolution (positive integrands, no closed form):
+    ``P(Ra + Rb > d) = P(Rb > d) + int_0^d f_b(t) P(Ra > d - t) dt``, ``P(... <= d) =
+    int_0^d f_b(t) P(Ra <= d - t) dt``, scales ``a = sqrt(2) s0``, ``b = sqrt(2) s1/|Delta|``."""
+    with mpmath.workdps(dps + 10):
+        s0, om, d = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
+        s1 = s0 if s1 is None else mpmath.mpf(s1)
+        om2 = mpmath.mpf(2) if Om is None else mpmath.mpf(Om) ** 2
+        a = mpmath.sqrt(2) * s0
+        b = mpmath.sqrt(2) * s1 / abs(om * om - om2)
+
+        def fb(t):
+            return t / b**2 * mpmath.exp(-t * t / (2 * b * b))
+
+        ts = a**2 * d / (a**2 + b**2)  # saddle of the upper-tail integrand
+        w = a * b / mpmath.sqrt(a**2 + b**2)
+        pts = sorted({mpmath.mpf(0), d} | {min(max(ts + k * w, 0), d) for k in range(-8, 9)}
+                     | {c * s for s in (a, b) for c in (0.5, 1, 2, 4) if c * s < d})
+        up = mpmath.quad(lambda t: fb(t) * mpmath.exp(-(d - t) ** 2 / (2 * a * a)), pts)
+        up += mpmath.exp(-d * d / (2 * b * b))
+        lo = mpmath.quad(lambda t: fb(t) * -mpmath.expm1(-(d - t) ** 2 / (2 * a * a)), pts)
+        return up, lo
+
+
+def rel(a, b):
+    with mpmath.workdps(60):
+        return abs(mpmath.mpf(a) / mpmath.mpf(b) - 1)
+
+
+@pytest.mark.parametrize(("s0", "s1", "om", "Om", "d"), [
+    (0.05, None, 1.0, None, 1.0), (0.3, None, 1.0, None, 1.0), (3.0, None, 1.0, None, 1.0),
+    (0.4, 2e-3, 0.7, 2.0, 0.3), (20.0, 0.5, 1.3, 0.9, 5.0), (0.02, 7.0, 1.0, None, 1.0)])
+def test_reference_closed_form_against_convolution_quadrature(s0, s1, om, Om, d):
+    p, q, *_ = ref_values(s0, s1, om, Om, d)
+    up, lo = conv_reference(s0, s1, om, Om, d)
+    assert rel(p, up) < 1e-25 and rel(q, lo) < 1e-25, (p, up, q, lo)
+
+
+# ------------------------------------------------------------------------------ grids
+CASES = [(1.0, None, 1.0), (0.7, 2.0, 0.3), (1.3, 0.9, 5.0), (2.5, 1.1, 1e-3)]
+RATIOS = [None, 1e-8, 1e-4, 0.1, 1.0, 3.0, 1e4, 1e8]
+
+
+def _check(vals, point, worst, c=C):
+    refs = ref_values(*point)
+    p, q, lp, lq, kp, kq = refs
+    assert 0.0 <= vals[0] <= 1.0 and 0.0 <= vals[1] <= 1.0, (point, vals)
+    assert vals[2] <= 0.0 and vals[3] <= 0.0, (point, vals)
+    for name, val, ref, kappa in (("p", vals[0], p, kp), ("q", vals[1], q, kq),
+                                  ("logp", vals[2], lp, kp), ("logq", vals[3], lq, kq)):
+        assert not math.isnan(val), (name, point)
+        if name.startswith("log"):
+            # absolute error of a log: the relative error of its argument
+            err = abs(mpmath.mpf(val) - ref)
+            bound = c * EPS * (1 + float(kappa) + abs(float(ref)))
+        else:
+            if abs(ref) < TINY:  # below the normal range: 0 or a subnormal rounding
+                assert abs(val) < 2 * TINY, (name, point, val, ref)
+                continue
+            err = rel(val, ref)
+            bound = c * EPS * (1 + float(kappa))
+        worst[name] = max(worst.get(name, 0.0), float(err) / bound)
+        assert err <= bound, (name, point, val, ref, float(err), bound)
+
+
+def _grid(case, ratio, sigmas):
+    om, Om, d = CASES[case]
+    return [(float(s), None if ratio is None else float(s * ratio), om, Om, d) for s in sigmas]
+
+
+@pytest.mark.parametrize("case", range(len(CASES)))
+def test_float64_four_values_on_dense_log_grid(case):
+    """sigma in [0.01, 100] (dense) x sigma1/sigma in 1e-8 .. 1e8: both tails, the complement
+    form and the direct form of 1 - p, mixed chunks (arrays whose entries take both forms),
+    the equal-scales shortcut (ratio None) and unequal scales. Arrays and scalars agree."""
+    om, Om, d = CASES[case]
+    sig = np.logspace(-2, 2, 33) * (1 + 1 / 7)  # no round values
+    worst: dict[str, float] = {}
+    for ratio in RATIOS:
+        pts = _grid(case, ratio, sig)
+        s1 = None if ratio is None else sig * ratio
+        arrs = [F.impact_probability(sig, sigma1=s1, omega=om, Omega=Om, d=d),
+                F.no_impact_probability(sig, sigma1=s1, omega=om, Omega=Om, d=d),
+                F.log_impact_probability(sig, sigma1=s1, omega=om, Omega=Om, d=d),
+                F.log_no_impact_probability(sig, sigma1=s1, omega=om, Omega=Om, d=d)]
+        for i, pt in enumerate(pts):
+            vals = [float(a[i]) for a in arrs]
+            _check(vals, pt, worst)
+            if i % 8 == 3:  # scalar inputs: the same numbers
+                fp = ForcingParams.validated(pt[0], pt[1], om, Om, d)
+                assert [single_float(fp, w) for w in WANTS] == vals, pt
+    assert set(worst) == set(WANTS)
+
+
+EXTREME = [  # (s0, s1, om, Om, d): the mantissa/exponent path, every region
+    (1e-200, None, 1.0, None, 1.0), (1e200, None, 1.0, None, 1.0), (1e-80, 1e-70, 1.0, None, 1.0),
+    (1e80, 1e90, 1.0, None, 1.0), (1e80, 1e-3, 1.0, None, 1.0), (1e-3, 1e80, 1.0, None, 1.0),
+    (0.3, 1e120, 1.0, None, 1.0), (1e120, 0.3, 1.0, None, 1.0), (1e-100, 1e100, 1.0, None, 1.0),
+    (1e100, 1e-100, 1.0, None, 1.0), (2.0, 3.0, 1e120, None, 1.0), (2.0, 3.0, 1e-120, 2.0, 1.0),
+    (1.0, 1.0, 1.0, None, 1e-110), (1e-100, 1e-100, 1.0, None, 1e-110), (1.0, 1.0, 1.0, 1.5, 1e110),
+    (1e40, 1e40, 1.0, 3.0, 1e120), (1e-60, 1e-60, 1e120, None, 1e-60),
+    (1.0, 1e-20, 2e60, 1e60, 1.0),
+    (1e-50, 1e-50, 1.0, None, 1e-60), (1e75, 1e-75, 1.0, None, 1.0), (1e76, 2.0, 1.0, None, 1.0),
+    (5e-77, 3e76, 1.0, None, 1.0), (1e150, 1e-150, 1.0, None, 1.0), (1e-150, 1e150, 1.0, None, 1.0),
+    (3e160, 1e150, 1.0, 2.0, 1.0), (0.01, 1e-10, 1.0, None, 1.0), (1e-5, 1e-5, 1.0, None, 1e-3),
+]
+
+
+@pytest.mark.parametrize("pt", EXTREME)
+def test_float64_extreme_scales_every_region(pt):
+    """Scales far from d or from each other (the mantissa/exponent path and its limits)."""
+    s0, s1, om, Om, d = pt
+    vals = [float(getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d)) for f in
+            ("impact_probability", "no_impact_probability", "log_impact_probability",
+             "log_no_impact_probability")]
+    with mpmath.workprec(80):
+        x, y = _xy(s0, s1, om, Om, d)
+        e = x * y / (x + y)
+    if e > 1e308:  # log p below every float: the limits
+        assert vals == [0.0, 1.0, -math.inf, 0.0]
+        return
+    _check(vals, pt, {})
+
+
+#: scales whose sqrt(x) or sqrt(y) is beyond 1e154 (x or y not a float) or below 1e-154,
+#: with results that are normal floats or finite logs: every region of the mantissa path
+#: (both orders of the two scales, a given Omega and omega above 1e100)
+_HUGE_SMALL = [1e-200, 3e-170, 2e-77, 1e200, 5e160, 3e76]
+_OTHER = [0.05, 0.3, 0.36, 0.4, 0.55, 0.9, 2.0, 1e3, 1e80, 1e200]  # G(z) near z = 1, 2
+MANTISSA = ([(a, b, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
+            + [(b, a, 1.0, None, 1.0) for a in _HUGE_SMALL for b in _OTHER]
+            + [(1e-180, 0.4, 1.0, 1.7, 2.0), (0.4, 1e-180, 1.3, 0.6, 0.5),
+               (1e180, 0.4, 1.0, 1.7, 2.0), (0.4, 3e190, 1.0, 2.5, 1.0),
+               (1e-190, 1e150, 2.0, 1.0, 1.0), (2.0, 1e150, 3e105, None, 1.0),
+               (1e210, 1e80, 2e105, None, 1.0), (1e-10, 1e150, 1e120, None, 1e-30),
+               (0.3, 0.2, 1e160, None, 1e-160), (0.3, 1e200, 1.5e180, 1e180, 1.0),
+               # omega != 1 with Omega None (|omega^2 - 2| != omega^2)
+               (1e-200, 0.3, 0.5, None, 1.0), (0.3, 1e-200, 3.0, None, 1.0),
+               (1e200, 0.4, 1.7, None, 1.0), (0.4, 1e200, 0.2, None, 1.0),
+               # both scales moderate against d, d and |Delta| outside [1e-100, 1e100]
+               (1e-120, 0.7, 1e60, None, 1e-120), (1e-120, 0.2, 1e60, 2.0, 1e-120),
+               (2e-120, 3.0, 1e60, None, 1e-120),
+               # both sqrt(x), sqrt(y) above 1e75 and comparable: log p = -uv, finite
+               (1e-100, 1.5e-100, 1.0, None, 1.0), (2e-90, 1e-90, 0.5, None, 1.0)])
+
+
+@pytest.mark.parametrize("pt", MANTISSA)
+def test_float64_mantissa_exponent_path(pt):
+    s0, s1, om, Om, d = pt
+    vals = [float(getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d)) for f in
+            ("impact_probability", "no_impact_probability", "log_impact_probability",
+             "log_no_impact_probability")]
+    with mpmath.workprec(80):
+        x, y = _xy(s0, s1, om, Om, d)
+        e = x * y / (x + y)
+    if e > 1e308:
+        assert vals == [0.0, 1.0, -math.inf, 0.0]
+        return
+    # C = 12 here: G(z) = phi~(z) - 2 psi~(z) by its closed form for 1 <= z < 2 cancels about
+    # one digit (observed 8.4 eps for 1 - p at sigma = 3e76, sigma1 = 0.4)
+    _check(vals, pt, {}, c=12.0)
+
+
+def test_mixed_chunks_and_chunk_boundaries():
+    """More values than one chunk (16384), entries of every region interleaved: every value
+    equals its scalar evaluation and the reference."""
+    base = [pt for pt in EXTREME if pt[2:] == (1.0, None, 1.0)]
+    base += [(s, s * r, 1.0, None, 1.0) for s in (0.02, 0.3, 4.0, 60.0) for r in (1e-6, 1.0, 1e5)]
+    n = 16384 + 5000
+    idx = np.arange(n) % len(base)
+    s0 = np.array([base[i][0] for i in idx])
+    s1 = np.array([base[i][0] if base[i][1] is None else base[i][1] for i in idx])
+    refs = [ref_values(b[0], b[1]) for b in base]
+    for k, fn in enumerate((F.impact_probability, F.no_impact_probability,
+                            F.log_impact_probability, F.log_no_impact_probability)):
+        arr = fn(s0, sigma1=s1)
+        assert arr.shape == (n,)
+        for j, b in enumerate(base):
+            vals = arr[idx == j]
+            assert (vals == vals[0]).all(), (fn.__name__, b)
+            one = float(fn(b[0], sigma1=b[1] if b[1] is not None else b[0]))
+            assert vals[0] == one or (math.isnan(one) and math.isnan(vals[0])), (b, vals[0], one)
+            ref = refs[j][k]
+            kappa = refs[j][4 if k in (0, 2) else 5]
+            if k < 2:
+                if abs(ref) < TINY:
+                    assert abs(one) < 2 * TINY
+                else:
+                    assert rel(one, ref) <= C * EPS * (1 + float(kappa)), (fn.__name__, b)
+            elif mpmath.isfinite(ref) and abs(ref) < 1e300:
+                bound = C * EPS * (1 + float(kappa) + abs(float(ref)))
+                assert abs(mpmath.mpf(one) - ref) <= bound, (fn.__name__, b, one, ref)
+
+
+def test_broadcast_shapes_and_empty():
+    s = np.array([[0.1], [0.5]])
+    d = np.array([0.5, 1.0, 2.0])
+    out = F.impact_probability(s, d=d)
+    assert out.shape == (2, 3)
+    for i in range(2):
+        for j in range(3):
+            p = ref_values(float(s[i, 0]), None, 1.0, None, float(d[j]))[0]
+            assert rel(out[i, j], p) < 16 * EPS * 20
+    assert F.impact_probability(np.array([]), d=1.0).shape == (0,)
+    assert F.no_impact_probability(np.zeros((2, 0)) + 1.0).shape == (2, 0)
+    # sigma1 as the only array, Omega array (one component), omega array
+    out = F.no_impact_probability(0.3, sigma1=np.array([0.1, 0.3, 2.0]), Omega=np.array([1.5]))
+    for j, s1 in enumerate((0.1, 0.3, 2.0)):
+        assert rel(out[j], ref_values(0.3, s1, 1.0, 1.5, 1.0)[1]) < 1e-14
+
+
+# ------------------------------------------------------------------------------ building blocks
+def test_delta_float_near_resonance_exact():
+    """omega**2 - 2 for omega within ulps of sqrt(2) (Dekker split): relative error ~eps
+    against exact rational arithmetic; and omega**2 - Omega**2 for a given Omega."""
+    from fractions import Fraction
+
+    r2 = math.sqrt(2.0)
+    oms = np.array([math.nextafter(r2, 0), r2, math.nextafter(r2, 3), r2 * (1 + 1e-9), 0.3,
+                    1e150, 1e-160, 3.7e100])
+    got = delta_float(oms, None)
+    for o, g in zip(oms, got, strict=True):
+        exact = Fraction(float(o)) ** 2 - 2
+        assert abs(Fraction(float(g)) - exact) <= abs(exact) * Fraction(EPS), (o, g)
+    assert delta_float(np.array(2e160), None) == math.inf
+    Om = np.array([0.9, 1.1, 2.0])
+    g = delta_float(np.array(1.0), Om)
+    for o, gv in zip(Om, g, strict=True):
+        exact = 1 - Fraction(float(o)) ** 2
+        assert abs(Fraction(float(gv)) - exact) <= abs(exact) * 2 * Fraction(EPS)
+    # an underflowed product is no resonance
+    assert delta_float(np.array(1e-200), np.array(2e-200)) == 0.0
+    with pytest.raises(ValueError, match=r"resonance.*at index 1"):
+        delta_float(np.array([1.0, 2.0]), np.array([1.5, 2.0]))
+    with pytest.raises(ValueError, match="resonance"):
+        delta_float(np.array(1.5), np.array(1.5))
+
+
+def test_uv_building_blocks():
+    hx, hy = np.array([0.3, 2.0, 5e-3]), np.array([0.7, 2.0, 40.0])
+    uv = uv_from_h(hx, hy)
+    for i in range(3):
+        with mpmath.workdps(40):
+            x, y = mpmath.mpf(hx[i]) ** 2, mpmath.mpf(hy[i]) ** 2
+            r = mpmath.sqrt(x + y)
+            for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
+                             (uv.v[i], y / r), (uv.e[i], x * y / (x + y))):
+                assert rel(got, ref) < 4 * EPS
+    s0, s1, om, Om, d = np.array(0.3), np.array([0.2, 5.0]), np.array(1.2), np.array(0.6), 0.8
+    uv = uv_forcing(s0, s1, om, Om, d)
+    for i in range(2):
+        with mpmath.workdps(40):
+            x, y = _xy(float(s0), s1[i], float(om), float(Om), d)
+            r = mpmath.sqrt(x + y)
+            for got, ref in ((uv.x, x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
+                             (uv.v[i], y / r), (uv.e[i], x * y / (x + y))):
+                assert rel(got, ref) < 8 * EPS
+    p = pq_float(uv, "p")
+    q = pq_float(uv, "q")
+    for i in range(2):
+        ref = ref_values(float(s0), float(s1[i]), float(om), float(Om), d)
+        assert rel(p[i], ref[0]) < C * EPS * (1 + float(ref[4]))
+        assert rel(q[i], ref[1]) < C * EPS * (1 + float(ref[5]))
+
+
+def _i_ref_values(u, v, power):
+    with mpmath.workdps(40):
+        u, v = mpmath.mpf(u), mpmath.mpf(v)
+        f = lambda z: (v + z) ** power * (u - z) * mpmath.exp(-z * z)  # noqa: E731
+        return (mpmath.quad(f, mpmath.linspace(-v, u, 9)),)
+
+
+def _i_ref(u, v, power):
+    return _cached(_i_ref_values, float(u), float(v), power)[0]
+
+
+def test_i2_i3_against_quadrature():
+    """The positive integrals on both sides of their switches (r = 2 and 3): Gauss-Legendre
+    below, the closed form above; relative error within 64 eps (cancellation in the closed form
+    just above the switch costs a few bits)."""
+    us = np.array([1e-3, 0.05, 0.4, 0.9, 1.0, 1.2, 1.6, 2.2, 3.0, 7.0, 1e-3, 30.0])
+    vs = np.array([2e-3, 0.5, 0.1, 0.9, 0.95, 0.5, 1.6, 0.5, 0.1, 2.0, 6.0, 30.0])
+    i2, i3 = i2_float(us, vs), i3_float(us, vs)
+    for k in range(len(us)):
+        assert rel(i2[k], _i_ref(us[k], vs[k], 1)) < 64 * EPS, (us[k], vs[k], i2[k])
+        assert rel(i3[k], _i_ref(us[k], vs[k], 2)) < 64 * EPS, (us[k], vs[k], i3[k])
+    x, w = gauss_legendre(16)
+    assert gauss_legendre(16)[0] is x  # cached
+    assert abs(w.sum() - 2) < 1e-14 and len(x) == 16
+
+
+def test_large_sigma_complement_leading_term():
+    """1 - p -> d^4/(24 s0^2 s1^2) for scales far above d (independent: the density of each
+    Rayleigh near 0 is r/s^2, the simplex volume is d^4/24)."""
+    for s, s1 in ((1e6, 1e6), (3e7, 2e5), (1e30, 1e-2 * 1e30)):
+        lead = 1.0 / (24 * (2 * s * s) * (2 * s1 * s1))
+        q = F.no_impact_probability(s, sigma1=s1)
+        assert abs(q / lead - 1) < 1e-5 * (1e6 / s) ** 2 + 16 * EPS
+        assert abs(F.log_no_impact_probability(s, sigma1=s1) - math.log(lead)) < 1e-5
+
+
+def test_series_truncation_table():
+    """The number of Taylor terms used below z: the first omitted term at ``zmax[k]`` is the
+    tolerance (1/21!), checked against the exact coefficients of phi~ and psi~."""
+    from symhx.forcing.kernels_float import PHI1_C, PSI1_C, _series_zmax
+
+    with mpmath.workdps(40):
+        exact_phi = [(-1) ** n / mpmath.factorial(n + 1) for n in range(1, 20)]
+        exact_psi = [(-1) ** n / (mpmath.factorial(n) * (2 * n + 1)) for n in range(1, 21)]
+        tol = 1 / mpmath.factorial(21)
+        for coeffs, exact in ((PHI1_C, exact_phi), (PSI1_C, exact_psi)):
+            assert [float(c) for c in exact] == coeffs
+            z = _series_zmax(coeffs)
+            assert len(z) == len(coeffs) + 1 and z[0] == 0.0 and z[-1] == math.inf
+            for k in range(1, len(coeffs)):
+                assert abs(abs(exact[k]) * mpmath.mpf(z[k]) ** k / tol - 1) < 1e-12, k
+            assert all(a < b for a, b in itertools.pairwise(z))
+
+
+def test_gauss_legendre_fresh_orders(monkeypatch):
+    from symhx.forcing import kernels_float
+
+    monkeypatch.setattr(kernels_float, "_GL_CACHE", {})  # computed here, not inherited
+    for n in (5, 11, 16):
+        x, w = gauss_legendre(n)
+        xs, _ = mpmath.mp.gauss_quadrature(n, "legendre")
+        assert np.allclose(x, sorted(float(v) for v in xs), rtol=0, atol=1e-15)
+        assert abs(w.sum() - 2) < 1e-14 and len(w) == n
+
+
+def test_pq_float_keeps_the_shape_of_2d_input():
+    s0 = np.array([[0.1, 0.5, 3.0], [0.2, 1.0, 20.0]])
+    uv = uv_forcing(s0, s0 * 0.7, np.array(1.0), None, np.array(1.0))
+    for want, k in (("p", 0), ("q", 1)):
+        out = pq_float(uv, want)
+        assert out.shape == (2, 3)
+        for i in range(2):
+            for j in range(3):
+                r = ref_values(float(s0[i, j]), float(s0[i, j] * 0.7))
+                assert rel(out[i, j], r[k]) < C * EPS * (1 + float(r[4 + k])), (want, i, j)

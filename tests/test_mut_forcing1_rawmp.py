@@ -1,0 +1,197 @@
+"""The raw-libmp fast path of the one-component mpmath evaluation (``symhx.forcing.rawmp``).
+
+Two checks per point: (1) the value is correct to ``dps`` digits against an independent
+reference (the closed form of eq. (27) written out here, at a precision raised by every digit
+that cancels, from the exact binary inputs); (2) the documented promise of the module, "the same
+operations, roundings and precisions as the mpf-object code": the fast value agrees with the
+object code of :mod:`symhx.forcing.kernels_mp` at the same working precision to within a few
+units of its last digits (so a cut precision shows even where ``dps`` digits survive).
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+import mpmath
+import pytest
+
+from symhx.forcing.kernels_mp import (
+    estimate_float,
+    guard_digits,
+    mp_logp_from_xy,
+    mp_p_from_xy,
+    mp_q_from_xy,
+    mp_xy_forcing,
+)
+from symhx.forcing.rawmp import single_mp_fast
+
+WANTS = ("p", "q", "logp", "logq")
+
+
+def _ref(s0, s1, om, Om, d, want, dps):
+    """Independent reference at ``dps + 30`` digits plus every digit that cancels."""
+    with mpmath.workprec(80):
+        s0m, om_, dm = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
+        s1m = s0m if s1 is None else mpmath.mpf(s1)
+        om2 = 2 if Om is None else mpmath.mpf(Om) ** 2
+        x = dm * dm / (4 * s0m * s0m)
+        y = (dm * (om_ * om_ - om2)) ** 2 / (4 * s1m * s1m)
+        lost = int(max(0, -mpmath.log10(min(x, y))) + max(0, -mpmath.log10(max(x, y))))
+        lost += int(mpmath.log10(1 + x * y / (x + y)))
+    with mpmath.workdps(dps + 30 + lost):
+        s0m, om_, dm = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
+        s1m = s0m if s1 is None else mpmath.mpf(s1)
+        om2 = 2 if Om is None else mpmath.mpf(Om) ** 2
+        x = dm * dm / (4 * s0m * s0m)
+        y = (dm * (om_ * om_ - om2)) ** 2 / (4 * s1m * s1m)
+        r = mpmath.sqrt(x + y)
+        u, v = x / r, y / r
+        b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+        b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+        p = mpmath.exp(-u * v) * b / r
+        return {"p": p, "q": 1 - p, "logp": mpmath.log(p), "logq": mpmath.log(1 - p)}[want]
+
+
+def _object_code(args, want, dps):
+    """The mpf-object evaluation of kernels_mp at the fast path's working precision."""
+    e, xy, pest = estimate_float(*args)
+    guard = guard_digits(e)
+    direct_q = want in ("q", "logq") and pest > 0.45
+    if direct_q:
+        guard += 8 + max(0, int(math.log10(7.0 / max(xy, 1e-300))) + 1) if xy < 7 else 10
+    with mpmath.workdps(dps + guard):
+        x, y = mp_xy_forcing(*args)
+        if want == "p":
+            return mp_p_from_xy(x, y), mpmath.mp.prec
+        if want == "logp":
+            return mp_logp_from_xy(x, y), mpmath.mp.prec
+        q = 1 - mp_p_from_xy(x, y) if direct_q else mp_q_from_xy(x, y)
+        return (q if want == "q" else mpmath.log(q)), mpmath.mp.prec
+
+
+def _scale(want, ref, pt, dps):
+    """What a rounding of p at the working precision moves the value by (relative units):
+    ``|v|`` for p and log p; 1 - p and its log move by the rounding of p, not of themselves."""
+    if want == "q":
+        return max(abs(ref), mpmath.mpf(1) - abs(ref))
+    if want == "logq":
+        return 1 / abs(_ref(*pt, "q", dps)) - 1 + abs(ref)
+    return abs(ref)
+
+
+def _fr(v):
+    return None if v is None else Fraction(v)
+
+
+POINTS = [  # (sigma, sigma1, omega, Omega, d): both tails, u == v, erf arguments 0.01 .. 60
+    (0.12, None, 1.0, None, 1.0), (0.05, None, 1.0, None, 1.0), (0.3, None, 1.0, None, 1.0),
+    (0.9, None, 1.0, None, 1.0), (3.0, None, 1.0, None, 1.0), (40.0, None, 1.0, None, 1.0),
+    (0.02, None, 1.0, None, 1.0), (0.011, None, 1.0, None, 1.0), (0.2, 0.7, 0.8, 1.7, 0.6),
+    (0.4, 0.003, 1.3, 0.9, 2.0), (5.0, 0.08, 1.0, None, 3.0), (0.07, 9.0, 1.0, None, 1.0),
+    (1e-3, 2.0, 1.0, 0.5, 1.0), (2.0, 1e-3, 1.0, None, 1.0), (0.25, 0.25, 2.0, 1.0, 1.0),
+    (0.015, 0.5, 1.0, None, 0.75), (7.0, 0.6, 1.2, None, 1.0), (300.0, 100.0, 1.0, None, 1.0),
+    (0.6, 1.5, 1.0, 3.0, 4.0), (0.035, 0.035, 1.0, None, 0.5),
+]
+
+
+@pytest.mark.parametrize("dps", [15, 40])
+@pytest.mark.parametrize("pt", POINTS)
+def test_fast_path_against_reference_and_object_code(pt, dps):
+    args = tuple(_fr(v) for v in pt)
+    done = 0
+    for want in WANTS:
+        val = single_mp_fast(*args, dps, want)
+        if want == "p":  # the fast path always serves p for float inputs
+            assert val is not None
+        if val is None:
+            continue
+        done += 1
+        ref = _ref(*pt, want, dps)
+        with mpmath.workdps(dps + 40):
+            err = abs(val - ref) / abs(ref)
+            assert err < mpmath.mpf(10) ** -dps, (want, pt, val, ref)
+            obj, prec = _object_code(args, want, dps)
+            # same roundings at the same precision: a few units of the last of prec bits,
+            # amplified by the exponent uv (exp(-uv)) and by the digits cancelled in 1 - p
+            diff = abs(val - obj) / _scale(want, ref, pt, dps)
+            assert diff < mpmath.mpf(2) ** (-prec + 12) * (1 + abs(_ref(*pt, "logp", dps))), (
+                want, pt, float(diff), prec)
+    assert done >= 2
+
+
+def test_inputs_it_does_not_take_give_none():
+    one = Fraction(1)
+    fr = Fraction(1, 10)  # not dyadic
+    for args in [(fr, None, one, None, one), (Fraction(1, 8), None, one, fr, one),
+                 (Fraction(1, 8), fr, one, None, one), (Fraction(1, 8), None, fr, None, one),
+                 (Fraction(1, 8), None, one, None, fr),
+                 (Fraction((1 << 70) + 1, 1 << 80), None, one, None, one),  # 71-bit mantissa
+                 (Fraction(-1, 8), None, one, None, one), ("0.1", None, one, None, one),
+                 (1 << 60, None, one, None, one), (math.inf, None, one, None, one),
+                 (0.0, None, one, None, one), (Fraction(1, 4), None, 1.5, 1.5, one)]:
+        assert single_mp_fast(*args, 20, "p") is None, args
+    # resonance with Omega None: omega**2 = 2 cannot happen for a dyadic omega; huge inputs
+    # (x beyond 1e150) are left to the general path
+    assert single_mp_fast(Fraction(1, 1 << 300), None, one, None, one, 20, "p") is None
+    # ints, floats and dyadic Fractions are taken (and give the same value)
+    a = single_mp_fast(Fraction(3, 8), None, 1, None, 2, 30, "p")
+    b = single_mp_fast(0.375, None, 1.0, None, 2.0, 30, "p")
+    c = single_mp_fast(Fraction(3, 8), None, Fraction(1), None, Fraction(2), 30, "p")
+    assert a is not None and a == b == c
+    with mpmath.workdps(50):
+        assert abs(a / _ref(0.375, None, 1.0, None, 2.0, "p", 30) - 1) < mpmath.mpf(10) ** -30
+
+
+def test_large_erf_arguments_keep_full_precision():
+    """u, v from 2 to ~60 (erf by 1 - erfc, or exactly 1): p at 60 digits is still right; the
+    erf term carries most of B there, so a wrong erf shows at once."""
+    for s in (0.2, 0.1, 0.05, 0.03, 0.02, 0.012):
+        for s1 in (None, 0.5 * s, 3 * s):
+            pt = (s, s1, 1.0, None, 1.0)
+            args = tuple(_fr(v) for v in pt)
+            for want in ("p", "logp"):
+                val = single_mp_fast(*args, 60, want)
+                if val is None:  # log p with p > 1/2: log1p(-(1 - p)) in the general path
+                    assert want == "logp" and _ref(*pt, "p", 30) > 0.5
+                    continue
+                ref = _ref(*pt, want, 60)
+                obj, prec = _object_code(args, want, 60)
+                with mpmath.workdps(120):
+                    assert abs(val / ref - 1) < mpmath.mpf(10) ** -60, (pt, want)
+                    assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 12) * (
+                        1 + abs(mpmath.log(abs(ref)))), (pt, want)
+
+
+def test_sqrt_pi_at_fresh_precisions(monkeypatch):
+    """The cached sqrt(pi) is computed right at a precision not seen before (empty cache)."""
+    from symhx.forcing import rawmp
+
+    monkeypatch.setattr(rawmp, "_SQRT_PI_CACHE", {})
+    pt = (0.3, 0.2, 1.0, None, 1.0)
+    args = tuple(_fr(v) for v in pt)
+    for dps in (23, 23, 61):
+        val = single_mp_fast(*args, dps, "p")
+        obj, prec = _object_code(args, "p", dps)
+        with mpmath.workdps(120):
+            assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 8), dps
+            assert abs(val / _ref(*pt, "p", dps) - 1) < mpmath.mpf(10) ** -dps
+    assert len(rawmp._SQRT_PI_CACHE) == 2
+
+
+def test_erf_raw_is_within_one_ulp_of_prec():
+    """The documented accuracy of the erf helper: erf(u) to ``prec`` bits (within one unit of
+    the last bit) for u from 0.01 to 60 and several precisions, against mpmath at 3x the
+    precision."""
+    from symhx.forcing.rawmp import _erf_raw
+
+    lm = mpmath.libmp
+    for prec in (60, 120, 200, 400):
+        # and u just below the point where erf(u) rounds to 1 at prec bits (u^2 log2(e) ~ prec)
+        edge = [math.sqrt((prec + k) / 1.4426950408889634) for k in (-2.5, -1, 0.5, 2)]
+        for uf in (0.013, 0.7, 1.9, 2.1, 3.3, 5.0, 7.5, 9.9, 12.5, 17.0, 23.0, 31.0, 60.0, *edge):
+            u = lm.from_float(uf)
+            got = mpmath.mp.make_mpf(_erf_raw(u, prec))  # exact, no rounding
+            with mpmath.workprec(3 * prec):
+                ref = mpmath.erf(mpmath.mpf(uf))
+                assert abs(got - ref) <= mpmath.mpf(2) ** (-prec) * abs(ref), (prec, uf)
