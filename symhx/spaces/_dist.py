@@ -128,6 +128,9 @@ def screen_margin(N: int) -> float:
 
 # --------------------------------------------------------------------------- exact comparisons
 def _rational(p: Any, fr: Fraction | None) -> Fraction:
+    """The exact value of ``p`` (``fr`` if known); a sympy irrational at 60 digits."""
+    if fr is None:
+        fr, p = check_p(p)
     if fr is not None:
         return fr
     with mpmath.workdps(60):
