@@ -13,9 +13,10 @@ Arithmetic (same contract as :mod:`symhx.distribution`):
   ``N <= 20000`` every ``W(k)`` by a product recurrence; above, a float64 screen keeps only the
   ``k`` whose weight is within ``dps`` + guard digits of the largest.
 * modes are decided exactly for every rational ``p`` (floats and mpf included, at their exact
-  binary value): a float64 screen of ``log W`` (absolute error < 1e-8 for ``N <= 10**6``) keeps
-  the ``k`` within a margin 100x that error of the maximum; those candidates are then compared
-  exactly (integers) or by interval arithmetic with an exact fall-back, so ties are found exactly.
+  binary value): the argmax of a float64 ``log W`` (absolute error < 1e-8 for ``N <= 10**6``) is
+  only a seed; :func:`symhx.certify.space_candidates` keeps every ``k`` that Arb balls cannot
+  prove to weigh less than it, and those candidates are compared exactly (integers) or by
+  interval arithmetic with an exact fall-back, so ties are found exactly.
 """
 
 from __future__ import annotations
@@ -119,11 +120,6 @@ def log_W_float(space: Space, N: int, logp: float) -> np.ndarray:
     ks = np.arange(1, N + 1, dtype=float)
     lphi = ks * logp + (gammaln(N + 1.0) - gammaln(N - ks + 1.0)) - np.log(ks)
     return lphi + log_Q_float(space, N, logp)
-
-
-def screen_margin(N: int) -> float:
-    """Margin of the float64 screen: > 100x the worst rounding error of :func:`log_W_float`."""
-    return 1e-9 + 2e-13 * (N + 10) * math.log(N + 10) * 50
 
 
 # --------------------------------------------------------------------------- exact comparisons
