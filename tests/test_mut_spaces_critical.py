@@ -331,3 +331,19 @@ def test_wrong_seed_is_still_certified(monkeypatch):
     assert got.argmins == right.argmins and got.p == right.p
     assert got.p_bounds == right.p_bounds and got.k_after == right.k_after
     assert got.sign_evaluations > right.sign_evaluations
+
+
+def test_root_estimates_widen_a_narrow_bracket(monkeypatch):
+    """Start from a bracket (-0.01, 0.01) that misses roots on both sides: the doubling widens
+    each side until it brackets, and the estimates still match the bisection roots."""
+    monkeypatch.setattr(crit, "ROOT_BRACKET", 0.01)
+    for base, w, N in (("eq41", "length", 12), ("excess<=3", "distinct", 30)):
+        space = base if w == "length" else base + ";distinct"
+        s = root_estimates(space, N)
+        roots = _roots(N, base, w)
+        with mpmath.workdps(30):
+            refs = [float(mpmath.log(N * roots[k])) for k in range(2, N + 1)]
+        assert min(refs) < -0.01 or base == "eq41"
+        assert max(refs) > 0.01
+        for k, ref in zip(range(2, N + 1), refs, strict=True):
+            assert abs(s[k - 2] - ref) <= 1e-10 * max(1.0, abs(ref)), (base, N, k)

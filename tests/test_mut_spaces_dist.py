@@ -556,8 +556,9 @@ def test_class_decomposition_against_walks(base, w):
 
 @pytest.mark.parametrize("base,w", [("eq41", "length"), ("excess<=3", "distinct"),
                                     ("eq41-printed", "length")])
-def test_class_decomposition_mpmath_against_exact(base, w):
+def test_class_decomposition_mpmath_against_exact(base, w, monkeypatch):
     N, p, dps = 30, 0.06, 25
+    monkeypatch.setattr(dist, "DIRECT_LIMIT", N)  # N = DIRECT_LIMIT is still listed
     ex = class_decomposition(N, Fraction(p), space=base, weighting=w)
     mp = class_decomposition(N, p, space=base, weighting=w, dps=dps)
     assert mp.shapes == ex.shapes
@@ -580,3 +581,48 @@ def test_class_decomposition_mpmath_against_exact(base, w):
             assert +v != v or v == 0
     with pytest.raises(ValueError, match="N <= "):
         class_decomposition(dist.DIRECT_LIMIT + 1, 0.001, space=base, weighting=w, dps=15)
+
+
+def test_direct_path_lists_every_k(monkeypatch):
+    """N <= DIRECT_LIMIT: every W(k) by the recurrence (no k left out, even at 10**-200)."""
+    N, p, base = 80, 1 / 800, "eq41"
+    W = _W(_burnside_poly(N, base, "length"), Fraction(p))
+    g = sum(W)
+    for limit, complete in ((N, True), (N - 1, False)):
+        monkeypatch.setattr(dist, "DIRECT_LIMIT", limit)
+        d = distribution(N, p, space=base, dps=15)
+        assert (d._runs() == [(1, N)]) == complete
+        assert (sorted(d._terms) == list(range(1, N + 1))) == complete
+        table = d.table()
+        assert all(v > 0 for _, v in table) == complete
+        assert _close(table[-1][1], W[-1] / g, 15) == complete
+        # cdf and sf by the k listed in [lo, hi]; in the far tail as accurate either way
+        assert _close(d.sf(N - 3), sum(W[N - 3:]) / g, 15)
+
+
+def test_terms_accurate_to_the_working_precision():
+    """The fixed-point Q* of the recurrence: every W(k) to ~wdps digits (large U_e(k) at
+    large k, where too few fractional bits would show)."""
+    for base, w in (("excess<=4", "length"), ("eq41", "distinct")):
+        N, p = 400, 0.3
+        d = distribution(N, p, space=base, weighting=w, dps=20)
+        terms = d._terms
+        for k in (1, 2, 3, 5, 150, 399, 400):
+            ref = _W({k: _burnside_k(N, base, w, k)}, Fraction(p))[0]
+            assert _close(terms[k], ref, d._wdps - 3), (base, k)
+
+
+def test_run_starting_at_two(monkeypatch):
+    """A run that starts at k = 2 gets Phi(2) from its closed form, not N p."""
+    N, base = 40, "excess<=2"
+    monkeypatch.setattr(dist, "DIRECT_LIMIT", 10)
+    fake = np.full(N, -1e6)
+    fake[1:6] = 0.0       # k = 2..6
+    monkeypatch.setattr(dist, "log_W_float", lambda sp, n, lp: fake.copy())
+    p = Fraction(0.125)
+    d = distribution(N, 0.125, space=base, dps=20)
+    assert d._runs() == [(2, 6)]
+    W = _W(_burnside_poly(N, base, "length"), p)
+    assert sorted(d._terms) == [2, 3, 4, 5, 6]
+    for k, v in d._terms.items():
+        assert _close(v, W[k - 1], d._wdps - 2), k
