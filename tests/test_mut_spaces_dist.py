@@ -514,6 +514,14 @@ def test_sympy_irrational_p():
     assert modes(N, p, space=base) == want
     assert abs(dist._rational(p, None) - pr) < Fraction(1, 10**58) * pr
     assert abs(d.weight_exact(3) - W[2]) < Fraction(1, 10**55) * W[2]
+    assert d.modes() == want and d.mode() == want[0]
+    g = sum(W)
+    f64 = distribution(N, p, space=base, dps=None)
+    assert all(abs(f64.pmf(k) - float(W[k - 1] / g)) <= 1e-10 * float(W[k - 1] / g)
+               for k in (1, 5, 30))
+    cd = class_decomposition(N, p, space=base, dps=30)
+    with mpmath.workdps(60):
+        assert _close(mpmath.fsum(cd.joint[s][4] for s in cd.shapes), W[4] / g, 30)
 
 
 # --------------------------------------------------------------------------- classes
@@ -581,6 +589,54 @@ def test_class_decomposition_mpmath_against_exact(base, w, monkeypatch):
             assert +v != v or v == 0
     with pytest.raises(ValueError, match="N <= "):
         class_decomposition(dist.DIRECT_LIMIT + 1, 0.001, space=base, weighting=w, dps=15)
+    # class_probabilities keeps the requested digits
+    probs = class_probabilities(N, p, space=base, weighting=w, dps=dps)
+    assert probs == {mp.labels[s]: mp.totals[s] for s in mp.shapes}
+    for s in mp.shapes:
+        v = probs[mp.labels[s]]
+        with mpmath.workdps(dps):
+            assert +v == v
+        with mpmath.workdps(dps - 3):
+            assert +v != v
+        assert _close(v, ex.totals[s], dps)
+
+
+def test_class_defaults_are_eq41():
+    p = Fraction(1, 7)
+    assert class_decomposition(6, p).totals == class_decomposition(6, p, space="eq41").totals
+    assert class_probabilities(6, p) == class_probabilities(6, p, space="eq41")
+    assert class_probabilities(6, p) != class_probabilities(6, p, space="eq41-printed")
+
+
+def test_class_decomposition_at_many_digits_and_large_n():
+    """dps = 40 (sums of the excess levels at dps + 10 digits) and N = 5000 (the Phi recurrence
+    over 5000 steps, with its guard digits): against Burnside class shares and the exact pmf."""
+    N, p, base = 12, 0.06, "excess<=3"
+    ex = class_decomposition(N, Fraction(p), space=base)
+    mp = class_decomposition(N, p, space=base, dps=40)
+    for e, v in ex.by_excess.items():
+        assert _close(mp.by_excess[e], v, 40)
+    N, p, dps = 5000, 0.0005, 15
+    cd = class_decomposition(N, p, space="eq41", dps=dps)
+    d = distribution(N, p, space="eq41", dps=40)  # another algorithm, 25 digits more
+    for k in (1, 2, 3, 7, 40):
+        counts = {s: circuit_count(N, visits_of(s, k)) * Fraction(p) ** (sum(x - 1 for x in s))
+                  for s in EQ41_SHAPES if k >= len(s)}
+        tot = sum(counts.values())
+        pk = mpf_to_fraction(d.pmf(k))
+        for s, c in counts.items():
+            assert _close(cd.joint[s][k - 1], pk * c / tot, dps), (k, s)
+
+
+def test_class_decomposition_object_without_dps():
+    """ClassDecomposition of any object: mpf totals are summed at 25 digits, rounded to 15."""
+    with mpmath.workdps(40):
+        a, b = mpmath.mpf(1) / 3, mpmath.mpf(2) / 7
+    cd = dist.ClassDecomposition(object(), ((), (2,)), {(): [a], (2,): [b]}, {(): a, (2,): b})
+    with mpmath.workdps(15):
+        want = {0: +a, 1: +b}
+    assert cd.by_excess == want
+    assert cd.labels == {(): "phi", (2,): "phi^1"}
 
 
 def test_direct_path_lists_every_k(monkeypatch):
