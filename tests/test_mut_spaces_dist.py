@@ -682,3 +682,21 @@ def test_run_starting_at_two(monkeypatch):
     assert sorted(d._terms) == [2, 3, 4, 5, 6]
     for k, v in d._terms.items():
         assert _close(v, W[k - 1], d._wdps - 2), k
+
+
+def test_space_modes_validates_n():
+    with pytest.raises(ValueError, match="N"):
+        space_modes(parse_space("eq41"), 0, Fraction(1, 2))
+
+
+def test_screened_sympy_irrational(screened):
+    """The fallback W(k) of a k below the screen, for a sympy irrational p."""
+    sympy = pytest.importorskip("sympy")
+    p = sympy.sqrt(2) / 400
+    N, base = 60, "eq41"
+    with mpmath.workdps(200):
+        pr = mpf_to_fraction(mpmath.sqrt(2) / 400)
+    W = _W(_burnside_poly(N, base, "length"), pr)
+    d = distribution(N, p, space=base, dps=20)
+    assert N not in d._terms
+    assert _close(d.pmf(N), W[-1] / sum(W), 20)

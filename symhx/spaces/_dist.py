@@ -169,6 +169,7 @@ def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
 
 def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tuple[int, ...]:
     """All maximisers of ``P(X = k)`` over ``space`` (exact for rational ``p``)."""
+    N = check_N(N, minimum=1)
     frx = _rational(p, fr)
     if N == 1:
         return (1,)
