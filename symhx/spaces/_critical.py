@@ -60,6 +60,10 @@ from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, as_fraction
 
 __all__ = ["critical_point", "root_estimates"]
 
+#: initial half-width of the float64 bracket of ``log(N c_k)`` in :func:`root_estimates`
+#: (doubled, up to 20 times, on a side that does not bracket the root)
+ROOT_BRACKET = 40.0
+
 
 # --------------------------------------------------------------------------- float64 stage
 def root_estimates(space: Space | str, N: int) -> np.ndarray:
@@ -105,8 +109,8 @@ def root_estimates(space: Space | str, N: int) -> np.ndarray:
         return kk * s + base[idx] + qk - q1, kk + ek - e1
 
     every = np.arange(len(ks))
-    lo = np.full(len(ks), -40.0)
-    hi = np.full(len(ks), 40.0)
+    lo = np.full(len(ks), -ROOT_BRACKET)
+    hi = np.full(len(ks), ROOT_BRACKET)
     for _ in range(20):
         hl, _ = h(lo, every)
         bad = hl >= 0

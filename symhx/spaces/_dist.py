@@ -13,9 +13,10 @@ Arithmetic (same contract as :mod:`symhx.distribution`):
   ``N <= 20000`` every ``W(k)`` by a product recurrence; above, a float64 screen keeps only the
   ``k`` whose weight is within ``dps`` + guard digits of the largest.
 * modes are decided exactly for every rational ``p`` (floats and mpf included, at their exact
-  binary value): a float64 screen of ``log W`` (absolute error < 1e-8 for ``N <= 10**6``) keeps
-  the ``k`` within a margin 100x that error of the maximum; those candidates are then compared
-  exactly (integers) or by interval arithmetic with an exact fall-back, so ties are found exactly.
+  binary value): the argmax of a float64 ``log W`` (absolute error < 1e-8 for ``N <= 10**6``) is
+  only a seed; :func:`symhx.certify.space_candidates` keeps every ``k`` that Arb balls cannot
+  prove to weigh less than it, and those candidates are compared exactly (integers) or by
+  interval arithmetic with an exact fall-back, so ties are found exactly.
 """
 
 from __future__ import annotations
@@ -121,13 +122,11 @@ def log_W_float(space: Space, N: int, logp: float) -> np.ndarray:
     return lphi + log_Q_float(space, N, logp)
 
 
-def screen_margin(N: int) -> float:
-    """Margin of the float64 screen: > 100x the worst rounding error of :func:`log_W_float`."""
-    return 1e-9 + 2e-13 * (N + 10) * math.log(N + 10) * 50
-
-
 # --------------------------------------------------------------------------- exact comparisons
 def _rational(p: Any, fr: Fraction | None) -> Fraction:
+    """The exact value of ``p`` (``fr`` if known); a sympy irrational at 60 digits."""
+    if fr is None:
+        fr, p = check_p(p)
     if fr is not None:
         return fr
     with mpmath.workdps(60):
@@ -170,6 +169,7 @@ def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
 
 def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tuple[int, ...]:
     """All maximisers of ``P(X = k)`` over ``space`` (exact for rational ``p``)."""
+    N = check_N(N, minimum=1)
     frx = _rational(p, fr)
     if N == 1:
         return (1,)

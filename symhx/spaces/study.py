@@ -10,6 +10,7 @@ from typing import Any
 
 import mpmath
 
+from symhx._numeric import mp_value
 from symhx.spaces._classes import MAX_EXCESS, WEIGHTINGS
 from symhx.spaces._critical import critical_point
 from symhx.spaces._dist import distribution
@@ -55,7 +56,8 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     """``E[X]`` at each ``p`` and the jump ``p_c`` for ``"excess<=m"``, ``m`` in ``ms``, plus the
     ``extra`` spaces (eq. 41 corrected and as printed).
 
-    ``p`` values are decimal strings, evaluated exactly (mpmath at ``dps`` digits). With
+    ``p`` values are decimal strings (or any exact number or float), given to the mpmath path at
+    ``dps + 10`` digits; ``E[X]`` is returned to ``dps`` digits. With
     ``weighting="length"`` the untruncated space converges only while ``p k < 1`` for the
     relevant k (circuits of length L on k vertices grow like ``k**L``), so the columns at larger
     ``p`` keep moving with ``m``; see the book chapter "Higher-order circuits".
@@ -81,8 +83,7 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     ps = tuple(_sequence(ps, "ps"))
     if not ps:
         raise ValueError("ps must hold at least one p value (decimal strings), got none")
-    for p in ps:
-        check_p(p, "each p of ps")
+    exact = [check_p(p, "each p of ps")[0] for p in ps]
     extra = tuple(check_choice(s, "each extra space", ("eq41", "eq41-printed"))
                   for s in _sequence(extra, "extra"))
     rows = []
@@ -90,7 +91,8 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     spaces = [f"excess<={m}{suffix}" for m in ms] + [f"{s}{suffix}" for s in extra]
     for sp in spaces:
         cp = critical_point(N, space=sp, dps=dps)
-        with mpmath.workdps(dps + 10):
-            means = {p: distribution(N, mpmath.mpf(p), space=sp, dps=dps).mean() for p in ps}
+        with mpmath.workdps(dps + 10):  # p to dps + 10 digits (any exact type or float)
+            means = {p: distribution(N, mp_value(p, fr), space=sp, dps=dps).mean()
+                     for p, fr in zip(ps, exact, strict=True)}
         rows.append(ConvergenceRow(sp, cp.p, cp.k_after, means))
     return rows
