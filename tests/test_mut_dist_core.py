@@ -1,0 +1,584 @@
+"""Every method of the simple frozen distribution against independent references (issue 16).
+
+References, none of which uses symhx's distribution code:
+
+* exact: the closed form ``Phi(k) = p**k N! / (k (N-k)!)`` (factorials) normalised by its
+  brute-force sum, every derived quantity (cdf, sf, moments, quantiles, modes) by definition;
+* mpmath: the pmf by the term ratio run *downwards* from ``k = N`` (``log Phi(N)`` from
+  ``loggamma``) at ``2 dps + 20`` digits, with no window: every term is summed;
+* float64 checks against the exact table converted once.
+
+Ties and boundaries are explicit strategies: ``p = (k + 1) / (k (N - k))`` makes
+``Phi(k) = Phi(k + 1)`` exactly, ``p = 2 / (N - 1)`` ties ``Phi(1)`` with ``Phi(2)``,
+``(N, p) = (t**2 + 2 t, 1/t**2)`` is a double root of ``f_{N,p}``, ``p = 1 / (2N)`` the edge of
+the hump test, N = 1, 2, 3, 5, 10**k, p near 0 and 1.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from fractions import Fraction
+from typing import Any
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import example, given
+from hypothesis import strategies as st
+
+import symhx
+from symhx.distribution import SimpleDistribution, binary_split, simple_modes
+
+
+# --------------------------------------------------------------------------- references
+def phi(N: int, p: Fraction, k: int) -> Fraction:
+    return Fraction(p) ** k * Fraction(math.factorial(N), k * math.factorial(N - k))
+
+
+def table(N: int, p: Fraction) -> list[Fraction]:
+    w = [phi(N, p, k) for k in range(1, N + 1)]
+    g = sum(w)
+    return [x / g for x in w]
+
+
+def brute_modes(N: int, p: Fraction) -> tuple[int, ...]:
+    w = [phi(N, p, k) for k in range(1, N + 1)]
+    m = max(w)
+    return tuple(k for k, x in enumerate(w, 1) if x == m)
+
+
+def cdf_ref(t: list[Fraction], k: int) -> Fraction:
+    return sum(t[: max(0, min(k, len(t)))], Fraction(0))
+
+
+def sf_ref(t: list[Fraction], k: int) -> Fraction:
+    return sum(t[max(0, min(k, len(t))):], Fraction(0))
+
+
+def ppf_ref(t: list[Fraction], q: Fraction) -> int:
+    if q == 0:
+        return 0
+    return next(k for k in range(1, len(t) + 1) if cdf_ref(t, k) >= q)
+
+
+def isf_ref(t: list[Fraction], q: Fraction) -> int:
+    if q == 1:
+        return 0
+    return next(k for k in range(1, len(t) + 1) if sf_ref(t, k) <= q)
+
+
+def mp_of(x: Fraction) -> mpmath.mpf:
+    return mpmath.mpf(x.numerator) / x.denominator
+
+
+def log_of(x: Fraction) -> mpmath.mpf:
+    return mpmath.ninf if x == 0 else mpmath.log(x.numerator) - mpmath.log(x.denominator)
+
+
+def mp_table(N: int, p: Fraction, dps: int) -> list[mpmath.mpf]:
+    """P(X = k), k = 1..N, at ``dps`` digits: ratio recurrence downwards from k = N."""
+    with mpmath.workdps(dps + 2 * len(str(N)) + 10):
+        pm = mp_of(p)
+        w = [mpmath.mpf(0)] * (N + 1)
+        w[N] = mpmath.mpf(1)  # Phi(k) / Phi(N)
+        for k in range(N, 1, -1):  # Phi(k-1) / Phi(k) = k / (p (N - k + 1) (k - 1))
+            w[k - 1] = w[k] * k / (pm * (N - k + 1) * (k - 1))
+        s = mpmath.fsum(w[1:])
+        return [x / s for x in w[1:]]
+
+
+def close(got: Any, want: Any, dps: int, what: Any = "") -> None:
+    """``got`` (an mpf rounded to dps digits) within 10**(1 - dps) relative of ``want``."""
+    assert isinstance(got, mpmath.mpf), (what, type(got))
+    with mpmath.workdps(2 * dps + 20):
+        w = mp_of(want) if isinstance(want, Fraction) else want
+        assert abs(got - w) <= mpmath.mpf(10) ** (1 - dps) * abs(w), (what, got, w)
+
+
+def close_log(got: Any, want: Any, dps: int, what: Any = "") -> None:
+    with mpmath.workdps(2 * dps + 20):
+        w = log_of(want) if isinstance(want, Fraction) else want
+        if w == mpmath.ninf:
+            assert got == mpmath.ninf or got == -math.inf, (what, got)
+            return
+        assert abs(got - w) <= mpmath.mpf(10) ** (1 - dps) * max(1, abs(w)), (what, got, w)
+
+
+# --------------------------------------------------------------------------- strategies
+@st.composite
+def tie_cases(draw: Any) -> tuple[int, Fraction]:
+    """``(N, p)`` with ``Phi(k) == Phi(k + 1)`` exactly for some ``1 <= k < N``."""
+    N = draw(st.sampled_from([2, 3, 5, 10]) | st.integers(2, 40))
+    k = draw(st.integers(1, N - 1))
+    return N, Fraction(k + 1, k * (N - k))
+
+
+@st.composite
+def boundary_cases(draw: Any) -> tuple[int, Fraction]:
+    N = draw(st.sampled_from([1, 2, 3, 5, 10]) | st.integers(1, 40))
+    kind = draw(st.sampled_from(["small", "near1", "edge", "one-tie", "double", "big"]))
+    if kind == "small":
+        return N, Fraction(1, 10 ** draw(st.integers(1, 30)))
+    if kind == "near1":
+        return N, 1 - Fraction(1, 10 ** draw(st.integers(1, 30)))
+    if kind == "edge":  # p = 1/(2N) and its neighbours: the hump test's first cut
+        return N, Fraction(1, 2 * N) + draw(st.sampled_from([-1, 0, 1])) * Fraction(1, 10**9)
+    if kind == "one-tie" and N >= 2:  # Phi(1) == Phi(2)
+        return N, Fraction(2, N - 1) if N > 1 else Fraction(1)
+    if kind == "double":  # f_{N,p} has a double root at k = t
+        t = draw(st.integers(1, 5))
+        return t * t + 2 * t, Fraction(1, t * t)
+    return N, Fraction(draw(st.integers(1, 40)), draw(st.integers(1, 40)))
+
+
+small_cases = tie_cases() | boundary_cases() | st.tuples(
+    st.integers(1, 30), st.fractions(Fraction(1, 10**4), 3).filter(lambda x: x > 0))
+
+
+def _ks(N: int) -> list[int]:
+    return sorted({-3, 0, 1, 2, N // 2, N - 1, N, N + 1, N + 10**20})
+
+
+def _qs(t: list[Fraction]) -> list[Fraction]:
+    """q at every cdf value, every midpoint between consecutive ones, and 0, 1."""
+    cdfs = [cdf_ref(t, k) for k in range(0, len(t) + 1)]
+    mids = [(a + b) / 2 for a, b in itertools.pairwise(cdfs)]
+    qs = sorted({Fraction(0), Fraction(1), *cdfs, *mids})
+    return qs if len(qs) < 50 else qs[:: len(qs) // 40] + qs[-3:]
+
+
+# --------------------------------------------------------------------------- exact path
+@given(small_cases)
+@example((1, Fraction(1, 2)))
+@example((2, Fraction(2)))  # Phi(1) = Phi(2)
+@example((3, Fraction(1)))  # double root at 1: modes (1, 2)
+@example((5, Fraction(1, 2)))  # modes (1, 2, 3)
+@example((8, Fraction(1, 4)))  # double root at 2, but Phi(1) is larger
+@example((101, Fraction(1, 50)))  # modes (50, 51)
+@example((10, Fraction(1, 20)))  # p = 1/(2N) exactly
+def test_exact_every_method(case: tuple[int, Fraction]) -> None:
+    N, p = case
+    t = table(N, p)
+    d = symhx.distribution_of(N, p, dps=30)
+    assert d.exact and d.N == N and d.fr == p and d.support() == (1, N)
+    for k in _ks(N):
+        want = t[k - 1] if 1 <= k <= N else Fraction(0)
+        got = d.pmf(k)
+        assert isinstance(got, Fraction) and got == want, k
+        assert d.cdf(k) == cdf_ref(t, k) and isinstance(d.cdf(k), Fraction)
+        assert d.sf(k) == sf_ref(t, k) and isinstance(d.sf(k), Fraction)
+        close_log(d.logpmf(k), want, 30, ("logpmf", k))
+        close_log(d.logcdf(k), cdf_ref(t, k), 30, ("logcdf", k))
+        close_log(d.logsf(k), sf_ref(t, k), 30, ("logsf", k))
+    ks = np.array([[0, 1], [N, N + 1]])
+    arr = d.pmf(ks)
+    assert arr.shape == (2, 2) and arr.dtype == object
+    assert arr.tolist() == [[0, t[0]], [t[-1], 0]]
+    mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+    var = sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
+    assert d.mean() == mu and isinstance(d.mean(), Fraction)
+    assert d.var() == var and isinstance(d.var(), Fraction)
+    gamma = sum(phi(N, p, k) for k in range(1, N + 1))
+    assert d.normaliser == gamma
+    with mpmath.workdps(80):
+        if var:
+            close(d.std(), mpmath.sqrt(mp_of(var)), 30, "std")
+        else:
+            assert d.std() == 0
+        close_log(d.log_normaliser, gamma, 30, "log_normaliser")
+        h = -mpmath.fsum(mp_of(x) * log_of(x) for x in t)
+        assert abs(d.entropy() - h) <= mpmath.mpf(10) ** -29, ("entropy", d.entropy(), h)
+    modes = brute_modes(N, p)
+    assert d.modes() == modes
+    assert d.mode() == modes[0]  # the smallest maximiser, ties included
+    assert d.table() == list(enumerate(t, 1))
+    for q in _qs(t):
+        assert d.ppf(q) == ppf_ref(t, q), ("ppf", q)
+        assert d.isf(q) == isf_ref(t, q), ("isf", q)
+    assert d.median() == ppf_ref(t, Fraction(1, 2))
+    assert d.interval("0.8") == (ppf_ref(t, Fraction(1, 10)), ppf_ref(t, Fraction(9, 10)))
+    qa = d.ppf([Fraction(0), Fraction(1, 2), Fraction(1)])
+    assert qa.tolist() == [0, ppf_ref(t, Fraction(1, 2)), N] and qa.dtype == object
+
+
+@given(tie_cases())
+@example((101, Fraction(1, 50)))
+@example((3, Fraction(1)))
+def test_ties_every_path(case: tuple[int, Fraction]) -> None:
+    """The frozen ``mode`` property is the smallest tied maximiser on every path (exact, mpmath
+    and float64 p); a float p is taken at its binary value (often no longer a tie)."""
+    N, p = case
+    modes = brute_modes(N, p)
+    assert phi(N, p, modes[0]) == max(phi(N, p, k) for k in range(1, N + 1))
+    for dps in (30, None):
+        d = symhx.distribution_of(N, p, dps=dps)
+        assert d.modes() == modes and d.mode() == modes[0]
+    pf = float(p)
+    fmodes = brute_modes(N, Fraction(pf))
+    for dps in (30, None):
+        d = symhx.distribution_of(N, pf, dps=dps)
+        assert d.modes() == fmodes and d.mode() == fmodes[0]
+    assert simple_modes(N, p, None) == modes
+    with mpmath.workdps(40):
+        pm = mpmath.mpf(p.numerator) / p.denominator
+    assert symhx.mode(N, pm) == brute_modes(N, Fraction(*_ratio(pm)))[0]
+
+
+def _ratio(x: mpmath.mpf) -> tuple[int, int]:
+    f = Fraction(int(x.man)) * Fraction(2) ** int(x.exp)
+    return f.numerator, f.denominator
+
+
+def test_known_multi_ties() -> None:
+    # ties involving Phi(1): found by brute force over small N and p = a/b
+    found = []
+    for N in range(2, 13):
+        for b in range(1, 13):
+            for a in range(1, 3 * b + 1):
+                p = Fraction(a, b)
+                if p.denominator != b:
+                    continue
+                m = brute_modes(N, p)
+                if len(m) > 1:
+                    found.append((N, p, m))
+                    assert symhx.modes(N, p) == m
+                    d = symhx.distribution_of(N, p)
+                    assert d.modes() == m and d.mode() == m[0]
+    assert any(m[0] == 1 and len(m) == 3 for _, _, m in found)  # (5, 1/2): (1, 2, 3)
+    assert any(m[0] == 1 and len(m) == 2 for _, _, m in found)
+    assert any(m[0] > 1 for _, _, m in found)
+
+
+# --------------------------------------------------------------------------- mpmath path
+MP_CASES = [(1, 0.5), (2, 0.5), (2, 2.0), (3, 1.0), (5, 0.5), (7, 1e-300), (10, 1e-5),
+            (10, 0.05), (10, 1 - 2.0**-40), (10, 3.0), (30, 0.1), (24, 0.25)]
+
+
+@pytest.mark.parametrize("dps", [20, 45])
+@pytest.mark.parametrize(("N", "pf"), MP_CASES)
+def test_mp_every_method(N: int, pf: float, dps: int) -> None:
+    p = Fraction(pf)
+    t = table(N, p)
+    d = symhx.distribution_of(N, pf, dps=dps)
+    assert not d.exact and d.dps == dps
+    for k in _ks(N):
+        want = t[k - 1] if 1 <= k <= N else Fraction(0)
+        if want:
+            close(d.pmf(k), want, dps, ("pmf", k))
+        else:
+            assert d.pmf(k) == 0 and isinstance(d.pmf(k), mpmath.mpf)
+        close_log(d.logpmf(k), want, dps, ("logpmf", k))
+        for name, ref in (("cdf", cdf_ref(t, k)), ("sf", sf_ref(t, k))):
+            got = getattr(d, name)(k)
+            if ref:
+                close(got, ref, dps, (name, k))
+            else:
+                assert got == 0 and isinstance(got, mpmath.mpf), (name, k)
+            close_log(getattr(d, "log" + name)(k), ref, dps, ("log" + name, k))
+    mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+    var = sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
+    close(d.mean(), mu, dps, "mean")
+    if var:
+        close(d.var(), var, dps, "var")
+        with mpmath.workdps(2 * dps + 20):
+            close(d.std(), mpmath.sqrt(mp_of(var)), dps, "std")
+    else:
+        assert d.var() == 0
+    gamma = sum(phi(N, p, k) for k in range(1, N + 1))
+    close(d.normaliser, gamma, dps, "normaliser")
+    close_log(d.log_normaliser, gamma, dps, "log_normaliser")
+    with mpmath.workdps(2 * dps + 20):
+        h = -mpmath.fsum(mp_of(x) * log_of(x) for x in t if x)
+        assert abs(d.entropy() - h) <= mpmath.mpf(10) ** -dps, ("entropy", d.entropy(), h)
+    assert d.modes() == brute_modes(N, p) and d.mode() == brute_modes(N, p)[0]
+    tab = d.table()
+    assert [k for k, _ in tab] == list(range(1, N + 1))
+    for (k, got), want in zip(tab, t, strict=True):
+        close(got, want, dps, ("table", k))
+    # quantiles at the midpoints between resolvable cdf values
+    for k in range(1, N + 1):
+        lo, hi = cdf_ref(t, k - 1), cdf_ref(t, k)
+        if t[k - 1] > Fraction(1, 10 ** (dps - 4)) * hi and 1 - hi > Fraction(1, 10 ** (dps - 4)):
+            assert d.ppf((lo + hi) / 2) == k, ("ppf", k)
+        lo, hi = sf_ref(t, k), sf_ref(t, k - 1)
+        if t[k - 1] > Fraction(1, 10 ** (dps - 4)) * hi and lo > Fraction(1, 10 ** (dps - 4)) * hi:
+            assert d.isf((lo + hi) / 2) == k, ("isf", k)
+    assert d.ppf(0) == 0 and d.ppf(1) == N and d.isf(1) == 0 and d.isf(0) == N
+    assert d.median() == ppf_ref(t, Fraction(1, 2))
+    arr = d.cdf([1, N])
+    assert arr.dtype == object and isinstance(arr[0], mpmath.mpf)
+
+
+def test_mp_quantiles_resolve_q_to_dps_digits() -> None:
+    """A q within a relative 10**(1 - dps) of cdf(k) counts as equal to it (documented), and
+    one a little further does not."""
+    N, pf, dps = 12, 0.3, 20
+    t = table(N, Fraction(pf))
+    d = symhx.distribution_of(N, pf, dps=dps)
+    for k in (2, 5, 8):
+        c, s = cdf_ref(t, k), sf_ref(t, k)
+        assert d.ppf(c * (1 + Fraction(1, 10**25))) == k
+        assert d.ppf(c * (1 + Fraction(1, 10**15))) == k + 1
+        assert d.isf(s * (1 - Fraction(1, 10**25))) == k
+        assert d.isf(s * (1 - Fraction(1, 10**15))) == k + 1
+        assert d.ppf(c * (1 - Fraction(1, 10**15))) == k
+        assert d.isf(s * (1 + Fraction(1, 10**15))) == k
+
+
+@pytest.mark.parametrize(("N", "pf"), [(100, 0.02), (1000, 0.0021), (1000, 1e-4), (1000, 0.9),
+                                       (10**4, 2.5e-4), (10**4, 1e-6), (300, 0.0101)])
+def test_mp_large_N_against_downward_recurrence(N: int, pf: float) -> None:
+    """N up to 10**4 against every term summed at 2 dps + 20 digits, tails included (the
+    package keeps only the terms within dps + guard digits of the largest)."""
+    dps = 30
+    ref = mp_table(N, Fraction(pf), 2 * dps + 20)
+    d = symhx.distribution_of(N, pf, dps=dps)
+    m = d.mode()
+    with mpmath.workdps(2 * dps + 20):
+        assert max(ref) == ref[m - 1]
+        ks = sorted({min(k, N) for k in (1, 2, 3, m // 2 + 1, m, m + 1, m + 7, 3 * m + 40)}
+                    | {N - 1, N})
+        cum = [mpmath.mpf(0)]
+        for x in ref:
+            cum.append(cum[-1] + x)
+        for k in ks:
+            close(d.pmf(k), ref[k - 1], dps, ("pmf", k))
+            close_log(d.logpmf(k), mpmath.log(ref[k - 1]), dps, ("logpmf", k))
+            if k < N:
+                up = mpmath.fsum(ref[k:])
+                close(d.sf(k), up, dps, ("sf", k))
+                close_log(d.logsf(k), mpmath.log(up), dps, ("logsf", k))
+                close(d.cdf(k), cum[k], dps, ("cdf", k))
+                close_log(d.logcdf(k), mpmath.log(cum[k]), dps, ("logcdf", k))
+        mu = mpmath.fsum(k * x for k, x in enumerate(ref, 1))
+        var = mpmath.fsum((k - mu) ** 2 * x for k, x in enumerate(ref, 1))
+        h = -mpmath.fsum(x * mpmath.log(x) for x in ref if x)
+        close(d.mean(), mu, dps, "mean")
+        close(d.var(), var, dps, "var")
+        close(d.std(), mpmath.sqrt(var), dps, "std")
+        assert abs(d.entropy() - h) <= mpmath.mpf(10) ** -dps
+        med = next(k for k in range(1, N + 1) if cum[k] >= mpmath.mpf(1) / 2)
+    assert d.median() == med
+
+
+@pytest.mark.parametrize("dps", [15, 60])
+def test_mp_variance_of_a_point_mass(dps: int) -> None:
+    """p -> 0: all mass at k = 1 and var X = P(X=2) (1 + O(p)); the window must widen until the
+    tiny variance is itself accurate to dps digits."""
+    N = 11
+    for pf in (1e-20, 1e-200):
+        t = table(N, Fraction(pf))
+        mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+        var = sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
+        d = symhx.distribution_of(N, pf, dps=dps)
+        close(d.var(), var, dps, ("var", pf))
+        close(d.mean(), mu, dps, ("mean", pf))
+        close(d.sf(1), sf_ref(t, 1), dps, ("sf", pf))
+        close(d.pmf(N), t[-1], dps, ("pmf N", pf))
+
+
+def test_mp_precision_high_dps() -> None:
+    """At 300 digits (guard digits cut by a few would show)."""
+    N, pf, dps = 200, 0.013, 300
+    t = table(N, Fraction(pf))
+    d = symhx.distribution_of(N, pf, dps=dps)
+    mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+    var = sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
+    close(d.mean(), mu, dps)
+    close(d.var(), var, dps)
+    for k in (1, 20, 100, N):
+        close(d.pmf(k), t[k - 1], dps, k)
+        close(d.sf(k - 1) if k > 1 else d.cdf(1), sf_ref(t, k - 1) if k > 1 else t[0], dps, k)
+
+
+# --------------------------------------------------------------------------- float64 path
+@given(small_cases)
+@example((1, Fraction(1, 2)))
+@example((5, Fraction(1, 2)))
+@example((10, Fraction(1, 10**20)))
+def test_float_every_method(case: tuple[int, Fraction]) -> None:
+    N, p0 = case
+    pf = float(p0)
+    p = Fraction(pf)
+    t = table(N, p)
+    d = symhx.distribution_of(N, pf, dps=None)
+    assert d.dps is None and not d.exact
+    for k in _ks(N):
+        want = t[k - 1] if 1 <= k <= N else Fraction(0)
+        for name, ref in (("pmf", want), ("cdf", cdf_ref(t, k)), ("sf", sf_ref(t, k))):
+            got = getattr(d, name)(k)
+            assert isinstance(got, float), name
+            assert math.isclose(got, float(ref), rel_tol=1e-12, abs_tol=1e-300), (name, k)
+            lg = getattr(d, "log" + name)(k)
+            if ref == 0:
+                assert lg == -math.inf
+            else:
+                lw = float(log_of(ref))
+                assert abs(lg - lw) <= 1e-12 * max(1.0, abs(lw)), ("log" + name, k, lg, lw)
+    kk = np.array([-1, 0, 1, N, N + 1, 10**30], dtype=object)
+    got = d.pmf(kk)
+    assert got.dtype == np.float64
+    assert np.allclose(got, [0, 0, float(t[0]), float(t[-1]), 0, 0], rtol=1e-12, atol=0)
+    cd = d.cdf(np.array([0, N, N + 1, 10**30], dtype=object))
+    assert cd.tolist() == [0.0, 1.0, 1.0, 1.0]
+    mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+    var = sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
+    assert math.isclose(d.mean(), float(mu), rel_tol=1e-12)
+    assert math.isclose(d.var(), float(var), rel_tol=1e-9, abs_tol=1e-300)
+    assert math.isclose(d.std(), math.sqrt(float(var)), rel_tol=1e-9, abs_tol=1e-150)
+    gamma = sum(phi(N, p, k) for k in range(1, N + 1))
+    assert math.isclose(d.normaliser, float(gamma), rel_tol=1e-12)
+    assert math.isclose(d.log_normaliser, float(log_of(gamma)), rel_tol=1e-12, abs_tol=1e-12)
+    with mpmath.workdps(40):
+        h = float(-mpmath.fsum(mp_of(x) * log_of(x) for x in t if x))
+    assert abs(d.entropy() - h) <= 1e-12
+    modes = brute_modes(N, p)
+    assert d.modes() == modes and d.mode() == modes[0]
+    tab = d.table()
+    assert [k for k, _ in tab] == list(range(1, N + 1))
+    assert all(math.isclose(v, float(w), rel_tol=1e-12) for (_, v), w in zip(tab, t, strict=True))
+    for q in _qs(t):
+        if any(abs(float(cdf_ref(t, j)) - float(q)) < 1e-9 for j in range(1, N + 1)):
+            continue
+        assert d.ppf(q) == ppf_ref(t, q) and isinstance(d.ppf(q), int), ("ppf", q)
+    for q in _qs(t):
+        if any(abs(float(sf_ref(t, j)) - float(q)) < 1e-9 for j in range(0, N + 1)):
+            continue
+        assert d.isf(q) == isf_ref(t, q), ("isf", q)
+    assert d.ppf(0) == 0 and d.ppf(1) == N and d.isf(1) == 0 and d.isf(0) == N
+    qa = d.isf([Fraction(1), Fraction(0)])
+    assert qa.dtype == np.int64 and qa.tolist() == [0, N]
+
+
+# --------------------------------------------------------------------------- sampling
+def test_rvs_against_exact_pmf() -> None:
+    from scipy.stats import chisquare
+
+    N, pf = 12, 0.25
+    t = table(N, Fraction(pf))
+    for dps in (20, None):
+        d = symhx.distribution_of(N, pf, dps=dps)
+        a = d.rvs(30_000, random_state=9)
+        assert a.dtype == np.int64 and a.shape == (30_000,)
+        assert a.min() == 1 and a.max() <= N
+        obs = np.bincount(a, minlength=N + 1)[1:]
+        exp = np.array([float(x) for x in t]) * a.size
+        keep = exp >= 5
+        o = np.append(obs[keep], obs[~keep].sum())
+        e = np.append(exp[keep], exp[~keep].sum())
+        if e[-1] == 0:
+            o, e = o[:-1], e[:-1]
+        assert chisquare(o, e * o.sum() / e.sum()).pvalue > 1e-4
+    d = symhx.distribution_of(N, pf, dps=None)
+    assert np.array_equal(d.rvs((3, 4), random_state=5),
+                          d.rvs((3, 4), random_state=np.random.default_rng(5)))
+    assert d.rvs((3, 4), random_state=5).shape == (3, 4)
+    x = d.rvs(random_state=3)
+    assert isinstance(x, int) and 1 <= x <= N
+    assert d.rvs(0, random_state=1).shape == (0,)
+    # the largest value is reachable: u just below 1 maps to N
+    top = symhx.distribution_of(2, 100.0, dps=None)  # P(X = 2) ~ 1
+    assert top.rvs(50, random_state=1).tolist() == [2] * 50
+    one = symhx.distribution_of(1, 0.5, dps=None)
+    assert one.rvs(5, random_state=2).tolist() == [1] * 5
+
+
+# --------------------------------------------------------------------------- exact sums
+@given(st.integers(0, 25), st.integers(1, 9), st.integers(1, 9), st.integers(-1, 30))
+def test_binary_split_against_direct_sum(N: int, a: int, b: int, stop: int) -> None:
+    def w(j: int) -> tuple[int, int]:
+        return j * j + 1, 2 * j + 3
+
+    want = Fraction(0)
+    prod = Fraction(1)
+    for j in range(1, min(stop, N) + 1):
+        prod *= Fraction(a * (N - j + 1), b)
+        want += Fraction(*w(j)) * prod
+    assert binary_split(N, a, b, w, min(stop, N)) == want
+    full = sum((Fraction(*w(j)) * Fraction(a, b) ** j * math.perm(N, j)
+                for j in range(1, N + 1)), Fraction(0))
+    assert binary_split(N, a, b, w) == full
+
+
+# --------------------------------------------------------------------------- errors and limits
+def test_limits_and_errors() -> None:
+    from symhx import distribution as dist
+
+    with pytest.raises(ValueError, match="EXACT_N_LIMIT"):
+        SimpleDistribution(dist.EXACT_N_LIMIT + 1, "0.5")
+    SimpleDistribution(dist.EXACT_N_LIMIT, "0.5")  # the limit itself is allowed
+    big = SimpleDistribution(dist.MP_QUANTILE_N_LIMIT + 1, 0.5, dps=15)
+    with pytest.raises(ValueError, match="MP_QUANTILE_N_LIMIT"):
+        big.ppf("0.5")
+    with pytest.raises(ValueError, match="MP_QUANTILE_N_LIMIT"):
+        big.isf("0.5")
+    assert big.ppf(0) == 0 and big.isf(0) == big.N  # trivial quantiles need no sums
+    huge = SimpleDistribution(10**120, 0.5, dps=15)
+    with pytest.raises(ValueError, match=r"MP_SUM_N_LIMIT.*10\*\*120"):
+        huge.pmf(5)
+    with pytest.raises(ValueError, match=r"~10\*\*120"):
+        SimpleDistribution(10**120 + 1, 0.5, dps=15).mean()
+    with pytest.raises(ValueError, match="FLOAT_N_LIMIT"):
+        SimpleDistribution(dist.FLOAT_N_LIMIT + 1, 0.5, dps=None).mean()
+    with pytest.raises(ValueError, match="FLOAT_N_LIMIT"):
+        SimpleDistribution(dist.FLOAT_N_LIMIT + 1, 0.5).rvs(random_state=1)
+    with pytest.raises(ValueError, match="EXACT_QUANTILE_WORK_LIMIT"):
+        SimpleDistribution(20000, "0.1").isf("0.5")
+    with pytest.raises(ValueError, match="EXACT_WORK_LIMIT"):
+        SimpleDistribution(40000, "0.1").pmf(3)
+    d = SimpleDistribution(10, 0.3, dps=20)
+    with pytest.raises(TypeError, match="k"):
+        d.pmf(np.array([True, False]))
+    with pytest.raises(TypeError, match="k"):
+        d.pmf(np.array([1.0, 2.0]))
+    with pytest.raises(TypeError, match="k"):
+        d.pmf([1, 2.5])
+    with pytest.raises(ValueError, match="q"):
+        d.isf([0.5, -0.1])
+    with pytest.raises(ValueError, match="size"):
+        d.rvs(-1)
+    with pytest.raises(ValueError, match="size"):
+        d.rvs((2, -1))
+    assert "SimpleDistribution(N=10, p=0.3, space='simple', dps=20, exact=False)" == repr(d)
+
+
+def test_work_measure_is_the_documented_one() -> None:
+    """N (bits of N + bits of p's numerator and denominator) against EXACT_WORK_LIMIT: just
+    inside and just outside."""
+    from symhx import distribution as dist
+
+    def work(N: int, p: Fraction) -> int:
+        return N * (N.bit_length() + p.numerator.bit_length() + p.denominator.bit_length())
+
+    p = Fraction(1, 3)
+    inside = max(N for N in range(10_000, 40_000, 7) if work(N, p) <= dist.EXACT_WORK_LIMIT)
+    assert SimpleDistribution(inside, p)._check_exact_work("x", dist.EXACT_WORK_LIMIT,
+                                                           "EXACT_WORK_LIMIT") is None
+    with pytest.raises(ValueError, match="EXACT_WORK_LIMIT"):
+        SimpleDistribution(inside + 7, p)._check_exact_work("x", dist.EXACT_WORK_LIMIT,
+                                                            "EXACT_WORK_LIMIT")
+    q = Fraction(1, 2)
+    N = max(n for n in range(1000, 20_000) if work(n, q) <= dist.EXACT_QUANTILE_WORK_LIMIT)
+    SimpleDistribution(N, q)._check_exact_work("q", dist.EXACT_QUANTILE_WORK_LIMIT, "E")
+    with pytest.raises(ValueError, match=str(dist.EXACT_QUANTILE_WORK_LIMIT)):
+        SimpleDistribution(N + 1, q)._check_exact_work("q", dist.EXACT_QUANTILE_WORK_LIMIT,
+                                                       "E")
+
+
+def test_moved_names_forward_with_a_warning() -> None:
+    import symhx.distribution as dist
+
+    with pytest.warns(DeprecationWarning, match=r"symhx\.mean"):
+        f = dist.mean
+    assert f(3, "1/2") == Fraction(3, 2)
+    with pytest.raises(AttributeError, match="no_such"):
+        dist.no_such  # noqa: B018
+    with pytest.warns(DeprecationWarning, match="var"):
+        assert SimpleDistribution(3, "1/2").variance() == table_var(3, Fraction(1, 2))
+
+
+def table_var(N: int, p: Fraction) -> Fraction:
+    t = table(N, p)
+    mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+    return sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
