@@ -308,6 +308,7 @@ def test_critical_point_of_a_space() -> None:
     cp = symhx.critical_point(N, space="eq41", dps=25)
     cf = symhx.critical_point(N, space="eq41", dps=None)
     assert type(cf.p) is float and math.isclose(cf.p, float(cp.p), rel_tol=1e-15)
+    assert cp.dps == 25 and cf.dps == 20
     with mpmath.workdps(40):
         pc = Fraction(mpmath.nstr(cp.p, 30))
         lo, hi = pc * (1 - Fraction(1, 10**8)), pc * (1 + Fraction(1, 10**8))
@@ -318,3 +319,109 @@ def test_critical_point_of_a_space() -> None:
 
 def test_api_names() -> None:
     assert set(api.__all__) >= {"pmf", "mode", "modes", "critical_point", "rvs", "interval"}
+
+
+# --------------------------------------------------------------------------- survivors of mutation
+def test_modes_huge_N_take_the_simple_route() -> None:
+    """modes() of the simple space never tabulates: N = 10**30 is decided at once; the mode m
+    satisfies Phi(m+1) <= Phi(m) and Phi(m-1) < Phi(m) (term ratio p (N-k) k / (k+1))."""
+    N, p = 10**30, Fraction(1, 2)
+    (m,) = symhx.modes(N, "1/2")
+    assert p * (N - m) * m / (m + 1) <= 1 < p * (N - m + 1) * (m - 1) / m
+    assert symhx.mode(N, "1/2") == m
+    arr = symhx.mode(N, ["1/2", "1e-40"])
+    assert arr.dtype == object and arr.tolist() == [m, 1]  # m does not fit in int64
+    small = symhx.mode(101, ["1/50", "1/2"])
+    assert small.dtype == np.int64 and small.tolist() == [50, modes_of(simple_table(101,
+                                                                                    p))[0]]
+
+
+def test_irrational_p_modes_in_every_space() -> None:
+    sympy = pytest.importorskip("sympy")
+    p_sym = sympy.sqrt(2) / 10
+    N = 12
+    with mpmath.workdps(50):
+        pm = mpmath.sqrt(2) / 10
+        for space in ("simple", "eq41"):
+            sp = parse_space(space)
+            w = []
+            for k in range(1, N + 1):
+                total = mpmath.mpf(0)
+                for shape in sp.shapes:
+                    r = len(shape)
+                    if k < max(r, 1):
+                        continue
+                    total += circuit_count(N, (*shape, *(1,) * (k - r))) * pm ** (
+                        k + shape_excess(shape))
+                w.append(total)
+            best = max(w)
+            want = tuple(k for k, x in enumerate(w, 1) if x == best)
+            assert symhx.modes(N, p_sym, space=space) == want, space
+            assert symhx.mode(N, [p_sym], space=space).tolist() == [want[0]]
+
+
+def test_N_one_with_arrays_of_p() -> None:
+    assert symhx.mean(1, ["1/2", 0.5]).tolist() == [1, 1]
+    assert symhx.pmf(1, ["1/2", 0.5], [1, 2]).tolist() == [1, 0]
+    assert symhx.pmf(1, ["1/2"], 1).tolist() == [1]
+
+
+def test_bad_entries_in_arrays_are_clear_errors() -> None:
+    with pytest.raises(TypeError, match=r"^k must be an integer"):
+        symhx.pmf(5, ["0.5"], [True, 1])
+    with pytest.raises(TypeError, match=r"^p must be a real"):
+        symhx.modes(5, [0.5, True])
+    with pytest.raises(TypeError, match=r"^p must be a real"):
+        symhx.mean(5, [0.5, (0.1, 0.2)])
+    with pytest.raises(TypeError, match=r"^p must be a real"):
+        symhx.pmf(5, [0.5, (0.1, 0.2)], 1)
+
+
+def test_one_distribution_per_distinct_p(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The per-p cache: an array with repeated p builds one distribution per distinct value
+    (and type)."""
+    built: list = []
+    real = api._build
+
+    def counting(N, p, sp, dps):  # type: ignore[no-untyped-def]
+        built.append(p)
+        return real(N, p, sp, dps)
+
+    monkeypatch.setattr(api, "_build", counting)
+    got = symhx.mean(20, [0.1, 0.1, "0.1", 0.1], dps=None)
+    assert len(built) == 2 and got[0] == got[1] == got[3]
+    built.clear()
+    got = symhx.cdf(20, [[0.1], [0.1], [0.2]], [1, 2, 3], dps=None)
+    assert got.shape == (3, 3) and len(built) == 2
+    t = simple_table(20, Fraction(0.2))
+    assert math.isclose(got[2, 1], float(cdf(t, 2)), rel_tol=1e-12)
+
+
+def test_exact_quantiles_are_decided_exactly() -> None:
+    """Where q equals a cdf value exactly, the exact path decides (the float64 path would not):
+    N = 4, p = 2 has cdf(3) = 1/2; N = 2, p = 3 and N = 2, p = 1/2."""
+    t = simple_table(4, Fraction(2))
+    assert cdf(t, 3) == Fraction(1, 2)
+    assert symhx.median(4, "2") == 3 == ppf(t, Fraction(1, 2))
+    assert symhx.median(4, ["2"]).tolist() == [3]
+    t2 = simple_table(2, Fraction(1, 2))
+    assert symhx.ppf(2, "1/2", "4/5") == ppf(t2, Fraction(4, 5)) == 1
+    assert symhx.ppf(2, ["1/2"], "4/5").tolist() == [1]
+    t3 = simple_table(2, Fraction(3))
+    assert symhx.interval(2, "3", "1/5") == (ppf(t3, Fraction(2, 5)), ppf(t3, Fraction(3, 5)))
+    assert symhx.interval(2, "3", "1/5") == (1, 2)
+
+
+def test_rvs_is_float64_whatever_p() -> None:
+    """rvs never builds an exact distribution: N above the exact limit works with an exact p."""
+    x = symhx.rvs(200_000, "1/100000", 50, random_state=3)
+    assert x.dtype == np.int64 and x.min() >= 1 and x.max() <= 200_000
+
+
+def test_variance_alias_warns_at_the_caller() -> None:
+    with pytest.warns(DeprecationWarning,
+                      match=r"^symhx\.variance is deprecated: use symhx\.var") as rec:
+        v = symhx.variance(6, 0.5, dps=None)
+    assert rec[0].filename == __file__
+    assert type(v) is float
+    assert math.isclose(v, float(moments(simple_table(6, Fraction(1, 2)))[1]), rel_tol=1e-12)

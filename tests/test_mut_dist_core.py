@@ -582,3 +582,107 @@ def table_var(N: int, p: Fraction) -> Fraction:
     t = table(N, p)
     mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
     return sum(((k - mu) ** 2 * x for k, x in enumerate(t, 1)), Fraction(0))
+
+
+class _FixedUniforms(np.random.Generator):
+    """A Generator whose ``random()`` returns chosen values (to hit cdf values exactly)."""
+
+    def __init__(self, values: list[float]) -> None:
+        super().__init__(np.random.PCG64(0))
+        self.values = np.array(values, dtype=float)
+
+    def random(self, size: Any = None, dtype: Any = None, out: Any = None) -> Any:
+        return self.values[0] if size is None else np.resize(self.values, size)
+
+
+def test_rvs_inverse_transform_at_exact_cdf_values() -> None:
+    """X = smallest k with u < cdf(k): u equal to cdf(k) gives k + 1; u just below 1 gives N
+    even where the float cdf ends below 1 (N = 2, p = 0.05 ends at 1 - 2**-52)."""
+    d = symhx.distribution_of(4, "1/3", dps=None)
+    exact_hits = [float(d.cdf(k)) for k in range(1, 4)]
+    assert d.rvs(3, random_state=_FixedUniforms(exact_hits)).tolist() == [2, 3, 4]
+    u1 = float(np.nextafter(1.0, 0.0))
+    for N, pf in ((2, 0.05), (3, 0.5), (7, 2.0)):
+        e = symhx.distribution_of(N, pf, dps=None)
+        assert e.rvs(random_state=_FixedUniforms([u1])) == N
+        assert e.rvs(2, random_state=_FixedUniforms([u1])).tolist() == [N, N]
+        assert e.rvs(random_state=_FixedUniforms([0.0])) == 1
+
+
+def test_rvs_argument_errors_name_the_argument() -> None:
+    d = symhx.distribution_of(5, 0.3, dps=None)
+    with pytest.raises(ValueError, match=r"\bsize\b"):
+        d.rvs(-1)
+    with pytest.raises(ValueError, match=r"\bsize\b"):
+        d.rvs((2, -1))
+    assert d.rvs((0, 3), random_state=1).shape == (0, 3)
+    with pytest.raises(ValueError, match=r"\brandom_state\b"):
+        d.rvs(2, random_state=-1)
+    with pytest.raises(TypeError, match=r"^random_state\b"):
+        d.rvs(2, random_state=1.5)
+
+
+def test_messages_show_huge_N() -> None:
+    """Error messages write N as digits below 10**15, else as 10**e or ~10**e."""
+    cases = {10**15 - 1: "N=999999999999999", 10**15: "N=10**15", 10**15 + 1: "N=~10**15",
+             2 * 10**16: "N=~10**16", 10**7: "N=10000000"}
+    for N, shown in cases.items():
+        d = SimpleDistribution(N, 0.5, dps=15)
+        with pytest.raises(ValueError) as err:
+            d.ppf("0.5")
+        msg = str(err.value)
+        assert shown + "." in msg or shown + " " in msg or msg.endswith(shown), (N, msg)
+        assert "N <= 10**6" not in msg or "MP_QUANTILE_N_LIMIT" in msg
+        assert "limited to N <= 1000000 " in msg
+
+
+def test_exact_work_boundary_is_inclusive() -> None:
+    """work == EXACT_WORK_LIMIT is allowed, one more is refused (N = 20000, p = 1/256:
+    20000 * (15 + 1 + 9) = 500000)."""
+    from symhx import distribution as dist
+
+    p = Fraction(1, 256)
+    assert 20000 * (20000 .bit_length() + 1 + 9) == dist.EXACT_WORK_LIMIT
+    d = SimpleDistribution(20000, p)
+    d._check_exact_work("x", dist.EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")  # no error
+    with pytest.raises(ValueError, match=r"^summing the distribution in exact .*"
+                                         r"symhx\.distribution\.EXACT_WORK_LIMIT"):
+        SimpleDistribution(20001, p).cdf(3)
+    with pytest.raises(ValueError, match=r"^summing the distribution in exact .*"
+                                         r"symhx\.distribution\.EXACT_WORK_LIMIT"):
+        SimpleDistribution(20001, p).pmf(3)
+
+
+def test_deprecations_point_at_the_caller() -> None:
+    import symhx.distribution as dist
+
+    with pytest.warns(DeprecationWarning,
+                      match=r"^Distribution\.variance\(\) is deprecated: use var\(\)") as rec:
+        SimpleDistribution(3, "1/2").variance()
+    assert rec[0].filename == __file__
+    with pytest.warns(DeprecationWarning, match=r"^symhx\.distribution\.mode moved") as rec:
+        dist.mode  # noqa: B018
+    assert rec[0].filename == __file__
+
+
+def test_sympy_irrational_p_on_the_mpmath_path() -> None:
+    """An irrational p (no exact rational value) runs the hump search on a binary
+    approximation: every method against the downward recurrence at sqrt(2)/10."""
+    sympy = pytest.importorskip("sympy")
+    N, dps = 40, 30
+    d = symhx.distribution_of(N, sympy.sqrt(2) / 10, dps=dps)
+    assert d.fr is None and not d.exact
+    with mpmath.workdps(3 * dps):
+        pm = mpmath.sqrt(2) / 10
+        w = [pm**k * mpmath.factorial(N) / (k * mpmath.factorial(N - k)) for k in range(1, N + 1)]
+        s = mpmath.fsum(w)
+        ref = [x / s for x in w]
+        for k in (1, 2, 3, 5, 6, 20, N):
+            close(d.pmf(k), ref[k - 1], dps, k)
+            close(d.sf(k - 1) if k > 1 else d.cdf(1), mpmath.fsum(ref[k - 1:]) if k > 1
+                  else ref[0], dps, ("tail", k))
+        mu = mpmath.fsum(k * x for k, x in enumerate(ref, 1))
+        close(d.mean(), mu, dps, "mean")
+        close(d.var(), mpmath.fsum((k - mu) ** 2 * x for k, x in enumerate(ref, 1)), dps, "var")
+        best = max(range(1, N + 1), key=lambda k: ref[k - 1])
+    assert d.mode() == best and symhx.mode(N, sympy.sqrt(2) / 10) == best
