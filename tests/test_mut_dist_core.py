@@ -686,3 +686,23 @@ def test_sympy_irrational_p_on_the_mpmath_path() -> None:
         close(d.var(), mpmath.fsum((k - mu) ** 2 * x for k, x in enumerate(ref, 1)), dps, "var")
         best = max(range(1, N + 1), key=lambda k: ref[k - 1])
     assert d.mode() == best and symhx.mode(N, sympy.sqrt(2) / 10) == best
+
+
+def test_float_arrays_far_outside_the_support() -> None:
+    d = symhx.distribution_of(5, 0.5, dps=None)
+    t = table(5, Fraction(0.5))
+    got = d.pmf(np.array([-100, -6, 1, 5, 6, 100]))
+    assert got.dtype == np.float64
+    assert got.tolist()[:2] == [0.0, 0.0] and got.tolist()[4:] == [0.0, 0.0]
+    assert math.isclose(got[2], float(t[0]), rel_tol=1e-12)
+    assert d.cdf(np.array([-100, 100])).tolist() == [0.0, 1.0]
+    assert d.sf(np.array([-100, 100])).tolist() == [1.0, 0.0]
+    assert d.logsf(np.array([-100, 100])).tolist() == [0.0, -math.inf]
+
+
+def test_exact_work_message_shows_p_cut_to_40_characters() -> None:
+    p = Fraction(1, 3**100)
+    assert len(str(p)) > 41
+    with pytest.raises(ValueError) as err:
+        SimpleDistribution(5000, p).mean()
+    assert f"N=5000, p={str(p)[:40]} (documented work limit 500000," in str(err.value)
