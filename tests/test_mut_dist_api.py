@@ -425,3 +425,16 @@ def test_variance_alias_warns_at_the_caller() -> None:
     assert rec[0].filename == __file__
     assert type(v) is float
     assert math.isclose(v, float(moments(simple_table(6, Fraction(1, 2)))[1]), rel_tol=1e-12)
+
+
+def test_interval_honours_dps() -> None:
+    """On the mpmath path q is resolved to dps digits: an upper quantile 1e-25 (relative) above
+    cdf(k) gives k at dps = 20 and k + 1 at dps = 40."""
+    N, pf, k = 12, 0.3, 8
+    t = simple_table(N, Fraction(pf))
+    hi = cdf(t, k) * (1 + Fraction(1, 10**25))
+    assert hi > Fraction(1, 2)
+    c = 2 * hi - 1
+    lo = ppf(t, (1 - c) / 2)
+    assert symhx.interval(N, pf, c, dps=20) == (lo, k)
+    assert symhx.interval(N, pf, c, dps=40) == (lo, k + 1)

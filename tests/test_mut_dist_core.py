@@ -706,3 +706,26 @@ def test_exact_work_message_shows_p_cut_to_40_characters() -> None:
     with pytest.raises(ValueError) as err:
         SimpleDistribution(5000, p).mean()
     assert f"N=5000, p={str(p)[:40]} (documented work limit 500000," in str(err.value)
+
+
+def test_sympy_irrational_p_on_the_float64_path() -> None:
+    sympy = pytest.importorskip("sympy")
+    N = 25
+    d = symhx.distribution_of(N, sympy.sqrt(2) / 10, dps=None)
+    with mpmath.workdps(40):
+        pm = mpmath.sqrt(2) / 10
+        w = [pm**k * mpmath.factorial(N) / (k * mpmath.factorial(N - k)) for k in range(1, N + 1)]
+        s = mpmath.fsum(w)
+        for k in (1, 4, 12, N):
+            assert math.isclose(d.pmf(k), float(w[k - 1] / s), rel_tol=1e-12), k
+        assert math.isclose(d.log_normaliser, float(mpmath.log(s)), rel_tol=1e-13)
+
+
+@pytest.mark.parametrize("dps", [20, 50])
+def test_mp_logs_of_certain_events_are_exactly_zero(dps: int) -> None:
+    for N, pf in ((1, 0.5), (6, 0.3), (40, 0.07)):
+        d = symhx.distribution_of(N, pf, dps=dps)
+        assert d.logcdf(N) == 0 and d.logcdf(N + 5) == 0
+        assert d.logsf(0) == 0 and d.logsf(-3) == 0
+        assert d.logsf(N) == mpmath.ninf and d.logcdf(0) == mpmath.ninf
+        assert d.cdf(N) == 1 and d.sf(0) == 1 and d.sf(N) == 0 and d.cdf(0) == 0
