@@ -442,3 +442,15 @@ def test_interval_honours_dps() -> None:
     lo = ppf(t, (1 - c) / 2)
     assert symhx.interval(N, pf, c, dps=20) == (lo, k)
     assert symhx.interval(N, pf, c, dps=40) == (lo, k + 1)
+
+
+def test_mode_array_dtype_at_the_int64_edge() -> None:
+    """p = (k + 1) / (k (N - k)) makes Phi(k) = Phi(k + 1) (a tie, smallest maximiser k): with
+    k = 2**63 - 1 the modes still fit in int64; with k = 2**63 + 5 they need Python ints."""
+    for k, dtype in ((2**63 - 1, np.int64), (2**63 + 5, object)):
+        N = 3 * k
+        p = Fraction(k + 1, k * (N - k))
+        assert p * (N - k) * k / (k + 1) == 1  # the term ratio: an exact tie
+        assert symhx.modes(N, p) == (k, k + 1)
+        got = symhx.mode(N, [p, "1/2"])
+        assert got.dtype == dtype and got[0] == k, (k, got.dtype)
