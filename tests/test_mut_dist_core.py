@@ -754,3 +754,64 @@ def test_mp_logs_of_certain_events_are_exactly_zero(dps: int) -> None:
         assert d.logsf(0) == 0 and d.logsf(-3) == 0
         assert d.logsf(N) == mpmath.ninf and d.logcdf(0) == mpmath.ninf
         assert d.cdf(N) == 1 and d.sf(0) == 1 and d.sf(N) == 0 and d.cdf(0) == 0
+
+
+def _fraction_of(x: mpmath.mpf) -> Fraction:
+    man, exp = x.man_exp
+    return Fraction(int(man)) * Fraction(2) ** int(exp)
+
+
+@pytest.mark.parametrize("dps", [20, 30])
+def test_mp_quantile_resolution_is_exactly_ten_to_one_minus_dps(dps: int) -> None:
+    """The documented resolution: ppf gives k when q <= cdf(k) (1 + 10**(1 - dps)) and isf
+    gives k when q >= sf(k) (1 - 10**(1 - dps)), against the returned (rounded) cdf / sf
+    values; half the resolution inside counts as equal, twice outside does not."""
+    N, pf = 12, 0.3
+    d = symhx.distribution_of(N, pf, dps=dps)
+    eps = Fraction(10) ** (1 - dps)
+    for k in (3, 6, 9):
+        c, s = _fraction_of(d.cdf(k)), _fraction_of(d.sf(k))
+        assert d.ppf(c * (1 + eps / 2)) == k and d.ppf(c * (1 + 2 * eps)) == k + 1
+        assert d.isf(s * (1 - eps / 2)) == k and d.isf(s * (1 - 2 * eps)) == k + 1
+
+
+def test_exact_quantiles_have_no_tolerance() -> None:
+    """Exact p: q a relative 10**-40 away from cdf(k) / sf(k) moves the quantile."""
+    d = symhx.distribution_of(12, "0.3", dps=30)
+    t = table(12, Fraction(3, 10))
+    tiny = Fraction(1, 10**40)
+    for k in (3, 6, 9):
+        assert d.ppf(cdf_ref(t, k) * (1 + tiny)) == k + 1
+        assert d.ppf(cdf_ref(t, k)) == k
+        assert d.isf(sf_ref(t, k) * (1 - tiny)) == k + 1
+        assert d.isf(sf_ref(t, k)) == k
+
+
+def test_quantile_limit_messages() -> None:
+    big = SimpleDistribution(10**6 + 1, 0.5, dps=15)
+    for method in (big.ppf, big.isf):
+        with pytest.raises(ValueError, match=r"^a quantile on the mpmath path is limited to "
+                                             r"N <= 1000000 \(symhx\.distribution\."
+                                             r"MP_QUANTILE_N_LIMIT, a work limit\)"):
+            method("0.5")
+    ex = SimpleDistribution(20000, "0.1")
+    for method in (ex.ppf, ex.isf):
+        with pytest.raises(ValueError, match=r"^a quantile in exact rational arithmetic .*"
+                                             r"symhx\.distribution\.EXACT_QUANTILE_WORK_LIMIT\)"):
+            method("0.5")
+    with pytest.raises(ValueError, match=r"^a quantile in exact"):
+        ex.median()
+
+
+def test_object_k_arrays_keep_their_shape_and_name_k() -> None:
+    d = symhx.distribution_of(6, 0.4, dps=20)
+    t = table(6, Fraction(0.4))
+    k = np.array([[1, 2], [6, 10**30]], dtype=object)
+    got = d.pmf(k)
+    assert got.shape == (2, 2)
+    close(got[1, 0], t[5], 20)
+    assert got[1, 1] == 0
+    f = symhx.distribution_of(6, 0.4, dps=None).cdf(k)
+    assert f.shape == (2, 2) and f[1, 1] == 1.0
+    with pytest.raises(TypeError, match=r"^k must be an int"):
+        d.pmf(np.array([1, 2.5], dtype=object))
