@@ -815,3 +815,18 @@ def test_object_k_arrays_keep_their_shape_and_name_k() -> None:
     assert f.shape == (2, 2) and f[1, 1] == 1.0
     with pytest.raises(TypeError, match=r"^k must be an int"):
         d.pmf(np.array([1, 2.5], dtype=object))
+
+
+def test_q_is_checked_like_a_probability() -> None:
+    d = symhx.distribution_of(6, 0.4, dps=20)
+    for bad in (1.5, "2", Fraction(101, 100)):
+        with pytest.raises(ValueError, match=r"^q must be <= 1"):
+            d.ppf(bad)
+    with pytest.raises(ValueError, match=r"^q must be >= 0"):
+        d.isf(-0.25)
+    with pytest.raises(TypeError, match=r"^q must be a real number, got bool"):
+        d.ppf([0.5, True])
+    with pytest.raises(ValueError, match=r"^q must be <= 1"):
+        d.isf([0.5, 1.5])
+    with pytest.raises(ValueError, match=r"^confidence must be <= 1"):
+        d.interval(1.5)
