@@ -830,3 +830,29 @@ def test_q_is_checked_like_a_probability() -> None:
         d.isf([0.5, 1.5])
     with pytest.raises(ValueError, match=r"^confidence must be <= 1"):
         d.interval(1.5)
+
+
+@given(st.integers(2, 60), st.fractions(Fraction(1, 200), 3).filter(lambda x: x > 0))
+@example(5, Fraction(1, 2))
+@example(101, Fraction(1, 50))
+@example(40, Fraction(3, 40))
+def test_modes_decided_by_the_exact_fallback_alone(N: int, p: Fraction) -> None:
+    """The comparison of Phi(top) with Phi(1) falls back to exact integers when interval
+    arithmetic cannot certify its sign (an exact tie): forcing that fallback everywhere must
+    give the brute-force modes too."""
+    import symhx.distribution as dist
+
+    calls = []
+
+    def exact_only(fn: Any, *, start_bits: int, max_bits: int, exact_fn: Any = None) -> int:
+        calls.append(start_bits)
+        assert exact_fn is not None and start_bits >= 64 and max_bits >= start_bits
+        return exact_fn()
+
+    real = dist.certified_sign
+    dist.certified_sign = exact_only
+    try:
+        got = simple_modes(N, p, None)
+    finally:
+        dist.certified_sign = real
+    assert got == brute_modes(N, p)
