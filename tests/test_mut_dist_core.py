@@ -856,3 +856,39 @@ def test_modes_decided_by_the_exact_fallback_alone(N: int, p: Fraction) -> None:
     finally:
         dist.certified_sign = real
     assert got == brute_modes(N, p)
+
+
+def test_mp_binary_exact_tie_far_above_phi_one() -> None:
+    """N = 2049, p = 2**-10 (exact in binary): Phi(1024) = Phi(1025) exactly, ~e**390 above
+    Phi(1); the lower tail below the hump is still summed to dps digits."""
+    N, pf, dps = 2049, 2.0**-10, 20
+    assert Fraction(pf) * (N - 1024) * 1024 / 1025 == 1  # the exact tie
+    d = symhx.distribution_of(N, pf, dps=dps)
+    assert d.modes() == (1024, 1025) and d.mode() == 1024
+    ref = mp_table(N, Fraction(pf), 2 * dps + 20)
+    with mpmath.workdps(2 * dps + 20):
+        for k in (1, 10, 500, 1024):
+            c = mpmath.fsum(ref[:k])
+            close(d.cdf(k), c, dps, ("cdf", k))
+            close_log(d.logcdf(k), mpmath.log(c), dps, ("logcdf", k))
+        close(d.sf(1030), mpmath.fsum(ref[1030:]), dps, "sf")
+        close(d.pmf(1025), ref[1024], dps, "pmf")
+
+
+def test_certain_events_need_no_sums() -> None:
+    """cdf(k >= N) = 1 and sf(k >= N) = 0 are answered without summing (any N)."""
+    d = SimpleDistribution(10**120, 0.5, dps=15)
+    assert d.cdf(10**120) == 1 and d.sf(10**120) == 0 and d.cdf(10**121) == 1
+    assert d.logcdf(10**120) == 0 and d.logsf(10**120) == mpmath.ninf
+    assert d.cdf(0) == 0 and d.sf(0) == 1
+
+
+def test_float_entropy_with_underflowing_pmf() -> None:
+    """dps=None: pmf values that underflow to 0.0 contribute nothing (not nan, not 1)."""
+    N, pf = 3000, 1e-4
+    d = symhx.distribution_of(N, pf, dps=None)
+    assert d.pmf(N) == 0.0  # underflows
+    ref = mp_table(N, Fraction(pf), 30)
+    with mpmath.workdps(30):
+        h = -mpmath.fsum(x * mpmath.log(x) for x in ref if x > mpmath.mpf(10) ** -40)
+    assert abs(d.entropy() - float(h)) <= 1e-16 * N * math.log(N) * float(h)  # documented
