@@ -892,3 +892,12 @@ def test_float_entropy_with_underflowing_pmf() -> None:
     with mpmath.workdps(30):
         h = -mpmath.fsum(x * mpmath.log(x) for x in ref if x > mpmath.mpf(10) ** -40)
     assert abs(d.entropy() - float(h)) <= 1e-16 * N * math.log(N) * float(h)  # documented
+
+
+def test_float_ppf_near_one_stays_in_the_support() -> None:
+    """N = 2, p = 0.05: the float cdf ends at 1 - 2**-52; q = 1 - 2**-53 lies above it and
+    must still give N (not N + 1)."""
+    q = float(np.nextafter(1.0, 0.0))
+    for N, pf in ((2, 0.05), (3, 0.5), (20, 0.3)):
+        d = symhx.distribution_of(N, pf, dps=None)
+        assert d.ppf(q) == N and d.ppf([q]).tolist() == [N]
