@@ -901,3 +901,17 @@ def test_float_ppf_near_one_stays_in_the_support() -> None:
     for N, pf in ((2, 0.05), (3, 0.5), (20, 0.3)):
         d = symhx.distribution_of(N, pf, dps=None)
         assert d.ppf(q) == N and d.ppf([q]).tolist() == [N]
+
+
+def test_mp_p_with_a_long_mantissa() -> None:
+    """An mpf p carrying 1300 bits (its exact value has a huge numerator and denominator) is cut
+    to the working precision before use: results match the exact value's reference."""
+    with mpmath.workdps(400):
+        pm = mpmath.mpf(1) / 3 + mpmath.mpf(10) ** -350
+    N, dps = 9, 25
+    d = symhx.distribution_of(N, pm, dps=dps)
+    t = table(N, _fraction_of(pm))
+    mu = sum((k * x for k, x in enumerate(t, 1)), Fraction(0))
+    close(d.mean(), mu, dps, "mean")
+    for k in (1, 5, N):
+        close(d.pmf(k), t[k - 1], dps, k)
