@@ -836,6 +836,8 @@ def test_q_is_checked_like_a_probability() -> None:
 @example(5, Fraction(1, 2))
 @example(101, Fraction(1, 50))
 @example(40, Fraction(3, 40))
+@example(101, Fraction(1, 80))  # a hump (tie 16/17) below Phi(1): the mode is 1
+@example(60, Fraction(1, 40))  # the hump wins
 def test_modes_decided_by_the_exact_fallback_alone(N: int, p: Fraction) -> None:
     """The comparison of Phi(top) with Phi(1) falls back to exact integers when interval
     arithmetic cannot certify its sign (an exact tie): forcing that fallback everywhere must
