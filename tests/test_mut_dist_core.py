@@ -917,3 +917,16 @@ def test_mp_p_with_a_long_mantissa() -> None:
     close(d.mean(), mu, dps, "mean")
     for k in (1, 5, N):
         close(d.pmf(k), t[k - 1], dps, k)
+
+
+def test_mp_sums_work_at_their_limit() -> None:
+    """N = MP_SUM_N_LIMIT itself is allowed: with j = N - X the weights are ~ (1/p)**j / j!
+    (Poisson), so E[X] = N - 1/p up to O(1/N)."""
+    from symhx import distribution as dist
+
+    N = dist.MP_SUM_N_LIMIT
+    with mpmath.workdps(130):
+        p = mpmath.mpf(1) / 10
+    m = SimpleDistribution(N, p, dps=110).mean()
+    with mpmath.workdps(130):
+        assert abs(m - (N - 1 / p)) < mpmath.mpf(10) ** -8
