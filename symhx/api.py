@@ -357,15 +357,21 @@ def modes(N: int, p: Any, *, space: SpaceLike = DEFAULT_SPACE) -> Any:
 
 
 def mode(N: int, p: Any, *, space: SpaceLike = DEFAULT_SPACE) -> Any:
-    """The mode of X (the smallest maximiser), eq. (7); int64 array for an array of ``p``.
+    """The mode of X (the smallest maximiser), eq. (7); for an array of ``p`` an int64 array
+    (an object array of Python ints when a mode does not fit in int64, e.g. ``N = 10**100``).
 
     >>> mode(101, 0.01), mode(101, 0.013), mode(10**100, "1e-100")
     (1, 21, 1)
     """
     m = modes(N, p, space=space)
     if isinstance(m, np.ndarray):
-        return np.array([t[0] for t in m.ravel()], dtype=np.int64).reshape(m.shape)
+        first = [t[0] for t in m.ravel()]
+        fits = all(v <= _INT64_MAX for v in first)
+        return np.array(first, dtype=np.int64 if fits else object).reshape(m.shape)
     return m[0]
+
+
+_INT64_MAX = 2**63 - 1
 
 
 # --------------------------------------------------------------------------- critical point
