@@ -17,6 +17,9 @@ system temp dir), so the work tree never gets a ``mutants/`` directory. The copy
 ``[tool.symhx-mutation.tests]`` of ``pyproject.toml``; mutmut is run under ``nice -n 19`` with
 ``--max-children`` workers (default 1) and its per-mutant CPU timeout
 (``timeout_multiplier`` x the clean run time of the tests covering the mutated function).
+mutmut also stops a mutant after half that limit of wall time, so on a busy machine some passing
+mutants end as timeouts: raise ``--timeout-multiplier`` there, and read the report's
+``kill_rate_without_timeouts`` next to ``kill_rate``.
 
 The report (``tests/mutation-report.json``) lists, per module, the counts ``killed`` (tests failed,
 including timeouts), ``survived``, ``equivalent`` and ``no_tests`` (no test executes the mutated
