@@ -55,12 +55,16 @@ def to_arb(x: Any) -> arb:
     if isinstance(x, int):
         return arb(fmpz(x))
     if isinstance(x, mpmath.mpf):
-        man, exp = x.man_exp
+        if not mpmath.isfinite(x):
+            raise ValueError(f"cannot convert {x} to arb: not a finite number")
+        man, exp = x.man_exp  # the magnitude: man_exp carries no sign
+        if x < 0:
+            man = -man
         return arb(fmpz(man)) * arb(2) ** exp if exp >= 0 else arb(fmpz(man)) / arb(2) ** (-exp)
     num, den = getattr(x, "numerator", None), getattr(x, "denominator", None)
     if num is not None and den is not None:
         return arb(fmpz(int(num))) / arb(fmpz(int(den)))
-    raise TypeError(f"cannot convert {type(x).__name__} to arb")  # pragma: no cover
+    raise TypeError(f"cannot convert {type(x).__name__} to arb")
 
 
 def bits_for(N: int, extra_bits: int) -> int:
