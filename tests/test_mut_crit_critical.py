@@ -317,8 +317,10 @@ def test_mode_path_against_brute_force_modes(N, p_max):
         assert brute_modes(N, bp + Fraction(1, 10**15))[0] == right
     # the last breakpoint is the last mode change below p_max (brute force beyond it)
     modes = [brute_modes(N, p_max * Fraction(i, 240))[0] for i in range(1, 241)]
-    if path.breakpoints:
-        assert path.breakpoints[-1][2] == brute_modes(N, p_max)[0]
+    if path.breakpoints:  # at a breakpoint itself the smaller (left) mode holds
+        bp, left, right = path.breakpoints[-1]
+        assert (left if bp == p_max else right) == brute_modes(N, p_max)[0]
+        assert right == brute_modes(N, p_max + Fraction(1, 10**12))[0] or bp < p_max
     else:
         assert brute_modes(N, p_max)[0] == 1
     assert path.mode_at(p_max) == brute_modes(N, p_max)[0]
