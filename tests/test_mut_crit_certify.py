@@ -241,7 +241,10 @@ CASES = [("eq41", 12, Fraction(1, 7)), ("eq41", 30, Fraction(1, 20)),
          ("eq41", 30, Fraction(3, 40)), ("excess<=2", 25, Fraction(1, 9)),
          ("excess<=3;distinct", 20, Fraction(1, 30)), ("eq41-printed", 40, Fraction(1, 33)),
          ("simple", 5, Fraction(1, 2)), ("simple", 101, Fraction(1, 50)),
-         ("excess<=1", 60, Fraction(1, 25)), ("eq41", 9, Fraction(5, 2))]
+         ("excess<=1", 60, Fraction(1, 25)), ("eq41", 9, Fraction(5, 2)),
+         # just above p_c = 0.01288...: W dips after k = 1 and rises to its maximum at 20
+         ("excess<=0", 101, Fraction(13, 1000)), ("excess<=0;distinct", 101, Fraction(13, 1000)),
+         ("excess<=0", 101, Fraction(12, 1000))]
 
 
 @pytest.mark.parametrize("name, N, p", CASES)
@@ -257,6 +260,21 @@ def test_space_candidates_against_exhaustive_scan(name, N, p):
         want = sorted({top} | {k for k in range(1, N + 1) if W[k - 1] >= W[top - 1]})
         assert got == want, (name, N, p, top)
         assert argmax in got
+
+
+def test_space_modes_just_above_the_jump():
+    # regression: the float64 guess picks k = 1 (W(1) and W(20) agree to ~1e-14) and the scan
+    # used to stop at the dip after it, so the mode of excess<=0 (the simple space) was 1
+    import symhx
+    from symhx.validation import as_fraction
+
+    cp = symhx.critical_point(101, dps=40)
+    with mpmath.workdps(80):
+        for e in (14, 20, 30):
+            p = as_fraction(cp.p * (1 + mpmath.mpf(10) ** -e))
+            assert symhx.modes(101, p, space="excess<=0") == symhx.modes(101, p) == (20,)
+            p = as_fraction(cp.p * (1 - mpmath.mpf(10) ** -e))
+            assert symhx.modes(101, p, space="excess<=0") == (1,)
 
 
 def test_space_candidates_exact_ties():
