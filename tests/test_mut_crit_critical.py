@@ -380,3 +380,49 @@ def test_mode_at_rejects():
         path.mode_at(Fraction(1, 2) + Fraction(1, 10**20))
     assert path.mode_at(Fraction(1, 2)) == brute_modes(20, Fraction(1, 2))[0]
     assert path.mode_at(0.25) == brute_modes(20, Fraction(0.25))[0]
+
+
+def test_validation_of_k_and_seed():
+    for call, name in ((lambda v: log_c(10, v), "k"), (lambda v: argmin_certificate(10, v), "k"),
+                       (lambda v: certified_argmin(10, seed=v), "seed")):
+        with pytest.raises(ValueError, match=f"^{name} must be >= 2, got 1$"):
+            call(1)
+        with pytest.raises(TypeError, match=f"^{name} must be an int"):
+            call(2.5)
+    for call in (lambda: log_c(10, 11), lambda: argmin_certificate(10, 11)):
+        with pytest.raises(ValueError, match="^k must be <= 10, got 11$"):
+            call()
+    assert certified_argmin(10, seed=10**9) == certified_argmin(10)  # a seed above N is fine
+    assert log_c(10, 10) > 0 and argmin_certificate(10, 10) is False
+
+
+def test_sign_oracle_exact_work_limit_boundary():
+    N = 2**38 + 12345  # 39 bits: k * (39 + 1) hits the limit exactly at k = LIMIT / 40
+    k = C.EXACT_BITS_LIMIT // 40
+    assert k * (N.bit_length() + 1) == C.EXACT_BITS_LIMIT
+    assert C._SignOracle(N)._exact(k) == -1  # at the limit: still computed (c_{k+1} < c_k)
+    with pytest.raises(UndecidedError, match=rf"^c_{k + 2} vs c_{k + 1} for N={N}: balls"):
+        C._SignOracle(N)._exact(k + 1)
+
+
+def test_repr_and_str_show_every_field():
+    cp = critical_point(101, dps=12)
+
+    def s(x):
+        return mpmath.nstr(x, 12)
+
+    lo, hi = cp.p_bounds
+    assert repr(cp) == (
+        f"CriticalPoint(N=101, p_c={s(cp.p)}, q=N*p_c-1={s(cp.q)}, k_before=1, k_after=20, "
+        f"argmins=(20,), p_d={s(cp.p_d)}, q_d=N*p_d-1={s(cp.q_d)}, p_exact=None, "
+        f"p_bounds=({s(lo)}, {s(hi)}), dps=12)")
+    assert str(cp).splitlines() == [
+        "critical point, N = 101 (12 digits)", f"  p_c         = {s(cp.p)}",
+        f"  N p_c - 1   = {s(cp.q)}", f"  p_c in        [{s(lo)}, {s(hi)}]  (Arb ball)",
+        f"  p_d         = {s(cp.p_d)}", f"  N p_d - 1   = {s(cp.q_d)}",
+        "  mode jumps  1 -> 20  (argmins 20)"]
+    assert lo < hi
+    five = critical_point(5, dps=6)
+    assert str(five).splitlines()[-1] == "  mode jumps  1 -> 3  (argmins 2, 3)"
+    d = cp.as_dict()
+    assert (d["p_c_lo"], d["p_c_hi"]) == (lo, hi)
