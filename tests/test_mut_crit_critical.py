@@ -390,7 +390,7 @@ def test_validation_of_k_and_seed():
         with pytest.raises(TypeError, match=f"^{name} must be an int"):
             call(2.5)
     for call in (lambda: log_c(10, 11), lambda: argmin_certificate(10, 11)):
-        with pytest.raises(ValueError, match="^k must be <= 10, got 11$"):
+        with pytest.raises(ValueError, match=r"^k must be <= 10, got 11$"):
             call()
     assert certified_argmin(10, seed=10**9) == certified_argmin(10)  # a seed above N is fine
     assert log_c(10, 10) > 0 and argmin_certificate(10, 10) is False
