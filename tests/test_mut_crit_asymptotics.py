@@ -324,3 +324,73 @@ def test_format_error_table_layout():
         "| N | a | b |", "|---|---|---|",
         "| 1e3 | 0.0123 | 0 |", "| 1234 | 2.5e-7 |  |", "| 1e30 |  | 1.23e-40 |"]
     assert format_error_table(rows, digits=5).splitlines()[2] == "| 1e3 | 0.012345 | 0 |"
+
+
+def test_documented_defaults_and_validation_messages():
+    import inspect
+
+    # the defaults are part of the API (book tables, CLI): 5 terms at 50 digits; the error
+    # table over DEFAULT_NS at 120 digits
+    s = pd_series(10**6)
+    assert s.n_terms == 5 and s.value == pd_series(10**6, 5, dps=50).value
+    assert s.value != pd_series(10**6, 5, dps=51).value
+    sig = inspect.signature(error_table).parameters
+    assert sig["dps"].default == 120 and sig["Ns"].default == A.DEFAULT_NS
+    assert sig["orders"].default == ORDERS and sig["pd_terms"].default == 5
+    for call in (lambda: pd_series(100, 0), lambda: pd_series_coefficients(0)):
+        with pytest.raises(ValueError, match=r"^n_terms must be >= 1"):
+            call()
+    for call in (lambda: pd_series(100, A.MAX_PD_TERMS + 1),
+                 lambda: pd_series_coefficients(A.MAX_PD_TERMS + 1)):
+        with pytest.raises(ValueError, match=rf"^n_terms must be <= {A.MAX_PD_TERMS}"):
+            call()
+    with pytest.raises(ValueError, match=r"^each N of Ns must be >= 2"):
+        error_table((1,), dps=15)
+    with pytest.raises(TypeError, match=r"^Ns must be a list or tuple"):
+        error_table("1000", dps=15)
+    with pytest.raises(TypeError, match=r"^orders must be a list or tuple"):
+        error_table((1000,), orders="best", dps=15)
+    with pytest.raises(ValueError, match=r"^each order of orders must be one of"):
+        error_table((1000,), orders=("worst",), dps=15)
+    with pytest.raises(ValueError, match=r"^pd_terms must be >= 1"):
+        error_table((1000,), pd_terms=0, dps=15)
+
+    class ListLike:  # tolist() but no ndim: not an array, and not a list either
+        def tolist(self):
+            return [1000]
+
+    with pytest.raises(TypeError, match="Ns must be a list or tuple"):
+        A._sequence(ListLike(), "Ns")
+
+
+def test_error_table_values_at_the_requested_digits():
+    rows = error_table((1000,), dps=25, orders=("leading", "best"), pd_terms=2)
+    keys = {"N", "formula", "quantity", "approx", "exact", "rel_error", "k", "k_exact",
+            "k_rel_error", "decay", "bound"}
+    assert all(set(r) == keys for r in rows)
+    assert rows[-1]["k_exact"] is None and rows[0]["k_exact"] == rows[1]["k_exact"]
+    for r in rows:  # every reported value is a 25-digit number (the solvers ran at dps=25)
+        for key in ("approx", "exact"):
+            with mpmath.workdps(25):
+                assert +r[key] == r[key], (r["formula"], key)
+            with mpmath.workdps(20):
+                assert +r[key] != r[key], (r["formula"], key)
+    with mpmath.workdps(60):  # the leading row is the leading formula, q = sqrt(ln N / N)
+        assert abs(rows[0]["approx"] / mpmath.sqrt(mpmath.log(1000) / 1000) - 1) < 1e-23
+
+
+def test_format_error_table_small_N_names():
+    rows = [{"N": 1, "formula": "a", "rel_error": mpmath.mpf("0.5")},
+            {"N": 0, "formula": "a", "rel_error": None}]
+    assert format_error_table(rows).splitlines()[2:] == ["| 1e0 | 0.5 |", "| 0 |  |"]
+
+
+def test_pd_series_bound_at_huge_N_and_dps():
+    # N = 10**2000: the truncation error is within 10**-2000 of the bound, so the rounding of
+    # the value and of the bound (dps = 1000) must both be covered
+    N = 10**2000
+    for n_terms in (2, 4):
+        s = pd_series(N, n_terms, dps=1000)
+        with mpmath.workdps(5000):
+            exact = ((1 + mpmath.sqrt(N + 1)) / N) ** 2
+            assert abs(exact - s.value) <= s.bound
