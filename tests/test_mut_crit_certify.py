@@ -287,3 +287,18 @@ def test_space_candidates_exact_ties():
     # N = 101, p = 1/50: Phi(50) = Phi(51)
     assert space_candidates(simple, 101, Fraction(1, 50), 50) == [50, 51]
     assert space_candidates(simple, 101, Fraction(1, 50), 51) == [50, 51]
+
+
+def test_space_candidates_resolve_a_deep_near_tie():
+    # p = (1 + 2**-150) / 50 with N = 101: W(51) / W(50) = 1 + 2**-150. The working precision
+    # grows with the bits of p's numerator and denominator, so the balls separate the two
+    from symhx.spaces import parse_space
+
+    p = Fraction(2**150 + 1, 50 * 2**150)
+    for name in ("excess<=0", "excess<=0;distinct"):
+        space = parse_space(name)
+        assert _W(space, 101, p, 51) > _W(space, 101, p, 50)
+        assert space_candidates(space, 101, p, 51) == [51]
+        assert space_candidates(space, 101, p, 50) == [50, 51]
+    p = Fraction(2**150 - 1, 50 * 2**150)  # now W(50) / W(51) = 1 / (1 - 2**-150) > 1
+    assert space_candidates(parse_space("excess<=0"), 101, p, 50) == [50]
