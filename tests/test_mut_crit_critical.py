@@ -426,3 +426,23 @@ def test_repr_and_str_show_every_field():
     assert str(five).splitlines()[-1] == "  mode jumps  1 -> 3  (argmins 2, 3)"
     d = cp.as_dict()
     assert (d["p_c_lo"], d["p_c_hi"]) == (lo, hi)
+
+
+def test_log_c_precision_loop_from_a_low_start(monkeypatch):
+    # the default start precision already gives dps + 2 digits (log k - G(k-1) >= log 2), so
+    # the doubling loop of log_c is exercised here from a 16-bit start: it must still deliver
+    # dps digits, and stop (cap 40 x start = 640 bits)
+    def low_start(N, extra):
+        return 16 + 0 * N.bit_length() + 0 * int(extra)
+
+    monkeypatch.setattr(C, "bits_for", low_start)
+    for N, k in ((101, 20), (10**6, 3802), (10**40, 10**20)):
+        for dps in range(5, 121, 23):
+            got = log_c(N, k, dps=dps)
+            ref = log_c_direct(N, k, 3 * dps)
+            with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+                assert abs(got - ref) <= mpmath.mpf(10) ** -dps * abs(ref), (N, k, dps)
+    # beyond the cap (640 bits < 200 digits): the loop stops and returns what it has
+    got = log_c(101, 20, dps=400)
+    with mpmath.workdps(500):
+        assert abs(got - log_c_direct(101, 20, 400)) < mpmath.mpf(10) ** -150
