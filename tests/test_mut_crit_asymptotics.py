@@ -394,3 +394,14 @@ def test_pd_series_bound_at_huge_N_and_dps():
         with mpmath.workdps(5000):
             exact = ((1 + mpmath.sqrt(N + 1)) / N) ** 2
             assert abs(exact - s.value) <= s.bound
+
+
+def test_small_N_and_order_messages():
+    for N in (2, 3, 20):
+        with pytest.raises(ValueError, match=rf"^the asymptotic formulas need N >= 21, got N={N}; "
+                                             r"use symhx\.critical_point for small N$"):
+            asymptotic_critical_point(N)
+    with pytest.raises(ValueError, match=r"^N must be >= 2"):
+        asymptotic_critical_point(1)
+    with pytest.raises(ValueError, match=r"^order must be one of"):
+        asymptotic_critical_point(1000, order="fast")
