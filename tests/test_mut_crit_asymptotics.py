@@ -342,7 +342,8 @@ def test_documented_defaults_and_validation_messages():
             call()
     for call in (lambda: pd_series(100, A.MAX_PD_TERMS + 1),
                  lambda: pd_series_coefficients(A.MAX_PD_TERMS + 1)):
-        with pytest.raises(ValueError, match=rf"^n_terms must be <= {A.MAX_PD_TERMS}"):
+        with pytest.raises(ValueError, match=rf"^n_terms must be <= {A.MAX_PD_TERMS}, got "
+                                             rf"{A.MAX_PD_TERMS + 1}$"):
             call()
     with pytest.raises(ValueError, match=r"^each N of Ns must be >= 2"):
         error_table((1,), dps=15)
