@@ -406,3 +406,11 @@ def test_small_N_and_order_messages():
         asymptotic_critical_point(1)
     with pytest.raises(ValueError, match=r"^order must be one of"):
         asymptotic_critical_point(1000, order="fast")
+
+
+def test_error_table_default_digits():
+    (row, _) = error_table((1000,), orders=("leading",))  # dps defaults to 120
+    with mpmath.workdps(120):
+        assert +row["approx"] == row["approx"]
+    with mpmath.workdps(119):
+        assert +row["approx"] != row["approx"]
