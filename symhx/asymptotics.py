@@ -153,7 +153,8 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
 
     The bound: the omitted terms of power ``>= 5`` form an alternating series with decreasing
     terms for ``N >= 1`` (binomial series of ``sqrt(1 + 1/N)``), so they are bounded by the
-    first of them; omitted terms of power ``<= 4`` are added in full.
+    first of them; omitted terms of power ``<= 4`` are added in full; the rounding of ``value``
+    to ``dps`` digits is added too (it dominates when ``dps`` is small for the terms kept).
 
     Parameters
     ----------
@@ -188,7 +189,15 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
             if pw >= 5:
                 break
     with mpmath.workdps(dps):
-        return PdSeries(N, n_terms, +value, +bound, used)
+        rounded = +value
+    with mpmath.workdps(dps + 10):
+        # the returned value is rounded to dps digits: that rounding (and a generous allowance
+        # for the (dps+10)-digit sum) is part of |p_d - value|; the factor covers the rounding
+        # of the bound itself to dps digits
+        bound = (bound + abs(rounded - value) + abs(value) * mpmath.mpf(10) ** -(dps + 5)) * (
+            1 + mpmath.mpf(10) ** (1 - dps))
+    with mpmath.workdps(dps):
+        return PdSeries(N, n_terms, rounded, +bound, used)
 
 
 # ------------------------------------------------------------------- the relaxation of h

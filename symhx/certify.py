@@ -55,12 +55,16 @@ def to_arb(x: Any) -> arb:
     if isinstance(x, int):
         return arb(fmpz(x))
     if isinstance(x, mpmath.mpf):
-        man, exp = x.man_exp
+        if not mpmath.isfinite(x):
+            raise ValueError(f"cannot convert {x} to arb: not a finite number")
+        man, exp = x.man_exp  # the magnitude: man_exp carries no sign
+        if x < 0:
+            man = -man
         return arb(fmpz(man)) * arb(2) ** exp if exp >= 0 else arb(fmpz(man)) / arb(2) ** (-exp)
     num, den = getattr(x, "numerator", None), getattr(x, "denominator", None)
     if num is not None and den is not None:
         return arb(fmpz(int(num))) / arb(fmpz(int(den)))
-    raise TypeError(f"cannot convert {type(x).__name__} to arb")  # pragma: no cover
+    raise TypeError(f"cannot convert {type(x).__name__} to arb")
 
 
 def bits_for(N: int, extra_bits: int) -> int:
@@ -148,9 +152,13 @@ def space_candidates(space: Any, N: int, fr: Any, top: int) -> list[int]:
 
     ``W(k)/W(1)`` is a running product of the exact ratios
     ``W(k+1)/W(k) = p (N-k) k/(k+1) Q*(k+1)/Q*(k)``; it stops at the first ``k > max(top, r)``
-    with ``W(k) < W(top)`` and ``rho(k) = p (N-k) (k+m)/(k+1-r) < 1`` (``r = max_parts``,
-    ``m = max_excess``): ``rho`` is non-increasing and bounds every later ratio (mediant
-    inequality on the non-negative polynomial coefficients of ``Q*``), so W decreases after it.
+    with ``W(k) < W(top)`` and ``rho(k) = p (N-k) max((k+m)/(k+1-r), 1) < 1``
+    (``r = max_parts``, ``m = max_excess``): each later ratio ``W(j+1)/W(j)`` is at most
+    ``p (N-j) (j+m)/(j+1-r)`` (mediant inequality on the non-negative polynomial coefficients of
+    ``Q*``), and ``(j+m)/(j+1-r)`` is monotone in ``j`` with limit 1, so ``rho(k)`` bounds every
+    later ratio and W decreases after it. (Without the ``max(., 1)``, for ``m = r = 0``, the
+    excess<=0 space, ``k/(k+1)`` *increases* and a dip of W after ``top`` used to stop the scan
+    before a larger maximum.)
     """
     a, b = fr.numerator, fr.denominator
     m, R = space.max_excess, space.max_parts
@@ -175,6 +183,6 @@ def space_candidates(space: Any, N: int, fr: Any, top: int) -> list[int]:
             below = ratio < wtop
             if not below:
                 out.append(kk)
-            elif kk > R and fr * (N - kk) * (kk + m) < kk + 1 - R:
+            elif kk > R and fr * (N - kk) * max(kk + m, kk + 1 - R) < kk + 1 - R:
                 break
     return sorted({top, *out})

@@ -1,0 +1,448 @@
+"""symhx.critical against independent references (issue 16, mutation testing): exact integer
+comparisons of ``c_k`` (no logs, no balls), Fraction brute force of the pmf, mpmath's loggamma
+at 3x the digits, and direct counts for the small helpers. Every test is fast."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from fractions import Fraction
+
+import mpmath
+import pytest
+from _reference import brute_modes, log_c_direct
+
+from symhx import critical as C
+from symhx.certify import UndecidedError
+from symhx.critical import (
+    MAX_BREAKPOINTS,
+    argmin_certificate,
+    certified_argmin,
+    critical_point,
+    discriminant_root,
+    discriminant_root_q,
+    log_c,
+    mode_path,
+)
+
+
+# ---------------------------------------------------------------- exact references for c_k
+def _ck_power(N: int, k: int) -> Fraction:
+    """c_k**(k-1) = k (N-k)! / (N-1)! exactly."""
+    return Fraction(k * math.factorial(N - k), math.factorial(N - 1))
+
+
+def _cmp_c(N: int, j: int, k: int) -> int:
+    """Exact sign of c_j - c_k (powers to the common exponent (j-1)(k-1), integers only)."""
+    a, b = _ck_power(N, j), _ck_power(N, k)
+    lhs = a.numerator ** (k - 1) * b.denominator ** (j - 1)
+    rhs = b.numerator ** (j - 1) * a.denominator ** (k - 1)
+    return (lhs > rhs) - (lhs < rhs)
+
+
+def _exact_argmins(N: int) -> list[int]:
+    best = [2]
+    for k in range(3, N + 1):
+        s = _cmp_c(N, k, best[0])
+        if s < 0:
+            best = [k]
+        elif s == 0:
+            best.append(k)
+    return best
+
+
+SMALL = [*range(2, 41), 57, 64, 90, 101]
+
+
+@pytest.mark.parametrize("N", SMALL)
+def test_argmin_every_seed_against_exact_integers(N):
+    argmins = _exact_argmins(N)
+    assert critical_point(N, dps=10).argmins == tuple(argmins)
+    # the verification lands on the answer from every seed (secant, gallop and bisection)
+    for seed in range(2, N + 3):
+        assert certified_argmin(N, seed=seed) == tuple(argmins), (N, seed)
+    # the certificate accepts exactly the first argmin
+    for k in range(2, N + 1):
+        assert argmin_certificate(N, k) == (k == argmins[0]), (N, k)
+
+
+@pytest.mark.parametrize("N", [5, 12, 30, 101])
+def test_sign_oracle_and_its_exact_fallback(N):
+    oracle = C._SignOracle(N)
+    for k in range(2, N):
+        want = _cmp_c(N, k + 1, k)
+        assert oracle.sign(k) == want, (N, k)
+        assert oracle._exact(k) == want, (N, k)
+    assert oracle.sign(N) == 1 and oracle.sign(N + 5) == 1
+    assert oracle.evaluations == N - 2  # cached: each k evaluated once
+    oracle.sign(3)
+    assert oracle.evaluations == N - 2
+
+
+def test_sign_oracle_exact_fallback_refuses_huge_work():
+    oracle = C._SignOracle(10**12)
+    k = C.EXACT_BITS_LIMIT // 41 + 10  # k * (bits of N + 1) just above the limit
+    with pytest.raises(UndecidedError, match="exact comparison needs"):
+        oracle._exact(k)
+
+
+def test_seed_is_close_to_the_argmin():
+    # the Lambert-W seed (with its fitted shift) lands within 3 of the certified argmin
+    for N in [*range(25, 400, 7), *(10**e for e in range(3, 40)), 10**100, 10**300, 2**200 + 1]:
+        k = certified_argmin(N)[0]
+        assert abs(C._seed(N) - k) <= 3, (N, C._seed(N), k)
+    assert all(C._seed(N) == 2 for N in range(2, 25))
+    assert critical_point(10**300, dps=10).sign_evaluations <= 4
+
+
+def test_exact_tie_N5():
+    assert C._argmin_c(5) == (2, True, C._argmin_c(5)[2])
+    assert C._argmin_c(2) == (2, False, 0)
+    cp = critical_point(5, dps=30)
+    assert cp.argmins == (2, 3) and cp.k_after == 3 and cp.jump == 2 and cp.k_before == 1
+
+
+# ------------------------------------------------------------------------ small helpers
+def test_perm_and_legendre():
+    for n in range(0, 60):
+        for r in range(0, n + 1):
+            assert C._perm(n, r) == math.factorial(n) // math.factorial(n - r)
+        for p in (2, 3, 5, 7, 11):
+            f, v = math.factorial(n), 0
+            while f % p == 0:
+                f //= p
+                v += 1
+            assert C._vp_factorial(n, p) == v, (n, p)
+
+
+def test_exact_root():
+    assert C._exact_root(Fraction(9, 4), 2) == Fraction(3, 2)
+    assert C._exact_root(Fraction(8, 27), 3) == Fraction(2, 3)
+    assert C._exact_root(Fraction(5, 7), 1) == Fraction(5, 7)
+    assert C._exact_root(Fraction(9, 2), 2) is None
+    assert C._exact_root(Fraction(2, 9), 2) is None
+    assert C._exact_root(Fraction(16, 81), 4) == Fraction(2, 3)
+    assert C._exact_root(Fraction(16, 81), 2) == Fraction(4, 9)
+
+
+def test_rational_critical_points_beyond_k2():
+    # c_k rational for k >= 3: the prefilter must let it through and p_exact must be found
+    found = []
+    for N in range(3, 200):
+        for k in range(3, min(N, 12) + 1):
+            r = C._exact_root(Fraction(k, math.perm(N - 1, k - 1)), k - 1)
+            if r is not None:
+                assert C._root_possible(N, k)
+                assert r ** (k - 1) == _ck_power(N, k)
+                found.append((N, k))
+    assert found  # e.g. (N, k) = (5, 3): c_3 = 1/2
+    # and the prefilter rejects where an exponent of 2, 3, 5 or 7 is not a multiple of k-1
+    assert not C._root_possible(10, 3)
+    assert C._root_possible(5, 3)
+
+
+def test_fmt_int():
+    assert C._fmt_int(12345) == "12345"
+    assert C._fmt_int(2**160 - 1) == str(2**160 - 1)
+    assert C._fmt_int(2**160) == "~1.4615016373309e+48"
+    assert C._fmt_int(10**5000) == "~1.0e+5000"
+
+
+# -------------------------------------------------------------------- discriminant, log c
+@pytest.mark.parametrize("N", [2, 3, 4, 10, 101, 10**6, 10**50, 10**400])
+@pytest.mark.parametrize("dps", [1, 15, 60, 300])
+def test_discriminant_root_correctly_rounded(N, dps):
+    d = len(str(N))
+    with mpmath.workdps(3 * dps + 2 * d + 30):
+        s = mpmath.sqrt(N + 1)
+        pd = ((1 + s) / N) ** 2
+        qd = 2 * (1 + s) / N
+    pd_got, qd_got = discriminant_root(N, dps=dps), discriminant_root_q(N, dps=dps)
+    with mpmath.workdps(dps):  # the reference rounded to nearest at dps digits
+        pd_ref, qd_ref = +pd, +qd
+    with mpmath.workdps(3 * dps + 2 * d + 30):
+        # equal to the correctly rounded value, or one ulp off only at a near-halfway case
+        for got, ref, exact in ((pd_got, pd_ref, pd), (qd_got, qd_ref, qd)):
+            if got != ref:
+                assert abs(got - exact) <= abs(ref - exact) * (1 + mpmath.mpf(10) ** -20)
+            assert abs(got - exact) <= mpmath.mpf(2) ** -(mpmath.mpf(dps) * 3.32) * exact
+
+
+@pytest.mark.parametrize("N, k", [(5, 2), (101, 20), (101, 101), (10**6, 3802), (10**6, 7),
+                                  (10**40, 10**20), (10**200, 10**99 + 7)])
+@pytest.mark.parametrize("dps", [5, 40, 250])
+def test_log_c_against_loggamma(N, k, dps):
+    got = log_c(N, k, dps=dps)
+    ref = log_c_direct(N, k, 3 * dps)
+    with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+        assert abs(got - ref) <= mpmath.mpf(10) ** (1 - dps) * abs(ref), (N, k, dps)
+
+
+# ----------------------------------------------------------------------- the enclosures
+def _ref_pc(N: int, k: int, dps: int) -> mpmath.mpf:
+    with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+        return mpmath.exp(log_c_direct(N, k, 3 * dps)) / N
+
+
+@pytest.mark.parametrize("N", [4, 7, 101, 1000, 10**6, 10**25, 10**120])
+@pytest.mark.parametrize("dps", [3, 30, 300])
+def test_critical_point_width_and_value(N, dps):
+    cp = critical_point(N, dps=dps)
+    k = cp.argmins[0]
+    ref = _ref_pc(N, k, dps)
+    with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+        one = mpmath.mpf(10) ** -dps
+        lo, hi = cp.p_bounds
+        qlo, qhi = cp.q_bounds
+        assert lo <= ref <= hi and lo <= cp.p <= hi
+        assert hi - lo <= one * ref
+        assert abs(cp.p - ref) <= one * ref
+        qref = N * ref - 1
+        assert qlo <= qref <= qhi and qlo <= cp.q <= qhi
+        assert qhi - qlo <= one * qref
+        assert abs(cp.q - qref) <= one * qref
+    assert cp.dps == dps and cp.N == N
+
+
+@pytest.mark.parametrize("N", [2, 3, 4, 5])
+@pytest.mark.parametrize("dps", [4, 40])
+def test_rational_critical_point(N, dps):
+    cp = critical_point(N, dps=dps)
+    assert cp.argmins[0] == 2  # c_2 = 2/(N-1); N = 5 ties c_2 = c_3
+    exact = Fraction(2, N - 1)
+    assert cp.p_exact == exact
+    with mpmath.workdps(4 * dps):
+        e = mpmath.mpf(exact.numerator) / exact.denominator
+        lo, hi = cp.p_bounds
+        qlo, qhi = cp.q_bounds
+        assert lo <= e <= hi and hi - lo <= mpmath.mpf(10) ** -dps * e
+        assert abs(cp.p - e) <= mpmath.mpf(10) ** -dps * e
+        q = N * e - 1
+        assert qlo <= q <= qhi and abs(cp.q - q) <= mpmath.mpf(10) ** -dps * q
+        if N == 5:  # 1/2: exactly representable, a zero-width enclosure
+            assert lo == hi == e
+
+
+def test_exact_enclosure_is_outward():
+    for N, a in ((9, Fraction(1, 4)), (17, Fraction(1, 8)), (7, Fraction(1, 3)),
+                 (12, Fraction(2, 11))):
+        for dps in (3, 30):
+            p, q, (lo, hi), (qlo, qhi) = C.exact_enclosure(N, a, dps)
+            flo, fhi = C._frac(lo), C._frac(hi)
+            assert flo <= a <= fhi and fhi - flo <= a / 10**dps
+            assert C._frac(qlo) <= N * a - 1 <= C._frac(qhi)
+            assert lo <= p <= hi and qlo <= q <= qhi
+
+
+def test_repr_str_and_dict():
+    cp = critical_point(101, dps=12)
+    assert repr(cp).startswith("CriticalPoint(N=101, p_c=0.0128891153265, ")
+    assert "argmins=(20,)" in repr(cp) and "k_after=20" in repr(cp)
+    assert "dps=12)" in repr(cp)
+    s = str(cp)
+    assert s.splitlines()[0] == "critical point, N = 101 (12 digits)"
+    assert "mode jumps  1 -> 20  (argmins 20)" in s
+    assert "(= " not in s  # irrational
+    five = critical_point(5, dps=6)
+    assert "p_c         = 0.5  (= 1/2)" in str(five)
+    assert "argmins=(2, 3)," in repr(five)
+    d = five.as_dict()
+    assert d["argmins"] == [2, 3] and d["p_c_exact"] == Fraction(1, 2)
+    assert d["p_c_lo"] == d["p_c_hi"] == mpmath.mpf("0.5") and d["dps"] == 6
+    assert d["N"] == 5 and d["k_before"] == 1 and d["k_after"] == 3
+    assert d["N_p_c_minus_1"] == five.q and d["N_p_d_minus_1"] == five.q_d
+    assert d["p_d"] == five.p_d and d["p_c"] == five.p
+    big = critical_point(10**60, dps=8)
+    assert "CriticalPoint(N=~1.0e+60, " in repr(big) and f"k_after={big.k_after}," in repr(big)
+    assert str(big).startswith("critical point, N = ~1.0e+60 (8 digits)")
+
+
+# ------------------------------------------------------------------ compare_with_critical
+def test_compare_with_critical_all_paths():
+    cp = critical_point(101, dps=20)
+    lo, hi = (C._frac(b) for b in cp.p_bounds)
+    assert C.compare_with_critical(cp, lo - Fraction(1, 10**40)) == -1
+    assert C.compare_with_critical(cp, hi + Fraction(1, 10**40)) == 1
+    ref = _ref_pc(101, 20, 40)
+    with mpmath.workdps(150):
+        for sgn in (-1, 1):
+            fr = C._frac(ref * (1 + sgn * mpmath.mpf(10) ** -30))
+            assert lo < fr < hi
+            assert C.compare_with_critical(cp, fr) == sgn
+    # rational p_c: exact comparison
+    five = critical_point(5)
+    for fr, want in ((Fraction(1, 2), 0), (Fraction(1, 2) + Fraction(1, 10**50), 1),
+                     (Fraction(1, 2) - Fraction(1, 10**50), -1)):
+        assert C.compare_with_critical(five, fr) == want
+    # the ball path on an exact tie (p_exact withheld, wide bounds): the exact fall-back decides
+    blind = dataclasses.replace(five, p_exact=None,
+                                p_bounds=(mpmath.mpf("0.4"), mpmath.mpf("0.6")))
+    assert C.compare_with_critical(blind, Fraction(1, 2)) == 0
+    assert C.compare_with_critical(blind, Fraction(1, 2) + Fraction(1, 10**60)) == 1
+    assert C.compare_with_critical(blind, Fraction(1, 2) - Fraction(1, 10**60)) == -1
+    # and with k = 3 (c_3 = 1/2 for N = 5 as well): the tie across the other argmin
+    blind3 = dataclasses.replace(blind, argmins=(3,))
+    assert C.compare_with_critical(blind3, Fraction(1, 2)) == 0
+    assert C.compare_with_critical(blind3, Fraction(1, 3)) == -1
+
+
+# ------------------------------------------------------------------------- the mode path
+def _breakpoints_brute(N: int, k0: int, pm: Fraction) -> int:
+    last = k0 - 1
+    for k in range(k0, N):
+        if Fraction(k + 1, k * (N - k)) <= pm:
+            last = k
+    return last
+
+
+def test_breakpoints_below_against_brute_force():
+    for N in (3, 4, 7, 20, 61):
+        for k0 in range(2, N):
+            for pm in (Fraction(1, 10), Fraction(1, 3), Fraction(1, 2), Fraction(9, 10),
+                       Fraction(1), Fraction(N, N - 1), Fraction(7), Fraction(k0 + 1,
+                                                                          k0 * (N - k0))):
+                assert C._breakpoints_below(N, k0, pm) == _breakpoints_brute(N, k0, pm), (
+                    N, k0, pm)
+
+
+@pytest.mark.parametrize("N", [2, 3, 4, 5, 6, 9, 20, 31])
+@pytest.mark.parametrize("p_max", [Fraction(1, 3), Fraction(1), Fraction(3, 2), Fraction(10)])
+def test_mode_path_against_brute_force_modes(N, p_max):
+    path = mode_path(N, p_max=p_max, dps=20)
+    assert path.N == N and path.p_max == p_max
+    # every exact breakpoint: both sides maximise there, the right one just above
+    for bp, left, right in path.breakpoints[1:]:
+        assert bp <= p_max and right == left + 1
+        assert set(brute_modes(N, bp)) >= {left, right}
+        assert brute_modes(N, bp + Fraction(1, 10**15))[0] == right
+    # the last breakpoint is the last mode change below p_max (brute force beyond it)
+    modes = [brute_modes(N, p_max * Fraction(i, 240))[0] for i in range(1, 241)]
+    if path.breakpoints:  # at a breakpoint itself the smaller (left) mode holds
+        bp, left, right = path.breakpoints[-1]
+        assert (left if bp == p_max else right) == brute_modes(N, p_max)[0]
+        assert right == brute_modes(N, p_max + Fraction(1, 10**12))[0] or bp < p_max
+    else:
+        assert brute_modes(N, p_max)[0] == 1
+    assert path.mode_at(p_max) == brute_modes(N, p_max)[0]
+    for i in range(1, 241):
+        p = p_max * Fraction(i, 240)
+        assert path.mode_at(p) == modes[i - 1], (N, p)
+    rows = path.as_rows()
+    assert len(rows) == len(path.breakpoints)
+    for row, (bp, kl, kr), (lo, hi) in zip(rows, path.breakpoints, path.bounds, strict=True):
+        assert (row["p"], row["k_left"], row["k_right"], row["p_lo"], row["p_hi"]) == (
+            bp, kl, kr, lo, hi)
+        assert lo <= bp <= hi
+
+
+def test_mode_path_bounds_and_empty_paths():
+    path = mode_path(101, dps=25)
+    assert path.bounds[0] == path.critical.p_bounds
+    assert all(lo == hi == bp for (bp, _, _), (lo, hi) in zip(path.breakpoints[1:],
+                                                                path.bounds[1:], strict=True))
+    # rational jump point: a zero-width bound at the Fraction itself
+    five = mode_path(5)
+    assert five.breakpoints[0][0] == Fraction(1, 2)
+    assert five.bounds[0] == (Fraction(1, 2), Fraction(1, 2))
+    # p_max below p_c: no breakpoint, the mode is 1 everywhere on the path
+    low = mode_path(101, p_max=Fraction(1, 100))
+    assert low.breakpoints == () and low.mode_at(Fraction(1, 100)) == 1
+    # p_max exactly at a rational p_c keeps the jump
+    at = mode_path(5, p_max=Fraction(1, 2))
+    assert [b[1:] for b in at.breakpoints] == [(1, 3)]
+    assert mode_path(5, p_max=Fraction(1, 2) - Fraction(1, 10**9)).breakpoints == ()
+    # N = 2: the jump at p_c = 2 goes straight to k = N
+    two = mode_path(2, p_max=3)
+    assert two.breakpoints == ((Fraction(2), 1, 2),)
+    assert two.mode_at(2) == 1 and two.mode_at(Fraction(201, 100)) == 2
+    assert mode_path(2).breakpoints == ()
+
+
+def test_mode_path_cap_boundary():
+    N = 10**6
+    cp = critical_point(N, dps=10)
+    last = cp.k_after + MAX_BREAKPOINTS - 2  # exactly MAX_BREAKPOINTS breakpoints
+    pm = Fraction(last + 1, last * (N - last))
+    path = mode_path(N, p_max=pm, dps=10)
+    assert len(path.breakpoints) == MAX_BREAKPOINTS
+    assert path.breakpoints[-1] == (pm, last, last + 1)
+    nxt = Fraction(last + 2, (last + 1) * (N - last - 1))
+    with pytest.raises(ValueError, match=f"would list {MAX_BREAKPOINTS + 1} breakpoints"):
+        mode_path(N, p_max=nxt, dps=10)
+
+
+def test_mode_at_rejects():
+    path = mode_path(20, p_max=Fraction(1, 2))
+    for bad in (0, -1, Fraction(-1, 3)):
+        with pytest.raises(ValueError, match="positive"):
+            path.mode_at(bad)
+    with pytest.raises(ValueError, match="p_max = 1/2"):
+        path.mode_at(Fraction(1, 2) + Fraction(1, 10**20))
+    assert path.mode_at(Fraction(1, 2)) == brute_modes(20, Fraction(1, 2))[0]
+    assert path.mode_at(0.25) == brute_modes(20, Fraction(0.25))[0]
+
+
+def test_validation_of_k_and_seed():
+    for call, name in ((lambda v: log_c(10, v), "k"), (lambda v: argmin_certificate(10, v), "k"),
+                       (lambda v: certified_argmin(10, seed=v), "seed")):
+        with pytest.raises(ValueError, match=f"^{name} must be >= 2, got 1$"):
+            call(1)
+        with pytest.raises(TypeError, match=f"^{name} must be an int"):
+            call(2.5)
+    for call in (lambda: log_c(10, 11), lambda: argmin_certificate(10, 11)):
+        with pytest.raises(ValueError, match=r"^k must be <= 10, got 11$"):
+            call()
+    assert certified_argmin(10, seed=10**9) == certified_argmin(10)  # a seed above N is fine
+    assert log_c(10, 10) > 0 and argmin_certificate(10, 10) is False
+
+
+def test_sign_oracle_exact_work_limit_boundary():
+    N = 2**38 + 12345  # 39 bits: k * (39 + 1) hits the limit exactly at k = LIMIT / 40
+    k = C.EXACT_BITS_LIMIT // 40
+    assert k * (N.bit_length() + 1) == C.EXACT_BITS_LIMIT
+    assert C._SignOracle(N)._exact(k) == -1  # at the limit: still computed (c_{k+1} < c_k)
+    with pytest.raises(UndecidedError, match=rf"^c_{k + 2} vs c_{k + 1} for N={N}: balls"):
+        C._SignOracle(N)._exact(k + 1)
+
+
+def test_repr_and_str_show_every_field():
+    cp = critical_point(101, dps=12)
+
+    def s(x):
+        return mpmath.nstr(x, 12)
+
+    lo, hi = cp.p_bounds
+    assert repr(cp) == (
+        f"CriticalPoint(N=101, p_c={s(cp.p)}, q=N*p_c-1={s(cp.q)}, k_before=1, k_after=20, "
+        f"argmins=(20,), p_d={s(cp.p_d)}, q_d=N*p_d-1={s(cp.q_d)}, p_exact=None, "
+        f"p_bounds=({s(lo)}, {s(hi)}), dps=12)")
+    assert str(cp).splitlines() == [
+        "critical point, N = 101 (12 digits)", f"  p_c         = {s(cp.p)}",
+        f"  N p_c - 1   = {s(cp.q)}", f"  p_c in        [{s(lo)}, {s(hi)}]  (Arb ball)",
+        f"  p_d         = {s(cp.p_d)}", f"  N p_d - 1   = {s(cp.q_d)}",
+        "  mode jumps  1 -> 20  (argmins 20)"]
+    assert lo < hi
+    five = critical_point(5, dps=6)
+    assert str(five).splitlines()[-1] == "  mode jumps  1 -> 3  (argmins 2, 3)"
+    d = cp.as_dict()
+    assert (d["p_c_lo"], d["p_c_hi"]) == (lo, hi)
+
+
+def test_log_c_precision_loop_from_a_low_start(monkeypatch):
+    # the default start precision already gives dps + 2 digits (log k - G(k-1) >= log 2), so
+    # the doubling loop of log_c is exercised here from a 16-bit start: it must still deliver
+    # dps digits, and stop (cap 40 x start = 640 bits)
+    def low_start(N, extra):
+        return 16 + 0 * N.bit_length() + 0 * int(extra)
+
+    monkeypatch.setattr(C, "bits_for", low_start)
+    for N, k in ((101, 20), (10**6, 3802), (10**40, 10**20)):
+        for dps in range(5, 121, 23):
+            got = log_c(N, k, dps=dps)
+            ref = log_c_direct(N, k, 3 * dps)
+            with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+                assert abs(got - ref) <= mpmath.mpf(10) ** -dps * abs(ref), (N, k, dps)
+    # beyond the cap (640 bits < 200 digits): the loop stops and returns what it has
+    got = log_c(101, 20, dps=400)
+    with mpmath.workdps(500):
+        assert abs(got - log_c_direct(101, 20, 400)) < mpmath.mpf(10) ** -150
