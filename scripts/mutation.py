@@ -285,7 +285,8 @@ def main(argv: list[str] | None = None) -> int:
     if not args.report_only:
         if not args.rerun:
             _copy_repo(workdir)
-            _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
+        # a rerun takes the current test map too (test files added since the first run)
+        _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
         cmd = [sys.executable, "-m", "mutmut", "run", "--max-children", str(args.max_children),
                *(args.rerun or [])]
         if not args.no_nice:
