@@ -127,8 +127,8 @@ def test_reference_against_mpmath_quad():
         with mpmath.workdps(40):
             S0, S1 = squares(sigma, sigma1, 1, Omega)
             dd = _mp(d)
-            conv = mpmath.quad(lambda t: t / S0 * mpmath.exp(-t * t / (2 * S0))
-                               * mpmath.exp(-(dd - t) ** 2 / (2 * S1)), [0, dd / 2, dd])
+            conv = mpmath.quad(lambda t, a=S0, b=S1, c=dd: t / a * mpmath.exp(-t * t / (2 * a))
+                               * mpmath.exp(-(c - t) ** 2 / (2 * b)), [0, dd / 2, dd])
             pq = mpmath.exp(-dd * dd / (2 * S0)) + conv
         assert rel(ref(sigma, sigma1, 1, Omega, d)[0], pq) < mpmath.mpf(10) ** -35
 
@@ -267,18 +267,11 @@ def test_i2_i3_closed_forms_against_quadrature(u, v):
             uu, vv = mpmath.mpf(u), mpmath.mpf(v)
             i2, i3 = K.mp_i2(uu, vv), K.mp_i3(uu, vv)
             assert i2.context.prec == mpmath.mp.prec
+        # the reference integrates at the same (rounded) u, v far above the claim
         with mpmath.workdps(2 * dps + 30):
-            uu, vv = mpmath.mpf(u), mpmath.mpf(v)
-            r2 = mpmath.quad(lambda z: (vv + z) * (uu - z) * mpmath.exp(-z * z), [-vv, 0, uu])
-            r3 = mpmath.quad(lambda z: (vv + z) ** 2 * (uu - z) * mpmath.exp(-z * z),
+            r2 = mpmath.quad(lambda z, a=uu, b=vv: (b + z) * (a - z) * mpmath.exp(-z * z),
                              [-vv, 0, uu])
-        # inputs are exact at both precisions (decimal strings rounded at dps: use the
-        # rounded values for the reference)
-        with mpmath.workdps(dps):
-            uu, vv = mpmath.mpf(u), mpmath.mpf(v)
-        with mpmath.workdps(2 * dps + 30):
-            r2 = mpmath.quad(lambda z: (vv + z) * (uu - z) * mpmath.exp(-z * z), [-vv, 0, uu])
-            r3 = mpmath.quad(lambda z: (vv + z) ** 2 * (uu - z) * mpmath.exp(-z * z),
+            r3 = mpmath.quad(lambda z, a=uu, b=vv: (b + z) ** 2 * (a - z) * mpmath.exp(-z * z),
                              [-vv, 0, uu])
         assert rel(i2, r2) <= 2 * mpmath.mpf(10) ** -dps, (u, v, dps)
         assert rel(i3, r3) <= 2 * mpmath.mpf(10) ** -dps, (u, v, dps)
