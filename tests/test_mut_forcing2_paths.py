@@ -64,6 +64,13 @@ def squares(sigma, sigma1=None, omega=1, Omega=None):
     return 2 * sg * sg, 2 * s1 * s1 / delta2
 
 
+def _erf(z):
+    """erf; as 1 - erfc for large z (mpmath's erf series is slow there, erfc is not)."""
+    if z > 10**8:  # erfc(z) < exp(-1e16): far below every working precision here
+        return mpmath.mpf(1)
+    return 1 - mpmath.erfc(z) if z > 4 else mpmath.erf(z)
+
+
 def _p_sq(S0, S1, d):
     """``P(R0 + R1 > d)`` by the completed square (positive terms up to one difference)."""
     A = 1 / (2 * S0) + 1 / (2 * S1)
@@ -72,7 +79,7 @@ def _p_sq(S0, S1, d):
     sA = mpmath.sqrt(A)
     lin = (mpmath.exp(-C - A * ts * ts) - mpmath.exp(-C - A * (d - ts) ** 2)) / (2 * A)
     gauss = ts * mpmath.sqrt(mpmath.pi) / (2 * sA) * mpmath.exp(-C) * (
-        mpmath.erf(sA * (d - ts)) + mpmath.erf(sA * ts))
+        _erf(sA * (d - ts)) + _erf(sA * ts))
     return mpmath.exp(-d * d / (2 * S0)) + (lin + gauss) / S0
 
 
@@ -266,7 +273,7 @@ def test_i2_i3_closed_forms_against_quadrature(u, v):
         with mpmath.workdps(dps):
             uu, vv = mpmath.mpf(u), mpmath.mpf(v)
             i2, i3 = K.mp_i2(uu, vv), K.mp_i3(uu, vv)
-            assert i2.context.prec == mpmath.mp.prec
+            assert max(i2._mpf_[1].bit_length(), i3._mpf_[1].bit_length()) <= mpmath.mp.prec
         # the reference integrates at the same (rounded) u, v far above the claim
         with mpmath.workdps(2 * dps + 30):
             r2 = mpmath.quad(lambda z, a=uu, b=vv: (b + z) * (a - z) * mpmath.exp(-z * z),
@@ -287,7 +294,7 @@ def test_mp_q_from_xy_adaptive_loop(x, y):
             q = K.mp_q_from_xy(xm, ym)
             p = K.mp_p_from_xy(xm, ym)
             lp = K.mp_logp_from_xy(xm, ym)
-            assert q.context.prec == mpmath.mp.prec
+            assert q._mpf_[1].bit_length() <= mpmath.mp.prec
         # x = d**2/(2 S0), y = d**2/(2 S1) with d = 1
         with mpmath.workdps(3 * dps + 100):
             S0, S1 = 1 / (2 * xm), 1 / (2 * ym)
