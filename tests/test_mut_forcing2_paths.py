@@ -221,8 +221,14 @@ def test_resonance_is_an_error():
         with pytest.raises(ValueError, match="resonance"):
             F.impact_probability("0.3", omega="1.5", Omega="1.5", dps=dps)
     with mpmath.workdps(30):
-        with pytest.raises(ValueError, match="Omega: resonance"):
+        with pytest.raises(ValueError, match=r"^Omega: resonance Omega == omega \(infinite "
+                                             r"forced amplitude\)$"):
             K.mp_xy_forcing(Fraction(1, 3), None, 3, 3, 1)
+        for i, name in enumerate(("sigma", "sigma1", "omega", "Omega", "d")):
+            args = [Fraction(1, 3), None, 1, None, 1]
+            args[i] = -1
+            with pytest.raises(ValueError, match=f"^{name} must be > 0, got -1$"):
+                K.mp_xy_forcing(*args)
 
 
 # ------------------------------------------------------------------ several components
@@ -364,6 +370,9 @@ def test_estimate_extremes():
         assert abs(e / 1e-3 - 1) < 1e-9 and abs(p / math.exp(-1e-3) - 1) < 1e-9
         e, xy, p = K.estimate(mp("1e-3"), mp("1e-800"))
         assert 0 < p <= 1 and abs(p - 1) < 1e-12
+        x = 2 * mpmath.exp(710)  # log(E) = 710: beyond float64, no OverflowError
+        e, xy, p = K.estimate(x, x)
+        assert e == math.inf and p == 0.0
         e, xy, p = K.estimate(mp("1e5000"), mp("1e5000"))
         assert e == math.inf and p == 0.0
         e, xy, p = K.estimate(mp("30"), mp("40"))
@@ -396,8 +405,9 @@ def test_guard_digits_and_cap():
         assert K.guard_digits(e) >= 12 + math.log10(e)
     with pytest.raises(ValueError, match=r"E ~ > 1e308 above the cap MAX_EXPONENT"):
         K.guard_digits(math.inf)
-    with pytest.raises(ValueError, match="d/sigma must stay below"):
+    with pytest.raises(ValueError, match=r"E ~ nan above the cap .* \(d/sigma must stay below"):
         K.guard_digits(math.nan)
+    assert K.guard_digits(K.MAX_EXPONENT) >= 12 + 308  # the cap itself is allowed
     with pytest.raises(ValueError, match="MAX_EXPONENT"):
         F.impact_probability("1e-160", dps=20)
 
@@ -425,8 +435,23 @@ def test_naive_double_integral_where_it_works():
         want = ref(sigma, kw.get("sigma1"), kw.get("omega", 1), kw.get("Omega"),
                    kw.get("d", 1))[0]
         assert abs(got - float(want)) < 1e-7, (sigma, kw, got, float(want))
-    with pytest.raises(ValueError, match="resonance"):
+    with pytest.raises(ValueError, match=r"^Omega: resonance Omega == omega \(infinite forced "
+                                         r"amplitude\)$"):
         F.naive_impact_probability(0.5, omega=2, Omega=2)
+    for name in ("sigma", "sigma1", "omega", "Omega", "d"):
+        with pytest.raises(ValueError, match=f"^{name} must be > 0, got -1$"):
+            F.naive_impact_probability(**{"sigma": 0.5, name: -1})
+    import warnings
+
+    with warnings.catch_warnings():  # Omega**2 overflows silently, then a clear refusal
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match="outside the float64 range"):
+            F.naive_impact_probability(0.5, Omega=1e200)
+    for kw in [{"d": 1e-160},  # d**2 below the normal range
+               {"sigma": 1e-75, "Omega": 1e5},  # k/(4 s0**2 s1**2) overflows
+               {"sigma": 1e150, "sigma1": 1e-145, "d": 1e10}]:  # k d**2/sigma1**2 overflows
+        with pytest.raises(ValueError, match="outside the float64 range"):
+            F.naive_impact_probability(**{"sigma": 0.5, **kw})
     with pytest.raises(ValueError, match="outside the float64 range"):
         F.naive_impact_probability(1e-170)
     with pytest.raises(ValueError, match="outside the float64 range"):
