@@ -82,10 +82,9 @@ def mp_xy_forcing(sigma, sigma1, omega, Omega, d) -> tuple[mpmath.mpf, mpmath.mp
 
 
 def estimate(x: mpmath.mpf, y: mpmath.mpf) -> tuple[float, float, float]:
-    """Rough ``(uv, x*y, p)`` in float64 (mpf exponents keep huge/tiny values in range);
-    ``x, y > 0`` (as from :func:`mp_xy_forcing`)."""
-    lx = float(mpmath.log(x))
-    ly = float(mpmath.log(y))
+    """Rough ``(uv, x*y, p)`` in float64 (mpf exponents keep huge/tiny values in range)."""
+    lx = float(mpmath.log(x)) if x > 0 else -1e300
+    ly = float(mpmath.log(y)) if y > 0 else -1e300
     lxy = lx + ly
     ls = max(lx, ly) + math.log1p(math.exp(-abs(lx - ly)))
     le = lxy - ls
