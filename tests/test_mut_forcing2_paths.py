@@ -272,7 +272,9 @@ def test_several_components_every_want():
 
 # ------------------------------------------------------------------ kernels, directly
 @pytest.mark.parametrize("u, v", [("1e-9", "2e-9"), ("1e-4", "3e-4"), ("0.01", "0.5"),
-                                  ("0.3", "0.7"), ("2", "5"), ("10", "0.1"), ("0.9", "0.05")])
+                                  ("0.3", "0.7"), ("2", "5"), ("10", "0.1"), ("0.9", "0.05"),
+                                  ("0.3", "0.3"), ("1e-20", "3e-20"), ("2e-12", "2e-12"),
+                                  ("3e9", "5e9"), ("40", "70")])
 def test_i2_i3_closed_forms_against_quadrature(u, v):
     """The positive integrals of the derivative (cancelling closed forms) to dps digits."""
     for dps in (15, 30):
@@ -281,11 +283,16 @@ def test_i2_i3_closed_forms_against_quadrature(u, v):
             i2, i3 = K.mp_i2(uu, vv), K.mp_i3(uu, vv)
             assert max(i2._mpf_[1].bit_length(), i3._mpf_[1].bit_length()) <= mpmath.mp.prec
         # the reference integrates at the same (rounded) u, v far above the claim
+        # (z = -v + r t on t in [0, 1], r = u + v: an O(1) integrand for any r)
         with mpmath.workdps(2 * dps + 30):
-            r2 = mpmath.quad(lambda z, a=uu, b=vv: (b + z) * (a - z) * mpmath.exp(-z * z),
-                             [-vv, 0, uu])
-            r3 = mpmath.quad(lambda z, a=uu, b=vv: (b + z) ** 2 * (a - z) * mpmath.exp(-z * z),
-                             [-vv, 0, uu])
+            r = uu + vv
+            t0 = vv / r  # the peak z = 0, width 1/r
+            pts = sorted({mpmath.mpf(0), mpmath.mpf(1)} | {
+                t0 + k / r for k in (-40, -8, -2, 0, 2, 8, 40) if 0 < t0 + k / r < 1})
+            r2 = r**3 * mpmath.quad(
+                lambda t, a=r, b=vv: t * (1 - t) * mpmath.exp(-(a * t - b) ** 2), pts)
+            r3 = r**4 * mpmath.quad(
+                lambda t, a=r, b=vv: t * t * (1 - t) * mpmath.exp(-(a * t - b) ** 2), pts)
         assert rel(i2, r2) <= 2 * mpmath.mpf(10) ** -dps, (u, v, dps)
         assert rel(i3, r3) <= 2 * mpmath.mpf(10) ** -dps, (u, v, dps)
 
