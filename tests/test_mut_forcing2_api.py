@@ -86,6 +86,11 @@ def test_dp_float64_fallback_where_the_kernel_overflows():
     assert rel(got[1], _one_rayleigh_dp(0.6, 1.2)) < 1e-14
     got = F.dp_dsigma(0.5, sigma1=2.0, Omega=1e200, d=1.5)
     assert rel(got, _one_rayleigh_dp(0.5, 1.5)) < 1e-14
+    # the float kernel's over/underflow stays silent even where numpy is told to raise
+    with np.errstate(all="raise"):
+        assert F.dp_dsigma(1e160) == 0.0  # x, y underflow; dp ~ 1e-801
+        assert F.dp_dsigma(9.43e-115, sigma1=2.01e-147) == 0.0  # y overflows, E ~ 3e227
+        assert rel(F.dp_dsigma(0.5, sigma1=1e-170), _one_rayleigh_dp(0.5)) < 1e-14
     # exponent far beyond float64: exactly 0.0, no NaN
     assert F.dp_dsigma(1e-160) == 0.0
     out = F.dp_dsigma(np.array([1e-160, 0.3]))
