@@ -97,10 +97,14 @@ def ref_sq(S0, S1, d, dps=DPS):
     """``(p, q, log p, log q)`` for squared scales ``S0``, ``S1`` (mpf or numbers)."""
     with mpmath.workdps(60):
         w = _work(mpmath.mpf(S0), mpmath.mpf(S1), _mp(d), dps)
+    with mpmath.workdps(w):  # a first pass measures the digits that 1 - p really loses
+        q = 1 - _p_sq(mpmath.mpf(S0), mpmath.mpf(S1), _mp(d))
+        w += max(0, int(-mpmath.log10(q)) + 10) if q > 0 else 2 * w
     with mpmath.workdps(w):
         S0, S1, d = mpmath.mpf(S0), mpmath.mpf(S1), _mp(d)
         p = _p_sq(S0, S1, d)
         q = 1 - p
+        assert q > 0
         return p, q, mpmath.log(p), mpmath.log(q)
 
 
@@ -267,7 +271,10 @@ def test_several_components_every_want():
         assert isinstance(got_f, float)
         assert rel(got_f, vals[want]) < 1e-12, want
     arr = F.impact_probability(np.array([0.35, 0.35]), Omega=[1.7, 2.2], d=1.2)
-    assert arr.shape == (2,) and rel(arr[1], p) < 1e-12
+    assert arr.shape == (2,) and arr.dtype == float and rel(arr[1], p) < 1e-12
+    arr = F.impact_probability(np.array(["0.35"], dtype=object), Omega=Oms, d="1.2", dps=DPS)
+    assert arr.shape == (1,) and arr.dtype == object
+    assert rel(arr[0], p) <= mpmath.mpf(10) ** -(DPS - 1)
 
 
 # ------------------------------------------------------------------ kernels, directly
@@ -298,7 +305,8 @@ def test_i2_i3_closed_forms_against_quadrature(u, v):
 
 
 @pytest.mark.parametrize("x, y", [("1e-30", "2e-30"), ("1e-6", "3e-3"), ("0.02", "0.05"),
-                                  ("0.6", "0.9"), ("3", "0.2"), ("40", "50"), ("1e-12", "1e8")])
+                                  ("0.6", "0.9"), ("3", "0.2"), ("40", "50"), ("1e-12", "1e8"),
+                                  ("1e-30", "1e30"), ("1e-60", "1e60"), ("3e50", "1e-80")])
 def test_mp_q_from_xy_adaptive_loop(x, y):
     """``1 - p`` from ``(x, y)`` directly (the adaptive cancellation loop) to the precision."""
     for dps in (15, 40):
