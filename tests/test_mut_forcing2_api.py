@@ -278,27 +278,40 @@ def test_theory_curve_is_the_composition_with_reference_p():
             p25 = +p
         assert rel(tc.mean[idx], symhx.mean(41, p25, dps=25)) < 1e-15
         assert tc.mode[idx] == symhx.mode(41, p25)
-    tc = F.theory_curve(0.3, N=11, sigma1=0.5, space="eq41")
-    p = ref(0.3, 0.5, dps=30)[0]
+    tc = F.theory_curve(0.2, N=11, sigma1=0.25, space="eq41")
+    p = ref(0.2, 0.25, dps=30)[0]
     with mpmath.workdps(30):
         p30 = +p
     assert tc.p.shape == (1,) and rel(tc.p[0], p) < 1e-15
     assert rel(tc.mean[0], symhx.mean(11, p30, space="eq41", dps=30)) < 1e-15
-    assert tc.mode[0] == symhx.mode(11, p30, space="eq41")
+    assert tc.mode[0] == symhx.mode(11, p30, space="eq41") != symhx.mode(11, p30)
+    assert F.theory_curve(0.3).N == 101  # the paper's n = 100 pipes
 
 
 def test_theory_curve_tiny_p_and_limits():
-    # log p < -2400 (sigma = 0.01: p ~ exp(-2500)) and 1e-1000 > p > exp(-2400) (sigma 0.0073)
-    tc = F.theory_curve([0.01, 0.0073, 0.02], N=10**12)
-    assert list(tc.p[:2]) == [0.0, 0.0] and list(tc.mean[:2]) == [1.0, 1.0]
-    assert list(tc.mode[:2]) == [1, 1]
-    assert tc.p[2] > 0 and rel(tc.p[2], ref(0.02)[0]) < 1e-15
+    # log p = -1/(8 sigma**2) + ...: below -2400 for sigma = 0.005 (not evaluated in mpmath,
+    # also where mpmath refuses: sigma = 1e-160), and 1e-1000 > p > exp(-2400) for 0.0073
+    tc = F.theory_curve([0.005, 0.02, 0.0073, 1e-160, 0.005], N=10**12)
+    assert list(tc.p) == [0.0, pytest.approx(float(ref(0.02)[0]), rel=1e-15), 0.0, 0.0, 0.0]
+    assert tc.p[1] > 0
+    assert list(tc.mean[[0, 2, 3, 4]]) == [1.0] * 4 and list(tc.mode[[0, 2, 3, 4]]) == [1] * 4
+    # the float pre-filter sees sigma1, Omega and d: none of these p is tiny
+    for sigma, kw in [(1e-3, {"sigma1": 0.5}), (1e-3, {"Omega": 1.01}), (2e-4, {"d": 0.01})]:
+        tc = F.theory_curve(sigma, N=11, **kw)
+        want = ref(sigma, kw.get("sigma1"), 1, kw.get("Omega"), kw.get("d", 1))[0]
+        assert 0 < tc.p[0] and rel(tc.p[0], want) < 1e-14, (sigma, kw)
+    with pytest.raises(ValueError, match=r"^sigma must be > 0, got -1"):
+        F.theory_curve(-1)
+    for kw in [{"sigma1": np.array([0.1, 0.2])}, {"Omega": np.array([1.5, 2.5])}]:
+        with pytest.raises(TypeError, match=r"^theory_curve: sigma1, omega, Omega and d must be "
+                                            r"scalars$"):
+            F.theory_curve(0.1, **kw)
     with pytest.raises(ValueError, match=r"^N must be <= THEORY_MAX_N = 10\*\*15, got "
                                          r"1000000000000001$"):
         F.theory_curve(0.1, N=10**15 + 1)
     with pytest.raises(ValueError, match="an integer of 31 digits"):
         F.theory_curve(0.1, N=10**30)
     assert F.theory_curve(0.1, N=10**15).N == 10**15
-    with pytest.raises(TypeError, match="theory_curve: sigma1, omega, Omega and d must be "
-                                        "scalars"):
+    with pytest.raises(TypeError, match=r"^theory_curve: sigma1, omega, Omega and d must be "
+                                        r"scalars$"):
         F.theory_curve(0.1, d=[1.0, 2.0])
