@@ -129,8 +129,11 @@ def test_dp_several_components():
     gf = F.dp_dsigma(0.35, Omega=[1.7, 2.2], d=1.2)
     assert isinstance(gf, float) and rel(gf, want) < 1e-11
     ga = F.dp_dsigma(np.array([0.35, 0.35]), Omega=[1.7, 2.2], d=1.2)
-    assert ga.shape == (2,) and rel(ga[0], want) < 1e-11
-    with pytest.raises(ValueError, match="sigma1: dp_dsigma with several components"):
+    assert ga.shape == (2,) and ga.dtype == float and rel(ga[0], want) < 1e-11
+    gm = F.dp_dsigma(np.array(["0.35"], dtype=object), Omega=Oms, d=d, dps=DPS)
+    assert gm.shape == (1,) and gm.dtype == object and rel(gm[0], want) <= tol(DPS - 1)
+    with pytest.raises(ValueError, match=r"^sigma1: dp_dsigma with several components supports "
+                                         r"only sigma1=None \(all sigma_i = sigma\)$"):
         F.dp_dsigma(0.35, sigma1=0.2, Omega=[1.7, 2.2])
 
 
