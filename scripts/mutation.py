@@ -82,10 +82,11 @@ def _write_mutmut_config(workdir: Path, modules: list[str], tests: list[str],
                          timeout_multiplier: float) -> None:
     py = workdir / "pyproject.toml"
     text = py.read_text("utf-8")
-    start = text.find("[tool.mutmut]")
-    if start >= 0:  # drop the repository's own table, the copy gets a restricted one
+    # drop every [tool.mutmut] table (the repository's own; an earlier run's): one restricted
+    # table is appended
+    while (start := text.find("\n[tool.mutmut]")) >= 0:
         end = text.find("\n[", start + 1)
-        text = text[:start] + (text[end + 1:] if end >= 0 else "")
+        text = text[:start + 1] + (text[end + 1:] if end >= 0 else "")
     table = [
         "[tool.mutmut]",
         'source_paths = ["symhx"]',
