@@ -192,7 +192,13 @@ def build_report(workdir: Path, modules: list[str], old: dict) -> dict:
 
 
 def _assemble(per_module: dict, equivalent_decl: dict, stale: dict) -> dict:
-    """The report: per-module results, their totals and the equivalent declarations."""
+    """The report: per-module results, their totals and the equivalent declarations.
+
+    ``kill_rate`` is over the mutants that ran; ``kill_rate_all_mutants`` counts the ones a
+    stopped run never reached (``not_checked``) as not killed."""
+    for m in per_module.values():
+        rest = m["total"] - m["equivalent"]
+        m["kill_rate_all_mutants"] = round(m["killed"] / rest, 4) if rest else None
     tot = {k: sum(m.get(k, 0) for m in per_module.values())
            for k in ("total", "killed", "timeouts", "survived", "no_tests", "equivalent",
                      "not_checked")}
@@ -200,6 +206,8 @@ def _assemble(per_module: dict, equivalent_decl: dict, stale: dict) -> dict:
     tot["kill_rate"] = round(tot["killed"] / live, 4) if live else None
     tot["kill_rate_without_timeouts"] = (round((tot["killed"] - tot["timeouts"]) / live, 4)
                                          if live else None)
+    rest = tot["total"] - tot["equivalent"]
+    tot["kill_rate_all_mutants"] = round(tot["killed"] / rest, 4) if rest else None
     return {
         "tool": "mutmut " + _mutmut_version(),
         "command": "python scripts/mutation.py " + " ".join(sorted(per_module)),
