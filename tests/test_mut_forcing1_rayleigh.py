@@ -25,6 +25,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
+from test_forcing_rayleigh import pair_tail
 
 from symhx import forcing as F
 from symhx.forcing import RayleighSum
@@ -35,23 +36,11 @@ REF_DPS = 24
 
 
 # ------------------------------------------------------------------------------ the reference
-def _pair_tail(s, a, b, upper):
-    if s <= 0:
-        return mpmath.mpf(1) if upper else mpmath.mpf(0)
-    with mpmath.workdps(mpmath.mp.dps + 40):
-        x, y = s * s / (2 * a * a), s * s / (2 * b * b)
-        r = mpmath.sqrt(x + y)
-        u, v = x / r, y / r
-        p = mpmath.exp(-u * v) * (v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v) + mpmath.sqrt(
-            mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))) / r
-        return +p if upper else 1 - p
-
-
 def _pair_pdf(s, a, b):
     if s <= 0:
         return mpmath.mpf(0)
     with mpmath.workdps(mpmath.mp.dps + 20):
-        return -mpmath.diff(lambda z: _pair_tail(z, a, b, True), s)
+        return -mpmath.diff(lambda z: pair_tail(z, a, b, True), s)
 
 
 def _one_tail(s, c, upper):
@@ -83,20 +72,20 @@ def _ref_value(scales, x, kind):
         if len(s) == 1:
             return _one_pdf(x, s[0]) if kind == "pdf" else _one_tail(x, s[0], up)
         if len(s) == 2:
-            return _pair_pdf(x, *s) if kind == "pdf" else _pair_tail(x, *s, up)
+            return _pair_pdf(x, *s) if kind == "pdf" else pair_tail(x, *s, up)
         if len(s) == 3:
             fa, fa_tail = (lambda t: _one_pdf(t, s[0])), _one_tail(x, s[0], True)
             rest = s[1:]
         else:
             fa = lambda t: _pair_pdf(t, s[0], s[2])  # noqa: E731
-            fa_tail = _pair_tail(x, s[0], s[2], True)
+            fa_tail = pair_tail(x, s[0], s[2], True)
             rest = [s[1], s[3]]
         if kind == "pdf":
             def g(t):
                 return fa(t) * _pair_pdf(x - t, *rest)
         else:
             def g(t):
-                return fa(t) * _pair_tail(x - t, *rest, up)
+                return fa(t) * pair_tail(x - t, *rest, up)
         pts = {x * k / 24 for k in range(25)}
         va, vr = sum(v * v for v in s) - rest[0] ** 2 - rest[1] ** 2, rest[0] ** 2 + rest[1] ** 2
         ts, w = x * va / (va + vr), mpmath.sqrt(va * vr / (va + vr))  # the Gaussian saddle
@@ -126,7 +115,7 @@ _CACHE_FILE = ""
 def ref(scales, x, kind):
     global _CACHE, _CACHE_FILE
     if _CACHE is None:
-        src = "".join(inspect.getsource(f) for f in (_pair_tail, _pair_pdf, _one_tail, _one_pdf,
+        src = "".join(inspect.getsource(f) for f in (pair_tail, _pair_pdf, _one_tail, _one_pdf,
                                                       _gl, _ref_value))
         h = hashlib.sha256(src.encode()).hexdigest()[:16]
         _CACHE_FILE = os.path.join(tempfile.gettempdir(), f"symhx-mut-forcing1-ray-{h}.json")
@@ -325,7 +314,7 @@ def test_moments_and_rvs():
         assert abs(S.var(dps=40) - v) < mpmath.mpf(10) ** -40
         assert abs(S.std(dps=40) - mpmath.sqrt(v)) < mpmath.mpf(10) ** -40
         # the mean is the integral of the survival function (independent of the formula)
-        mi = mpmath.quad(lambda t: _pair_tail(t, mpmath.mpf(0.7), mpmath.mpf(0.2), True),
+        mi = mpmath.quad(lambda t: pair_tail(t, mpmath.mpf(0.7), mpmath.mpf(0.2), True),
                          [0, 0.5, 1, 2, 4, 8])
         assert abs(RayleighSum([0.7, 0.2]).mean(dps=30) - mi) < mpmath.mpf(10) ** -25
     r = S.rvs(size=4000, random_state=3)

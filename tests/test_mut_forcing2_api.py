@@ -15,7 +15,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from test_mut_forcing2_paths import DPS, _mp, _p_sq, ref, ref_dp, rel, squares
+from test_mut_forcing2_paths import DPS, _mp, _p_sq, ref, ref_dp, ref_three_gl, rel, squares
 
 import symhx
 from symhx import forcing as F
@@ -99,22 +99,7 @@ def test_dp_float64_fallback_where_the_kernel_overflows():
 
 def _ref_three_p(sigma, Oms, d, work):
     """P(R0 + R1 + R2 > d) with all scales proportional to sigma (Gauss-Legendre over R2)."""
-    import itertools
-
-    with mpmath.workdps(work):
-        sg = _mp(sigma)
-        S0 = 2 * sg * sg
-        S1, S2 = (2 * sg * sg / (1 - _mp(o) ** 2) ** 2 for o in Oms)
-        dd = _mp(d)
-        pts = [dd * k / 12 for k in range(13)]
-        xs, ws = mpmath.mp.gauss_quadrature(24, "legendre")
-        tot = mpmath.exp(-dd * dd / (2 * S2))
-        for lo, hi in itertools.pairwise(pts):
-            h, m = (hi - lo) / 2, (hi + lo) / 2
-            for xi, wi in zip(xs, ws, strict=True):
-                t = m + h * xi
-                tot += h * wi * t / S2 * mpmath.exp(-t * t / (2 * S2)) * _p_sq(S0, S1, dd - t)
-        return tot
+    return ref_three_gl(sigma, Oms, d, work, 12, 24)
 
 
 def test_dp_several_components():
