@@ -44,7 +44,7 @@ def pair_tail(s, a, b, upper):
         return +p if upper else 1 - p
 
 
-def _gl_sum(f, pts, n):
+def gl_sum(f, pts, n):
     xs, ws = mpmath.mp.gauss_quadrature(n, "legendre")
     tot = mpmath.mpf(0)
     for lo, hi in itertools.pairwise(pts):
@@ -72,7 +72,7 @@ def ref_three(scales, d, upper):
                     if 0 < q < d:
                         pts.add(q)
         pts = sorted(pts)
-        lo, hi = _gl_sum(f, pts, 20), _gl_sum(f, pts, 40)
+        lo, hi = gl_sum(f, pts, 20), gl_sum(f, pts, 40)
         assert abs(hi - lo) < mpmath.mpf(10) ** -(REF_DPS - 4) * abs(hi), (scales, lo, hi)
         if upper:
             hi += mpmath.exp(-d * d / (2 * c * c))

@@ -31,6 +31,25 @@ from symhx.spaces import parse_space, shape_excess
 
 
 # --------------------------------------------------------------------------- the reference
+def space_weights(N: int, p: Fraction, space: str) -> list[Fraction]:
+    """Unnormalised exact weights of X = 1..N in ``space``: Burnside circuit counts of every
+    visit pattern of the space, times p to the power of its length (or of k)."""
+    sp = parse_space(space)
+    w = []
+    for k in range(1, N + 1):
+        total = Fraction(0)
+        for shape in sp.shapes:
+            r = len(shape)
+            if k < max(r, 1):
+                continue
+            visits = (*shape, *(1,) * (k - r))
+            e = shape_excess(shape)
+            wt = p ** (k + e) if sp.weighting == "length" else p**k
+            total += circuit_count(N, visits) * wt
+        w.append(total)
+    return w
+
+
 @dataclass(frozen=True)
 class Case:
     N: int
@@ -39,20 +58,7 @@ class Case:
 
     @cached_property
     def weights(self) -> list[Fraction]:
-        sp = parse_space(self.space)
-        w = []
-        for k in range(1, self.N + 1):
-            total = Fraction(0)
-            for shape in sp.shapes:
-                r = len(shape)
-                if k < max(r, 1):
-                    continue
-                visits = (*shape, *(1,) * (k - r))
-                e = shape_excess(shape)
-                wt = self.p ** (k + e) if sp.weighting == "length" else self.p**k
-                total += circuit_count(self.N, visits) * wt
-            w.append(total)
-        return w
+        return space_weights(self.N, self.p, self.space)
 
     @cached_property
     def pmf(self) -> list[Fraction]:

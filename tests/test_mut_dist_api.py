@@ -15,8 +15,10 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
+from _reference import pmf_table
 from hypothesis import example, given
 from hypothesis import strategies as st
+from test_frozen_harness import space_weights
 
 import symhx
 from symhx import api
@@ -25,25 +27,11 @@ from symhx.spaces import parse_space, shape_excess
 
 
 def simple_table(N: int, p: Fraction) -> list[Fraction]:
-    w = [Fraction(p) ** k * Fraction(math.factorial(N), k * math.factorial(N - k))
-         for k in range(1, N + 1)]
-    g = sum(w)
-    return [x / g for x in w]
+    return pmf_table(N, Fraction(p))
 
 
 def space_table(N: int, p: Fraction, space: str) -> list[Fraction]:
-    sp = parse_space(space)
-    w = []
-    for k in range(1, N + 1):
-        total = Fraction(0)
-        for shape in sp.shapes:
-            r = len(shape)
-            if k < max(r, 1):
-                continue
-            visits = (*shape, *(1,) * (k - r))
-            wt = p ** (k + shape_excess(shape)) if sp.weighting == "length" else p**k
-            total += circuit_count(N, visits) * wt
-        w.append(total)
+    w = space_weights(N, p, space)
     g = sum(w)
     return [x / g for x in w]
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import hashlib
 import inspect
-import itertools
 import json
 import math
 import os
@@ -25,7 +24,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from test_forcing_rayleigh import pair_tail
+from test_forcing_rayleigh import gl_sum, pair_tail
 
 from symhx import forcing as F
 from symhx.forcing import RayleighSum
@@ -52,15 +51,6 @@ def _one_tail(s, c, upper):
 
 def _one_pdf(s, c):
     return s / c**2 * mpmath.exp(-s * s / (2 * c * c)) if s > 0 else mpmath.mpf(0)
-
-
-def _gl(f, pts, n):
-    xs, ws = mpmath.mp.gauss_quadrature(n, "legendre")
-    tot = mpmath.mpf(0)
-    for lo, hi in itertools.pairwise(pts):
-        h, m = (hi - lo) / 2, (hi + lo) / 2
-        tot += h * mpmath.fsum(w * f(m + h * x) for x, w in zip(xs, ws, strict=True))
-    return tot
 
 
 def _ref_value(scales, x, kind):
@@ -101,7 +91,7 @@ def _ref_value(scales, x, kind):
                     if 0 < q < x:
                         pts.add(q)
         pts = sorted(pts)
-        lo, hi = _gl(g, pts, 10), _gl(g, pts, 20)
+        lo, hi = gl_sum(g, pts, 10), gl_sum(g, pts, 20)
         assert abs(hi - lo) <= mpmath.mpf(10) ** -(REF_DPS - 2) * abs(hi), (scales, x, kind)
         if up:
             hi += fa_tail
@@ -116,7 +106,7 @@ def ref(scales, x, kind):
     global _CACHE, _CACHE_FILE
     if _CACHE is None:
         src = "".join(inspect.getsource(f) for f in (pair_tail, _pair_pdf, _one_tail, _one_pdf,
-                                                      _gl, _ref_value))
+                                                      gl_sum, _ref_value))
         h = hashlib.sha256(src.encode()).hexdigest()[:16]
         _CACHE_FILE = os.path.join(tempfile.gettempdir(), f"symhx-mut-forcing1-ray-{h}.json")
         try:
