@@ -10,6 +10,7 @@ Usage (from the repository root)::
     python scripts/mutation.py --merge A.json B.json  # one report from parallel runs
     python scripts/mutation.py symhx/circuits.py --rerun symhx.circuits.x_phi__mutmut_3  # after
                                                     # adding a test for a survivor
+    python scripts/mutation.py symhx/critical.py --workdir W --resume  # finish a stopped run
 
 Each run works in a scratch copy of the repository (``--workdir``, default a directory under the
 system temp dir), so the work tree never gets a ``mutants/`` directory. The copy gets a
@@ -29,6 +30,10 @@ and the diff of every surviving mutant. Equivalent mutants are declared by hand 
 declaration only counts while its diff still matches the mutant (mutant names are renumbered
 when the code changes); stale declarations are listed under ``stale_equivalent`` and the mutant
 counts as survived.
+
+``--resume`` continues a stopped run in its ``--workdir`` with the current sources and tests:
+mutmut keeps the verdict of every mutant whose function is unchanged (it compares a hash of each
+function's source) and runs the rest.
 """
 
 from __future__ import annotations
@@ -62,9 +67,12 @@ def _config() -> dict:
     return data.get("tool", {}).get("symhx-mutation", {})
 
 
-def _copy_repo(workdir: Path) -> None:
-    """Copy the tracked files plus the in-place C extension (and nothing else) to ``workdir``."""
-    if workdir.exists():
+def _copy_repo(workdir: Path, *, keep_mutants: bool = False) -> None:
+    """Copy the tracked files plus the in-place C extension (and nothing else) to ``workdir``.
+
+    With ``keep_mutants`` the files are copied over an earlier run's work directory and its
+    ``mutants/`` (mutmut's results) is kept."""
+    if workdir.exists() and not keep_mutants:
         shutil.rmtree(workdir)
     files = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=ROOT,
                            check=True, capture_output=True, text=True).stdout.split()
@@ -269,6 +277,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="rerun only these mutants in the existing --workdir with the current "
                              "test files (after adding tests for survivors), then rebuild the "
                              "report")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue a stopped run in --workdir: refresh its sources and tests, "
+                             "keep the verdicts of unchanged functions, run the other mutants")
     args = parser.parse_args(argv)
 
     if args.merge:
@@ -285,14 +296,18 @@ def main(argv: list[str] | None = None) -> int:
     tests = sorted({t for m in modules for t in test_map[m] if (ROOT / t).exists()})
     workdir: Path = args.workdir.resolve()
 
-    if args.rerun:
+    if args.resume:
+        if args.rerun or not (workdir / "mutants").is_dir():
+            parser.error("--resume needs the --workdir of an earlier run and no --rerun")
+        _copy_repo(workdir, keep_mutants=True)
+    if args.rerun or args.resume:
         for dest in (workdir / "tests", workdir / "mutants" / "tests"):
             shutil.copytree(ROOT / "tests", dest, dirs_exist_ok=True)
         # new tests are only run for a mutant once mutmut has re-collected which tests
         # execute which function
         (workdir / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     if not args.report_only:
-        if not args.rerun:
+        if not (args.rerun or args.resume):
             _copy_repo(workdir)
         # a rerun takes the current test map too (test files added since the first run)
         _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
