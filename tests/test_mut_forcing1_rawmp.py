@@ -18,11 +18,10 @@ import pytest
 
 from symhx.forcing.kernels_mp import (
     estimate_float,
-    guard_digits,
-    mp_logp_from_xy,
     mp_p_from_xy,
     mp_q_from_xy,
     mp_xy_forcing,
+    precision_plan,
 )
 from symhx.forcing.rawmp import single_mp_fast
 
@@ -55,17 +54,13 @@ def _ref(s0, s1, om, Om, d, want, dps):
 
 def _object_code(args, want, dps):
     """The mpf-object evaluation of kernels_mp at the fast path's working precision."""
-    e, xy, pest = estimate_float(*args)
-    guard = guard_digits(e)
-    direct_q = want in ("q", "logq") and pest > 0.45
-    if direct_q:
-        guard += 8 + max(0, int(math.log10(7.0 / max(xy, 1e-300))) + 1) if xy < 7 else 10
+    guard, direct_q = precision_plan(estimate_float(*args), want)
     with mpmath.workdps(dps + guard):
         x, y = mp_xy_forcing(*args)
         if want == "p":
             return mp_p_from_xy(x, y), mpmath.mp.prec
         if want == "logp":
-            return mp_logp_from_xy(x, y), mpmath.mp.prec
+            return mpmath.log(mp_p_from_xy(x, y)), mpmath.mp.prec
         q = 1 - mp_p_from_xy(x, y) if direct_q else mp_q_from_xy(x, y)
         return (q if want == "q" else mpmath.log(q)), mpmath.mp.prec
 

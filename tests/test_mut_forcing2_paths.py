@@ -36,6 +36,7 @@ import pytest
 from symhx import forcing as F
 from symhx.forcing import kernels_mp as K
 from symhx.forcing import probability as P
+from symhx.forcing.rawmp import from_xy_raw
 
 DPS = 20
 
@@ -319,7 +320,7 @@ def test_mp_q_from_xy_adaptive_loop(x, y):
             xm, ym = mpmath.mpf(x), mpmath.mpf(y)
             q = K.mp_q_from_xy(xm, ym)
             p = K.mp_p_from_xy(xm, ym)
-            lp = K.mp_logp_from_xy(xm, ym)
+            lp = from_xy_raw(xm._mpf_, ym._mpf_, mpmath.mp.prec, "logp", 0, False)
             assert q._mpf_[1].bit_length() <= mpmath.mp.prec
         # x = d**2/(2 S0), y = d**2/(2 S1) with d = 1
         with mpmath.workdps(3 * dps + 100):
@@ -492,3 +493,51 @@ def test_single_mp_reaches_the_general_path_for_mpf_and_log_p_near_one():
             got = FUNCS[want](s, dps=DPS)
             k = ("p", "q", "logp", "logq").index(want)
             assert rel(got, r[k]) <= mpmath.mpf(10) ** -DPS, (sigma, want)
+
+
+def test_float_inputs_never_build_mpf_objects(monkeypatch):
+    """The documented route: float (and dyadic) inputs are served by the raw-libmp fast path;
+    the mpf-object route (``mp_xy_forcing``, the mpf estimate) is never entered for them."""
+    def boom(*args):
+        raise AssertionError("mpf-object route entered for float inputs")
+
+    args = dict(sigma1=0.2, omega=1.1, Omega=1.7, d=0.9, dps=30)
+    r = ref(0.3, 0.2, 1.1, 1.7, 0.9, dps=30)
+    monkeypatch.setattr(P, "mp_xy_forcing", boom)
+    monkeypatch.setattr(P, "estimate", boom)
+    for k, want in enumerate(("p", "q")):  # p < 1/2 here: both are fast-path quantities
+        assert rel(FUNCS[want](0.3, **args), r[k]) <= mpmath.mpf(10) ** -30, want
+
+
+def test_mpf_inputs_in_float_range_take_the_float_estimate(monkeypatch):
+    """mpf inputs whose values are normal floats are planned by the float estimate; the
+    64-bit mpf estimate is only for inputs beyond the float range."""
+    def boom(*args):
+        raise AssertionError("mpf estimate used for inputs in the float range")
+
+    with mpmath.workdps(40):
+        args = (mpmath.mpf("0.3"), mpmath.mpf("0.2"), mpmath.mpf("1.1"), mpmath.mpf("1.7"),
+                mpmath.mpf("0.9"))
+    monkeypatch.setattr(P, "estimate", boom)
+    r = ref(*args, dps=25)
+    for k, want in enumerate(("p", "q", "logp", "logq")):
+        got = FUNCS[want](args[0], sigma1=args[1], omega=args[2], Omega=args[3], d=args[4],
+                          dps=25)
+        assert rel(got, r[k]) <= mpmath.mpf(10) ** -25, want
+
+
+@pytest.mark.parametrize("sigma, sigma1, d", [
+    ("1e-400", "3e-400", "2e-400"),   # both tails at scales below the float range
+    ("1e-401", "1e-396", "2e-400"),   # sigma1 >> d: p near 1 (log p through log1p(-q))
+    ("1e-396", "1e-401", "2e-400"),
+    ("3e400", None, "1e400"),         # above the float range: p near 1
+    ("1e-402", None, "3e-400"),       # p = exp(-E) with E ~ 1e4
+])
+def test_inputs_beyond_the_float_range_every_want(sigma, sigma1, d):
+    """Scales beyond the float range (the 64-bit mpf estimate plans the precision), sigma1
+    far from sigma (a plan from the wrong scale would pick the wrong tail), both tails."""
+    for dps in (15, 40):
+        r = ref(sigma, sigma1, 1, "1.7", d, dps=dps)
+        for k, want in enumerate(("p", "q", "logp", "logq")):
+            got = FUNCS[want](sigma, sigma1=sigma1, omega=1, Omega="1.7", d=d, dps=dps)
+            assert rel(got, r[k]) <= mpmath.mpf(10) ** -dps, (want, sigma, sigma1, d, dps)

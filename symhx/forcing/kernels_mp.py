@@ -20,10 +20,10 @@ __all__ = [
     "guard_digits",
     "mp_i2",
     "mp_i3",
-    "mp_logp_from_xy",
     "mp_p_from_xy",
     "mp_q_from_xy",
     "mp_xy_forcing",
+    "precision_plan",
 ]
 
 
@@ -40,11 +40,6 @@ def _uv_b_over_r(x: mpmath.mpf, y: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
 def mp_p_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
     uv, b_r = _uv_b_over_r(x, y)
     return mpmath.exp(-uv) * b_r
-
-
-def mp_logp_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
-    uv, b_r = _uv_b_over_r(x, y)
-    return -uv + mpmath.log(b_r)
 
 
 def mp_q_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
@@ -142,6 +137,23 @@ def guard_digits(e: float) -> int:
             f"MAX_EXPONENT = {MAX_EXPONENT:.3g} of the mpmath evaluation (d/sigma must stay "
             "below ~1e154)")
     return 12 + (int(math.log10(e)) + 1 if e > 1 else 0)
+
+
+def precision_plan(est: tuple[float, float, float], want: str) -> tuple[int, bool]:
+    """``(guard, direct_q)``: the guard digits of one evaluation and whether ``1 - p`` is formed
+    directly as ``1 - p`` (``want`` in ``("q", "logq")`` and ``p`` near or above 1/2).
+
+    ``est = (uv, x y, p)`` is the rough estimate of :func:`estimate`/:func:`estimate_float`.
+    For small ``x, y``, ``1 - p ~ x y / 6`` cancels ``log10(6/(x y))`` digits: they are added up
+    front (the result is checked a posteriori).
+    """
+    e, xy, pest = est
+    guard = guard_digits(e)
+    direct_q = want in ("q", "logq") and pest > 0.45
+    if direct_q:
+        guard += 8 + max(0, int(math.log10(7.0 / max(xy, 1e-300))) + 1) if xy < 7 else 10
+    return guard, direct_q
+
 
 
 

@@ -19,13 +19,12 @@ from symhx.forcing.kernels_float import single_float
 from symhx.forcing.kernels_mp import (
     estimate,
     estimate_float,
-    guard_digits,
-    mp_logp_from_xy,
     mp_p_from_xy,
     mp_q_from_xy,
     mp_xy_forcing,
+    precision_plan,
 )
-from symhx.forcing.rawmp import single_mp_fast
+from symhx.forcing.rawmp import from_xy_raw, single_mp_fast
 from symhx.forcing.rayleigh import RayleighSum, scales_of
 from symhx.validation import check_dps
 
@@ -47,42 +46,36 @@ _KIND = {"p": "sf", "q": "cdf", "logp": "logsf", "logq": "logcdf"}
 
 
 def single_mp(fp: ForcingParams, dps: int, want: str) -> mpmath.mpf:
-    """One scalar component at ``dps`` digits (``want`` in :data:`WANTS`)."""
+    """One scalar component at ``dps`` digits (``want`` in :data:`WANTS`).
+
+    Float and dyadic inputs take the raw-libmp fast path; other inputs (mpf, decimal strings,
+    other Fractions, huge ints) form ``x, y`` with mpf objects and share the fast path's
+    precision plan and closed form (:func:`~symhx.forcing.rawmp.from_xy_raw`)."""
     sigma, sigma1, omega, Omega, d = fp.sigma, fp.sigma1, fp.omega, fp.Omega, fp.d
     fast = single_mp_fast(sigma, sigma1, omega, Omega, d, dps, want)
     if fast is not None:
         return fast
     est = estimate_float(sigma, sigma1, omega, Omega, d)
-    if est is None:
+    if est is None:  # an input beyond the float range: estimate from mpf x, y
         with mpmath.workprec(64):
             est = estimate(*mp_xy_forcing(sigma, sigma1, omega, Omega, d))
-    e, xy, pest = est
-    if pest > 0.5 and want == "logp":  # log p = log1p(-q) keeps its relative accuracy
+    if est[2] > 0.5 and want == "logp":  # log p = log1p(-q) keeps its relative accuracy
         q = single_mp(fp, dps + 5, "q")
         with mpmath.workdps(dps + 5):
             return mpmath.log1p(-q)
-    guard = guard_digits(e)
-    direct_q = want in ("q", "logq") and pest > 0.45
-    if direct_q:  # 1 - p cancels ~log10(6/(x y)) digits for small x, y: add them up front
-        guard += 8 + max(0, int(math.log10(7.0 / max(xy, 1e-300))) + 1) if xy < 7 else 10
+    guard, direct_q = precision_plan(est, want)
     with mpmath.workdps(dps + guard):
         x, y = mp_xy_forcing(sigma, sigma1, omega, Omega, d)
-        if want == "p":
-            return mp_p_from_xy(x, y)
-        if want == "logp":
-            return mp_logp_from_xy(x, y)
-        if direct_q:
-            q = 1 - mp_p_from_xy(x, y)
-            # a posteriori check of the digits lost; fall back to the adaptive loop if needed
-            if not (q > 0 and -mpmath.mag(q) <= 3.3 * (guard - 4)):  # digits lost <= guard-4
-                q = mp_q_from_xy(x, y)
-        elif want == "logq":
+        value = from_xy_raw(x._mpf_, y._mpf_, mpmath.mp.prec, want, guard, direct_q)
+        if value is not None:
+            return value
+        # the adaptive 1 - p (p above 1/2, or more digits cancelled than planned) or log1p(-p)
+        if want == "logq":
             p = mp_p_from_xy(x, y)
-            return mpmath.log1p(-p) if p <= 0.5 else mpmath.log(mp_q_from_xy(x, y))
-        else:
-            q = mp_q_from_xy(x, y)
+            if p <= 0.5:
+                return mpmath.log1p(-p)
+        q = mp_q_from_xy(x, y)
         return q if want == "q" else mpmath.log(q)
-
 
 
 def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:

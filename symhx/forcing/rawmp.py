@@ -10,9 +10,9 @@ from typing import Any
 
 import mpmath
 
-from symhx.forcing.kernels_mp import estimate_float, guard_digits
+from symhx.forcing.kernels_mp import estimate_float, precision_plan
 
-__all__ = ["single_mp_fast"]
+__all__ = ["from_xy_raw", "single_mp_fast"]
 
 _lm = mpmath.libmp
 _RND = _lm.round_nearest
@@ -98,13 +98,9 @@ def single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
     est = estimate_float(sigma, sigma1, omega, Omega, d)
     if est is None:
         return None
-    e, xy, pest = est
-    if pest > 0.5 and want == "logp":
+    if est[2] > 0.5 and want == "logp":
         return None  # log1p(-(1 - p)) in the general path
-    guard = guard_digits(e)
-    direct_q = want in ("q", "logq") and pest > 0.45
-    if direct_q:
-        guard += 8 + max(0, int(math.log10(7.0 / max(xy, 1e-300))) + 1) if xy < 7 else 10
+    guard, direct_q = precision_plan(est, want)
     prec = _lm.dps_to_prec(dps + guard)
     mul, div, sub, rnd = _lm.mpf_mul, _lm.mpf_div, _lm.mpf_sub, _RND
     om2 = Om if Omega is None else mul(Om, Om, prec, rnd)
@@ -114,6 +110,15 @@ def single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
     x = div(mul(dd, dd, prec, rnd), mul(mul(_MP_FOUR, s0, prec, rnd), s0, prec, rnd), prec, rnd)
     t = mul(dd, delta, prec, rnd)
     y = div(mul(t, t, prec, rnd), mul(mul(_MP_FOUR, s1, prec, rnd), s1, prec, rnd), prec, rnd)
+    return from_xy_raw(x, y, prec, want, guard, direct_q)
+
+
+def from_xy_raw(x: tuple, y: tuple, prec: int, want: str, guard: int, direct_q: bool) -> Any:
+    """``want`` (p, 1 - p or a log) from raw ``x, y`` at ``prec`` bits, as planned by
+    :func:`~symhx.forcing.kernels_mp.precision_plan`; None where the caller's adaptive
+    ``1 - p`` (or ``log1p(-p)`` for small ``p``) must decide. Shared by the fast path and the
+    general one (which passes the raw tuples of its mpf ``x, y``)."""
+    mul, div, sub, rnd = _lm.mpf_mul, _lm.mpf_div, _lm.mpf_sub, _RND
     nuv, b, r = _raw_p_parts(x, y, prec)
     make = mpmath.mp.make_mpf
     if want == "logp":
