@@ -71,7 +71,7 @@ def rational_arg(name: str, positive: bool = True) -> Callable[[str], Fraction]:
 def dps_arg(text: str) -> int:
     """argparse ``type=`` for ``--dps`` (:func:`symhx.validation.check_dps`)."""
     try:
-        return V.check_dps(V.check_int(text, "dps"))  # type: ignore[return-value]
+        return V.check_dps(V.check_int(text, "dps"))
     except (ValueError, TypeError) as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
 

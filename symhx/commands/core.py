@@ -219,8 +219,8 @@ def cmd_circuits(args: argparse.Namespace) -> int:
         return 0
     print(f"simple circuits through k of N = {args.N} vertices")
     print(f"  {'k':>6s}  phi_N(k)")
-    for kk, v in phi.items():
-        print(f"  {kk:6d}  {int_show(v)}")
+    for kk, count in phi.items():
+        print(f"  {kk:6d}  {int_show(count)}")
     print(f"  {'total':>6s}  {int_show(total)}")
     return 0
 
@@ -280,12 +280,13 @@ def paper(out: Path, full: bool) -> list[str]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from symhx import plots
+    from symhx.plots.circuits import plot_circuit_counts
+    from symhx.plots.core import plot_distributions, plot_f_and_phi, plot_mode_path
 
-    for name, fig in (("fig3_circuit_counts.png", plots.plot_circuit_counts(100)),
-                      ("fig4_distributions.png", plots.plot_distributions(PAPER_N)),
-                      ("fig5_mode_path.png", plots.plot_mode_path(PAPER_N)),
-                      ("fig6_f_and_phi.png", plots.plot_f_and_phi(PAPER_N))):
+    for name, fig in (("fig3_circuit_counts.png", plot_circuit_counts(100)),
+                      ("fig4_distributions.png", plot_distributions(PAPER_N)),
+                      ("fig5_mode_path.png", plot_mode_path(PAPER_N)),
+                      ("fig6_f_and_phi.png", plot_f_and_phi(PAPER_N))):
         fig.savefig(out / name, dpi=110, bbox_inches="tight")
         plt.close(fig)
     big = critical_point(10**100, dps=dps)

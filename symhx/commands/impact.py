@@ -206,7 +206,11 @@ def paper(out: Path, full: bool) -> list[str]:
     """
     import matplotlib.pyplot as plt
 
-    from symhx import plots
+    from symhx.plots.impact import (
+        plot_mean_vs_sigma,
+        plot_mode_vs_sigma,
+        plot_theory_vs_simulation,
+    )
 
     t0 = time.perf_counter()
     sigmas = PAPER_SIGMAS if full else QUICK_SIGMAS
@@ -230,10 +234,10 @@ def paper(out: Path, full: bool) -> list[str]:
                         *p["mean_ci"], p["mode"], *p["mode_ci"], q["mean"], q["se"],
                         q["mode"], s.gap_rate()[0]])
     figs = res if full else stored_ensemble()
-    names = {"fig7_mode_vs_sigma.png": plots.plot_mode_vs_sigma(figs),
-             "fig8_mean_vs_sigma.png": plots.plot_mean_vs_sigma(figs),
-             "fig10_theory_vs_simulation.png": plots.plot_theory_vs_simulation(figs),
-             "fig13_spaces_vs_simulation.png": plots.plot_theory_vs_simulation(
+    names = {"fig7_mode_vs_sigma.png": plot_mode_vs_sigma(figs),
+             "fig8_mean_vs_sigma.png": plot_mean_vs_sigma(figs),
+             "fig10_theory_vs_simulation.png": plot_theory_vs_simulation(figs),
+             "fig13_spaces_vs_simulation.png": plot_theory_vs_simulation(
                  figs, spaces=("simple", "eq41", "excess<=4"), title="Fig. 13")}
     for name, fig in names.items():
         fig.savefig(out / name, dpi=110, bbox_inches="tight")

@@ -388,8 +388,8 @@ def single_float(fp: ForcingParams, want: str) -> Any:
         out = np.empty(n)
         for i in range(0, n, _CHUNK):
             j = min(i + _CHUNK, n)
-            s0, de, d_, *s1 = (a if a.ndim == 0 else a[i:j] for a in flat)
-            s1 = s1[0] if s1 else s0
+            s0, de, d_, *rest = (a if a.ndim == 0 else a[i:j] for a in flat)
+            s1 = rest[0] if rest else s0
             uv = uv_chunk(s0, s1, de, d_, j - i)
             r, e = uv.r, uv.e
             rmax = r.max() if j - i > 1 else r.item()
@@ -408,7 +408,8 @@ def single_float(fp: ForcingParams, want: str) -> Any:
             idx = np.flatnonzero(~ok)
             full = [None if a is None else np.ravel(np.broadcast_to(a, shape))[i:j]
                     for a in (sig0, sig1 if sig1 is not None else sig0, om, Om, dd)]
-            res.put(idx, pq_extreme(*(None if a is None else a.take(idx) for a in full), want))
+            a0, a1, a2, a3, a4 = (None if a is None else a.take(idx) for a in full)
+            res.put(idx, pq_extreme(a0, a1, a2, a3, a4, want))
             out[i:j] = res
     return float(out[0]) if not shape else out.reshape(shape)
 

@@ -20,7 +20,7 @@ __all__ = ["available", "count_impacts", "simulate_c", "simulate_python"]
 try:
     from symhx.impact import _fast
 except ImportError:  # pragma: no cover - extension not built
-    _fast = None
+    _fast = None  # type: ignore[assignment]
 
 
 def available() -> bool:

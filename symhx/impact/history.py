@@ -109,7 +109,8 @@ class History:
         fr = to_rational(t, "t")
         if fr is None:
             raise TypeError(f"t must be a rational or float number, got {t!r}")
-        if not 0 <= fr <= to_rational(self.t_end, "t_end"):
+        end = to_rational(self.t_end, "t_end")  # a rational: t_end was validated
+        if end is None or not 0 <= fr <= end:
             raise ValueError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
         if self._wdps is not None:
             with mpmath.workdps(self._wdps):
@@ -155,9 +156,9 @@ class History:
         upd_t, upd_c = self._log.updates()
         for j in range(1, n + 1):
             C = np.asarray(upd_c[j], dtype=float)
-            k = np.maximum(np.searchsorted(np.asarray(upd_t[j], dtype=float), ts,
-                                           side="right") - 1, 0)
-            c = C[k]
+            ks = np.maximum(np.searchsorted(np.asarray(upd_t[j], dtype=float), ts,
+                                            side="right") - 1, 0)
+            c = C[ks]
             a, b = c[:, 1::2], c[:, 2::2]
             xs[:, j - 1] = c[:, 0] + np.sum(a * cs + b * sn, axis=1)
             vs[:, j - 1] = np.sum(F * (b * cs - a * sn), axis=1)

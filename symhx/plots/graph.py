@@ -15,6 +15,7 @@ test (or a curious reader) can count them.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import matplotlib.pyplot as plt
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
@@ -99,8 +100,8 @@ def plot_pipe_row(n: int = 3, *, ax=None):
     ax.set_xticks(ticks)
     ax.set_xticklabels(["$0$", "$d$"] + [f"${j}d$" for j in range(2, n + 2)])
     ax.set_yticks([])
-    for side in ("left", "right", "top"):
-        ax.spines[side].set_visible(False)
+    for spine in ("left", "right", "top"):
+        ax.spines[spine].set_visible(False)
     ax.set_xlabel(r"$x$  (pipe $j$ at rest at $x = j\,d$)")
     ax.set_title(f"$n = {n}$ pipes, $N = n + 1 = {N}$ possible impacts "
                  f"(sites $i = 0, \\ldots, {n}$)")
@@ -139,8 +140,8 @@ def plot_impact_graph(n: int = 3, *, ax=None, labels: list[str] | None = None):
                             zorder=3, gid="vertex"))
         ax.text(x, y, labels[i], ha="center", va="center", fontsize=9 if N <= 6 else 7,
                 zorder=4)
-    arrow = {"arrowstyle": "-|>", "mutation_scale": 10, "color": "0.25", "lw": 0.9,
-             "shrinkA": 0, "shrinkB": 0}
+    arrow: dict[str, Any] = {"arrowstyle": "-|>", "mutation_scale": 10, "color": "0.25",
+                             "lw": 0.9, "shrinkA": 0, "shrinkB": 0}
     for i, (xi, yi) in enumerate(pos):
         for j, (xj, yj) in enumerate(pos):
             if i == j:

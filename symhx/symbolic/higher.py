@@ -488,7 +488,7 @@ _EQ41_TERMS = (((), 0), ((2,), 1), ((3,), 2), ((4,), 3), ((2, 2), 2))
 
 def _eq41_parts(weighted: bool) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """(generic k >= 3, value at k = 2, value at k = 1) of eq. (41)."""
-    generic = 0
+    generic: sp.Expr = sp.Integer(0)
     for repeats, extra in _EQ41_TERMS:
         if repeats:
             term = pattern_count(repeats).args[0].expr.subs(k, k + extra)
