@@ -300,6 +300,9 @@ def main(argv: list[str] | None = None) -> int:
         if args.rerun or not (workdir / "mutants").is_dir():
             parser.error("--resume needs the --workdir of an earlier run and no --rerun")
         _copy_repo(workdir, keep_mutants=True)
+        for m in modules:  # mutmut regenerates a module's mutants only when its source is newer
+            # (copy2 kept the old time, and an earlier run on other modules left a plain copy)
+            os.utime(workdir / m)
     if args.rerun or args.resume:
         for dest in (workdir / "tests", workdir / "mutants" / "tests"):
             shutil.copytree(ROOT / "tests", dest, dirs_exist_ok=True)
