@@ -473,7 +473,8 @@ def test_naive_double_integral_where_it_works():
                {"sigma": 1e150, "sigma1": 1e-145, "d": 1e10}]:  # k d**2/sigma1**2 overflows
         with pytest.raises(ValueError, match="outside the float64 range"):
             F.naive_impact_probability(**{"sigma": 0.5, **kw})
-    with pytest.raises(ValueError, match="outside the float64 range"):
+    with pytest.raises(ValueError, match=r"outside the float64 range of the literal eq\. \(27\) "
+                                         r"integrand; use impact_probability$"):
         F.naive_impact_probability(1e-170)
     with pytest.raises(ValueError, match="outside the float64 range"):
         F.naive_impact_probability(0.5, d=1e200)
@@ -541,3 +542,23 @@ def test_inputs_beyond_the_float_range_every_want(sigma, sigma1, d):
         for k, want in enumerate(("p", "q", "logp", "logq")):
             got = FUNCS[want](sigma, sigma1=sigma1, omega=1, Omega="1.7", d=d, dps=dps)
             assert rel(got, r[k]) <= mpmath.mpf(10) ** -dps, (want, sigma, sigma1, d, dps)
+
+
+@pytest.mark.parametrize("sigma, sigma1, omega, Omega", [
+    # omega**2 within 2e-8 of 2 (the default Omega**2), Omega = 1 given: a plan made as if
+    # Omega were the default would see E ~ 1e-3 instead of ~1e13 (sigma in the float range)
+    ("1e-7", None, "1.41421356", "1"),
+    # the same beyond the float range (x ~ 1e159: the 64-bit mpf estimate plans), E ~ 1e159
+    ("1e-80", None, "1.41421356", "1"),
+    # sigma1 << sigma with Omega**2 ~ omega**2: a plan made as if sigma1 = sigma would see E
+    # ~ 1e144 instead of ~2e159
+    ("1e-80", "1e-88", "1.41421356", None),
+])
+def test_precision_plan_sees_every_input_at_huge_exponents(sigma, sigma1, omega, Omega):
+    """p = exp(-E) with E from 1e13 to 2e159 loses log10(E) digits unless the precision plan
+    (made from a float or 64-bit estimate of every input) adds them: p and log p to dps."""
+    dps = 15
+    r = ref(sigma, sigma1, omega, Omega, 1, dps=dps)
+    for k, want in ((0, "p"), (2, "logp")):
+        got = FUNCS[want](sigma, sigma1=sigma1, omega=omega, Omega=Omega, d=1, dps=dps)
+        assert rel(got, r[k], digits=60) <= mpmath.mpf(10) ** -dps, (want, sigma, sigma1)
