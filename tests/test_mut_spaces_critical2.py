@@ -418,3 +418,18 @@ def test_k_after_is_the_tied_k_whose_h_grows_fastest(monkeypatch):
     cp = at({2: 2, 3: 1})
     assert cp.argmins == (2, 3) and cp.k_after == 2
     assert at({2: 1, 3: 1}).k_after == 3
+
+
+def test_guard_digits_grow_with_the_digits_of_N():
+    """N = 10**6 (7 digits, lgamma terms ~ 10**7 cancel): still correctly rounded and bracketed.
+    excess<=0 has W(k) = A_k p**k, so c_k = (A_1/A_k)**(1/(k-1)) in closed form."""
+    N = 10**6
+    cp = critical_point(N, space="excess<=0", dps=15)
+    (k,) = cp.argmins
+    (A1,) = _poly(N, "excess<=0", "length", 1).values()
+    (Ak,) = _poly(N, "excess<=0", "length", k).values()
+    with mpmath.workdps(60):
+        c = (mpmath.mpf(A1) / Ak) ** (mpmath.mpf(1) / (k - 1))
+        assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
+    with mpmath.workdps(15):
+        assert cp.p == +c
