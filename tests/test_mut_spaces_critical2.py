@@ -433,3 +433,33 @@ def test_guard_digits_grow_with_the_digits_of_N():
         assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
     with mpmath.workdps(15):
         assert cp.p == +c
+
+
+def test_no_rational_search_beyond_its_work_limit(monkeypatch):
+    """The exact rational search is skipped when best * bitlen(N) >= 200000 (in practice
+    N >~ 4e6); the result is then the certified bracket with p_exact None. Reached here at
+    N = 20000 by a seed at k = 14000 and an exclusion step reporting every other k excluded
+    (a stub: the point is the last branch, not the argmin); c_k of excess<=0 in closed form."""
+    N, k = 20000, 14000
+    real = crit.root_estimates
+
+    def seed(sp, n):
+        s = np.array(real(sp, n))
+        s[k - 2] = s.min() - 1.0
+        return s
+
+    def no_search(*a):
+        raise AssertionError("rational search beyond its work limit")
+
+    monkeypatch.setattr(crit, "root_estimates", seed)
+    monkeypatch.setattr(crit, "_unexcluded", lambda *a: [])
+    monkeypatch.setattr(crit, "_try_rational", no_search)
+    cp = crit.critical_point(N, space="excess<=0", dps=20)
+    assert cp.argmins == (k,) and cp.p_exact is None
+    (A1,) = _poly(N, "excess<=0", "length", 1).values()
+    (Ak,) = _poly(N, "excess<=0", "length", k).values()
+    with mpmath.workdps(60):
+        c = (mpmath.mpf(A1) / Ak) ** (mpmath.mpf(1) / (k - 1))
+        assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
+    with mpmath.workdps(20):
+        assert cp.p == +c
