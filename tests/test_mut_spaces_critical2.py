@@ -109,7 +109,10 @@ def test_root_estimates_double_at_most_twenty_times(monkeypatch):
     monkeypatch.setattr(crit, "ROOT_BRACKET", 2.0**-40)
     for N in (3, 5):
         s = root_estimates("excess<=20", N)
-        assert np.all(np.abs(s) <= 2.0**-20)
+        for k, c in _roots(N, "excess<=20", "length").items():
+            ref = _log_Nc(N, c)
+            assert abs(ref) > 0.009
+            assert abs(s[k - 2] - np.copysign(2.0**-20, ref)) <= 1e-12   # at the end nearest
     # from 2**-25 the twenty doublings reach 2**-5 > |log(2 c_2)| = 0.028...: the root is found
     monkeypatch.setattr(crit, "ROOT_BRACKET", 2.0**-25)
     (c2,) = _roots(2, "excess<=20", "length").values()
