@@ -438,12 +438,13 @@ def test_guard_digits_grow_with_the_digits_of_N():
         assert cp.p == +c
 
 
-def test_no_rational_search_beyond_its_work_limit(monkeypatch):
+@pytest.mark.parametrize("N,k", [(20000, 14000), (40000, 12500)])
+def test_no_rational_search_beyond_its_work_limit(monkeypatch, N, k):
     """The exact rational search is skipped when best * bitlen(N) >= 200000 (in practice
     N >~ 4e6); the result is then the certified bracket with p_exact None. Reached here at
-    N = 20000 by a seed at k = 14000 and an exclusion step reporting every other k excluded
-    (a stub: the point is the last branch, not the argmin); c_k of excess<=0 in closed form."""
-    N, k = 20000, 14000
+    N = 20000 (15 bits) by a seed at k = 14000, and at the limit itself (16 bits, k = 12500),
+    with an exclusion step reporting every other k excluded (a stub: the point is the last
+    branch, not the argmin); c_k of excess<=0 in closed form."""
     real = crit.root_estimates
 
     def seed(sp, n):
