@@ -467,3 +467,28 @@ def test_no_rational_search_beyond_its_work_limit(monkeypatch, N, k):
         assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
     with mpmath.workdps(20):
         assert cp.p == +c
+
+
+def test_root_estimates_from_bracket_ends_where_h_is_one(monkeypatch):
+    """The iteration stops on a small step (or h == 0), never on any other value of h: started
+    from the upper end of the bracket (the simple-space start, 1.39, is clipped to it) at 201
+    consecutive floats around the point where h_2 = 1 (bisection on the Burnside polynomials;
+    the float h there hits 1.0 exactly for many of them), every estimate reaches the root."""
+    N = 2
+    p1, p2 = _poly(N, "excess<=20", "length", 1), _poly(N, "excess<=20", "length", 2)
+    with mpmath.workdps(40):
+        def h(s):
+            p = mpmath.exp(s) / N
+            return mpmath.log(_Wx(p2, p)) - mpmath.log(_Wx(p1, p))
+
+        lo, hi = mpmath.mpf(-1), mpmath.mpf(1)
+        for _ in range(100):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if h(mid) < 1 else (lo, mid)
+    (c2,) = _roots(N, "excess<=20", "length").values()
+    root = _log_Nc(N, c2)
+    ends = float(lo) + np.arange(-100, 101) * np.spacing(float(lo))
+    assert root < ends.min() and ends.max() < 0.2
+    for r in ends:
+        monkeypatch.setattr(crit, "ROOT_BRACKET", float(r))
+        assert abs(root_estimates("excess<=20", N)[0] - root) <= 1e-14, r
