@@ -492,3 +492,18 @@ def test_root_estimates_from_bracket_ends_where_h_is_one(monkeypatch):
     for r in ends:
         monkeypatch.setattr(crit, "ROOT_BRACKET", float(r))
         assert abs(root_estimates("excess<=20", N)[0] - root) <= 1e-14, r
+
+
+def test_try_rational_refuses_a_close_rational_that_is_no_root():
+    """At wp = 18 the candidate (denominator <= 10**6) of an irrational c_2 lies within the
+    closeness test (10**-10 relative); only the exact comparison of W(2) with W(1) refuses it."""
+    N = 2
+    sp = parse_space("eq41")
+    c2 = _root1(N, "eq41", 2)
+    with mpmath.workdps(18):
+        s = mpmath.log(N * c2)
+        cand = mpf_to_fraction(mpmath.exp(s) / N).limit_denominator(10**6)
+    with mpmath.workdps(30):
+        assert abs(mpmath.mpf(cand.numerator) / cand.denominator / c2 - 1) < mpmath.mpf(10) ** -11
+    assert _Wx(_poly(N, "eq41", "length", 2), cand) != _Wx(_poly(N, "eq41", "length", 1), cand)
+    assert crit._try_rational(sp, N, s, [2], 18) is None
