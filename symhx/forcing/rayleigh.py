@@ -45,7 +45,7 @@ from symhx.forcing.kernels_float import (
     pq_float,
     uv_from_h,
 )
-from symhx.forcing.kernels_mp import mp_i2, mp_q_from_xy
+from symhx.forcing.kernels_mp import MAX_EXPONENT, mp_i2, mp_q_from_xy
 from symhx.validation import check_array, check_choice, check_dps, check_seed, to_rational
 
 __all__ = [
@@ -574,13 +574,17 @@ def _mp_scaled_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: 
                           ) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
     """``(m, err_m, E)`` with ``sf`` (or ``pdf``) ``= m exp(-E)``, ``E = x**2/(2 V)``, ``x >
     0``, ``m`` correct to ``dps`` digits (call inside the working precision)."""
-    groups = [_MGroup(g) for g in make_groups(scales)]
+    # E at the caller's precision (its exp needs log10(E) guard digits), the scaled quadrature
+    # at dps + 12 digits: m is a smooth function of x and the scales, and the Gaussian factors
+    # inside it only need their absolute accuracy relative to the peak
     e = x * x / (2 * mpmath.fsum(s * s for s in scales))
-    if len(groups) == 1:
-        m = groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
-        return m, abs(m) * mpmath.mpf(10) ** (-dps - 10), e
-    cs = _saddle_c(dps, len(scales), float(2 * x / min(scales)))
-    cur, err = _converge(lambda n: _conv_scaled_mp(groups, x, kind, n, cs), dps)
+    with mpmath.workdps(dps + 12):
+        groups = [_MGroup(g) for g in make_groups(scales)]
+        if len(groups) == 1:
+            m = groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
+            return m, abs(m) * mpmath.mpf(10) ** (-dps - 10), e
+        cs = _saddle_c(dps, len(scales), float(2 * x / min(scales)))
+        cur, err = _converge(lambda n: _conv_scaled_mp(groups, x, kind, n, cs), dps)
     return cur, err, e
 
 
@@ -745,7 +749,12 @@ class RayleighSum:
             xm = mpmath.mpf(fr.numerator) / fr.denominator if fr is not None else mpmath.mpf(0)
             var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
             e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
-            return int(mpmath.log10(e)) + 1 if e > 1 else 0
+        if e > MAX_EXPONENT:
+            raise ValueError(
+                f"x: P(S > x) = exp(-E) with E ~ {mpmath.nstr(e, 3)} above the cap MAX_EXPONENT "
+                f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
+                "guard digits); logsf has no cap")
+        return int(mpmath.log10(e)) + 1 if e > 1 else 0
 
     def _float_scales(self) -> list[float]:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
@@ -769,7 +778,10 @@ class RayleighSum:
             for idx in np.ndindex(xs.shape):
                 out[idx] = self._eval(xs[idx], kind, dps)
             return out
-        with mpmath.workdps(dps + 15 + self._exp_digits(x)):
+        # exp(-E) needs log10(E) guard digits; log sf = log m - E does not (its absolute
+        # error E 10**-prec is relative 10**-prec), so its cost does not grow with E
+        guard = 15 + (0 if kind == "logsf" else self._exp_digits(x))
+        with mpmath.workdps(dps + guard):
             xm = _mp_x(x)
             scales = [mpf_of(s) for s in self._exact]
             if kind in ("sf", "cdf", "pdf"):
@@ -780,10 +792,9 @@ class RayleighSum:
                     val = mpmath.mpf(0)
                 else:
                     m, _, e = _mp_scaled_with_error(scales, xm, "sf", dps + 5)
-                    if m * mpmath.exp(-e) > 0.5:
+                    val = mpmath.log(m) - e
+                    if val > -mpmath.log(2):
                         val = mpmath.log1p(-_mp_with_error(scales, xm, "cdf", dps + 5)[0])
-                    else:
-                        val = mpmath.log(m) - e
             else:
                 v = _mp_with_error(scales, xm, "cdf", dps + 5)[0]
                 if v > 0.5:
