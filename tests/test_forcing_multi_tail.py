@@ -243,3 +243,21 @@ def test_direct_methods_tails_and_arrays():
     assert true <= res.error < 1e-12 * res.value
     res = S.probability(40.0, tail="lower")
     assert res.value == 1.0 and res.error < 1e-300
+
+
+def test_float_scales_spread_far_apart():
+    """Scales 1e25 apart: the pair's closed form (no quadrature) up to x/min(s) = 1e150, the
+    bracket of (a) for three scales; beyond the quadrature range a clear error (use dps=)."""
+    two = RayleighSum([1.0, 1e-25])
+    for x in (10.0, 1e3, 1e20, 1e31):
+        with mpmath.workdps(40):
+            assert rel(two.logsf(x), log_pair_sf(x, 1.0, 1e-25)) < 1e-15, x
+    three = RayleighSum([1.0, 0.5, 1e-25])
+    for x in (10.0, 1e3, 1e5):
+        with mpmath.workdps(40):
+            lo = log_pair_sf(x, 1.0, 0.5)
+            hi = log_pair_sf(mpmath.mpf(x) - 40 * mpmath.mpf(1e-25), 1.0, 0.5)
+            assert lo - abs(lo) * 1e-14 <= three.logsf(x) <= hi + abs(lo) * 1e-14, x
+    with pytest.raises(ValueError, match="use dps="):
+        three.logsf(1e31)
+    assert three.sf(1e31) == 0.0 and three.cdf(1e31) == 1.0

@@ -465,10 +465,12 @@ _X_LAPLACE = 1e9
 
 def _regions(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Masks ``(laplace, out)`` of the float64 sf/pdf: the asymptotic regime, and the rest of
-    the region beyond the quadrature range (only for scales spread over > 1e21)."""
+    the region beyond the quadrature range (only for scales spread over > 1e21) or, for one or
+    two scales (closed forms, no quadrature), beyond ``x/min(s) = 1e150``."""
     var = math.fsum(s * s for s in scales)
     laplace = x * min(scales) >= _X_LAPLACE * var
-    out = (x > _X_QUAD * max(scales)) & ~laplace
+    lim = _X_QUAD * max(scales) if len(scales) > 2 else 1e150 * min(scales)
+    out = (x > lim) & ~laplace
     return laplace, out
 
 
