@@ -261,3 +261,20 @@ def test_float_scales_spread_far_apart():
     with pytest.raises(ValueError, match="use dps="):
         three.logsf(1e31)
     assert three.sf(1e31) == 0.0 and three.cdf(1e31) == 1.0
+
+
+def test_float_lower_tail_log_cdf():
+    """log P(S <= x) where the cdf underflows (huge sigma: was -inf, and nan from an overflow of
+    the saddle width at sigma = 1e100), against the mpmath quadrature at 32 digits, on both
+    sides of the switch to the leading power at x = 1e-9 min(s)."""
+    for sigma in (1e40, 1e60, 1e100):
+        got = F.log_no_impact_probability(sigma, Omega=[1.7, 2.2])
+        ref = F.log_no_impact_probability(sigma, Omega=[1.7, 2.2], dps=32)
+        assert rel(got, ref) < 1e-15, sigma
+    assert 0 < F.no_impact_probability(1e40, Omega=[1.7, 2.2]) < 1e-240
+    assert F.no_impact_probability(1e100, Omega=[1.7, 2.2]) == 0.0
+    S = RayleighSum([1.0, 0.5, 0.3])
+    xs = np.array([1e-5, 0.99e-9 * 0.3, 1.01e-9 * 0.3, 1e-100, 5e-324])
+    got = S.logcdf(xs)
+    for x, g in zip(xs, got, strict=True):
+        assert rel(g, S.logcdf(float(x), dps=32)) < 1e-15, x

@@ -315,7 +315,7 @@ def _split(last: Any, rest: list[Any], x: Any, sqrt: Any) -> tuple[Any, Any, Any
     vb = last.var
     va = sum(g.var for g in rest)
     v = va + vb
-    return x * (vb / v), x * (va / v), sqrt(va * vb / v)
+    return x * (vb / v), x * (va / v), sqrt(va * (vb / v))  # (va * vb may overflow)
 
 
 def _tau_panels_float(ts: np.ndarray, xs: np.ndarray, w: float, last: _FGroup,
@@ -816,14 +816,36 @@ class RayleighSum:
             if big.any():
                 out[big] = np.log1p(-_float_with_error(sc, x[big], "cdf")[0])
             return out
-        v = _float_with_error(sc, x, "cdf")[0]
-        out = np.empty_like(v)
+        tiny = (x > 0) & (x <= _X_SMALL * min(sc))
+        out = np.empty(x.shape)
+        if tiny.any():
+            out[tiny] = _float_small_logcdf(sc, x[tiny])
+        rest = ~tiny
+        v = _float_with_error(sc, x[rest], "cdf")[0]
         big = v > 0.5
         with np.errstate(divide="ignore"):
-            out[~big] = np.log(v[~big])
+            r = np.log(v)
             if big.any():
-                out[big] = np.log1p(-_float_with_error(sc, x[big], "sf")[0])
+                r[big] = np.log1p(-_float_with_error(sc, x[rest][big], "sf")[0])
+        out[rest] = r
         return out
+
+
+#: lower tail: ``x <= _X_SMALL min(s)`` takes the leading power of ``P(S <= x)`` (relative
+#: corrections ``<= sum_i x**2/(2 s_i**2) <= 1e-17``), where the cdf itself may underflow
+_X_SMALL = 1e-9
+
+
+def _float_small_logcdf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
+    r"""``log P(S <= x) = sum_i 2 log(x/s_i) - log((2n)!)`` for ``x << min(s_i)``: each density
+    is ``r/s_i**2 (1 + O(r**2/s_i**2))`` near 0 and the ``n``-fold convolution of ``r`` is
+    ``x**(2n-1)/(2n-1)!``."""
+    out = np.full(x.shape, -math.lgamma(2 * len(scales) + 1))
+    with np.errstate(under="ignore", divide="ignore"):
+        for s in scales:
+            q = x / s
+            out += 2 * np.where(q > 1e-300, np.log(q), np.log(x) - math.log(s))
+    return out
 
 
 def _to_float(fr: Fraction) -> float:
