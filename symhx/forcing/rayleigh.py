@@ -10,10 +10,18 @@ integrands::
     P(A + B > x)  = P(B > x) + int_0^x f_B(t) P(A > x - t) dt,
     P(A + B <= x) = int_0^x f_B(t) P(A <= x - t) dt,
 
-so both tails keep their relative accuracy. The panels are placed around the Gaussian saddle of
-the integrand *and* at multiples of every scale from both ends of ``[0, x]`` (where a small scale
-puts its structure), so scales spread over many orders of magnitude are resolved. The error
-estimate is the difference of two rule orders plus the rounding of the closed forms.
+so both tails keep their relative accuracy. The upper tail and the density are computed scaled:
+``P(S > x) = m(x) exp(-x**2/(2V))`` (``V = sum s_i**2``) with the Gaussian factors of the groups
+combined analytically, ``exp(-t**2/(2 V_B) - (x - t)**2/(2 V_A)) = exp(-x**2/(2V))
+exp(-(t - t*)**2/(2 w**2))``, so ``log P(S > x) = log m - x**2/(2V)`` stays finite and accurate
+where ``P(S > x)`` underflows (float64) or needs many guard digits (mpmath); the cdf is ``1 - sf``
+where ``sf <= 1/2``. The panels are placed around the Gaussian saddle ``t*`` (in ``tau = t - t*``,
+out to where ``exp(-tau**2/(2 w**2))`` is negligible at the requested digits) *and* at multiples
+of every scale from both ends of ``[0, x]`` (where a small scale puts its structure), so scales
+spread over many orders of magnitude are resolved. The error estimate is the difference of two
+rule orders plus the rounding of the closed forms. float64 only: beyond ``x min(s) = 1e9 V`` the
+log tail is the Laplace asymptotic (:func:`_laplace_logsf`), below ``x = 1e-9 min(s)`` the log cdf
+its leading power.
 """
 
 from __future__ import annotations
@@ -145,6 +153,10 @@ def rayleigh_scales(
 
 
 # =========================================================================== groups
+#: chunk length of the float64 group functions on the (large) nested node arrays
+_CHUNK = 16384
+
+
 class _FGroup:
     """float64 group of one or two Rayleigh scales (closed forms on arrays)."""
 
@@ -187,13 +199,15 @@ class _FGroup:
         if len(self.scales) == 1:
             return np.ones_like(t)
         out = np.ones_like(t)
-        pos = t > 0
         with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-            uv = self._uv(t[pos])
-            u, v = uv.u, uv.v
-            b = v * np.exp(-u * u) + u * np.exp(-v * v)
-            b += SQRT_PI * u * v * (sc.erf(u) + sc.erf(v))
-            out[pos] = b / uv.r
+            for i in range(0, t.shape[0], _CHUNK):  # in cache-sized chunks (nested arrays)
+                tc = t[i : i + _CHUNK]
+                pos = tc > 0
+                uv = self._uv(tc[pos])
+                u, v = uv.u, uv.v
+                b = v * np.exp(-u * u) + u * np.exp(-v * v)
+                b += SQRT_PI * u * v * (sc.erf(u) + sc.erf(v))
+                out[i : i + _CHUNK][pos] = b / uv.r
         return out
 
     def mpdf(self, t: np.ndarray) -> np.ndarray:
@@ -552,24 +566,24 @@ def _float_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
         with np.errstate(divide="ignore"):
             res[q] = np.log(m) - e
     if laplace.any():
-        res[laplace] = laplace_logsf(scales, x[laplace], np.log, np.log(2 * np.pi))
+        res[laplace] = _laplace_logsf(scales, x[laplace])
     return res
 
 
-def laplace_logsf(scales: Sequence[Any], x: Any, log: Any, log2pi: Any) -> Any:
+def _laplace_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
     r"""Leading Laplace asymptotic of ``log P(S > x)`` for ``x min(s_i) >> sum s_i**2``.
 
     The density of the sum concentrates at ``r_i = x s_i**2/V`` (``V = sum s_i**2``); the
     Gaussian integral over the hyperplane ``sum r_i = x`` gives ``f_S(x) ~ (x/V)**n
     (2 pi)**((n-1)/2) prod(s_i) V**(-1/2) exp(-x**2/(2V))`` and ``P(S > x) ~ f_S(x) V/x``, with
-    relative corrections ``O(sum_i (V/(x s_i))**2)``. ``log``/``log2pi``: float64 (numpy) or
-    mpmath.
+    relative corrections ``O(sum_i (V/(x s_i))**2)``.
     """
     n = len(scales)
-    var = sum(s * s for s in scales)
-    lsum = sum(log(s) for s in scales)
-    return (-(x * x) / (2 * var) + (n - 1) * log(x / var) + lsum - log(var) / 2
-            + (n - 1) * log2pi / 2)
+    var = math.fsum(s * s for s in scales)
+    const = (math.fsum(math.log(s) for s in scales) - math.log(var) / 2
+             + (n - 1) * math.log(2 * math.pi) / 2)
+    with np.errstate(over="ignore"):
+        return -(x / math.sqrt(2 * var)) ** 2 + (n - 1) * (np.log(x) - math.log(var)) + const
 
 
 def _mp_scaled_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
