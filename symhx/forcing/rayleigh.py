@@ -621,6 +621,17 @@ def _converge(fn: Any, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
         f"Rayleigh sum: the quadrature did not converge to {dps} digits (error {err})")
 
 
+def _upper_half(scales: Sequence[Any], x: mpmath.mpf) -> bool:
+    """Whether ``P(S > x)`` may be ``<= 0.55`` (the float64 value decides; True when it cannot
+    be formed): the mpmath cdf is then ``1 - sf``, else its own quadrature (both are accurate
+    near 1/2, only the far tail needs ``1 - sf``)."""
+    fs = [float(s) for s in scales]
+    xf = float(x)
+    if not all(1e-150 < s < 1e150 for s in fs) or not 0 < xf < 1e150:
+        return xf > 0
+    return bool(_float_with_error(fs, np.array([xf]), "sf")[0][0] <= 0.55)
+
+
 def _mp_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
                    ) -> tuple[mpmath.mpf, mpmath.mpf]:
     """Value and error estimate at ``dps`` digits (call inside the working precision)."""
@@ -630,9 +641,10 @@ def _mp_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
         m, err, e = _mp_scaled_with_error(scales, x, kind, dps)
         g = mpmath.exp(-e)
         return m * g, err * g
-    sf, err = _mp_with_error(scales, x, "sf", dps)
-    if sf <= 0.5:  # no cancellation in 1 - sf (see _float_with_error)
-        return 1 - sf, err
+    if _upper_half(scales, x):
+        sf, err = _mp_with_error(scales, x, "sf", dps)
+        if sf <= 0.5:  # no cancellation in 1 - sf (see _float_with_error)
+            return 1 - sf, err
     groups = [_MGroup(g) for g in make_groups(scales)]
     if len(groups) == 1:
         val = groups[0].cdf(x)
