@@ -298,27 +298,41 @@ _SCALE_C = (0.5, 2.0, 8.0)
 _FLOAT_DIGITS = 16
 
 
-def _saddle_c(digits: int, n_scales: int, ratio: float) -> list[float]:
-    """Saddle offsets ``c`` (both signs, units of ``w``) out to ``c_max``.
+class _Panels(NamedTuple):
+    """Saddle offsets (units of the width ``w``) and scale multiples of the panel breakpoints."""
+
+    sad: list[float]
+    mult: list[float]
+
+
+def _saddle_c(digits: int, n_scales: int, ratio: float) -> _Panels:
+    """Saddle offsets ``c`` (both signs, units of ``w``) out to ``c_max``, scale multiples out to
+    ``sqrt(2 (digits + 10) ln 10)``.
 
     Beyond ``c_max`` the Gaussian factor ``exp(-c**2/2)``, times the largest growth of the
     polynomial factors over ``[0, x]`` (below ``(2 + ratio)**(2 n + 1)`` with ``ratio >= x/w``)
     and the length of the interval, is below ``10**-(digits + 10)`` of the peak: the long
     outer panels then carry nothing at the target precision, however large ``x/w`` (a fixed
     ``c_max`` left a long unresolved panel at ``e**-72`` of the peak, fatal beyond 30 digits).
+    Likewise the structure of a scale ``s`` (``exp(-t**2/(2 s**2))``) is resolved out to where
+    it is below ``10**-(digits + 10)`` (a fixed ``8 s`` left ``e**-32``).
     """
     lr = math.log(2.0 + ratio)
     cmax = math.sqrt(2 * (digits + 10) * math.log(10) + 2 * (2 * n_scales + 2) * lr)
     cs = list(_PANEL_C)
     while cs[-1] < cmax:
         cs.append(cs[-1] + 4.0)
-    return [-c for c in reversed(cs[1:])] + cs
+    mmax = math.sqrt(2 * (digits + 10) * math.log(10))
+    mult = list(_SCALE_C)
+    while mult[-1] < mmax:
+        mult.append(mult[-1] + 4.0)
+    return _Panels([-c for c in reversed(cs[1:])] + cs, mult)
 
 
-def _offsets(last: Any, rest: list[Any]) -> tuple[list[Any], list[Any]]:
+def _offsets(last: Any, rest: list[Any], mult: list[float]) -> tuple[list[Any], list[Any]]:
     """Scale multiples of the last group (near t = 0) and of the rest (near t = x)."""
-    near0 = [c * s for s in last.scales for c in _SCALE_C]
-    nearx = [c * s for g in rest for s in g.scales for c in _SCALE_C]
+    near0 = [c * s for s in last.scales for c in mult]
+    nearx = [c * s for g in rest for s in g.scales for c in mult]
     return near0, nearx
 
 
@@ -333,11 +347,11 @@ def _split(last: Any, rest: list[Any], x: Any, sqrt: Any) -> tuple[Any, Any, Any
 
 
 def _tau_panels_float(ts: np.ndarray, xs: np.ndarray, w: float, last: _FGroup,
-                      rest: list[_FGroup], cs: list[float]) -> np.ndarray:
+                      rest: list[_FGroup], cs: _Panels) -> np.ndarray:
     """Sorted breakpoints in ``tau = t - t*``, shape (len(x), K), clipped to [-t*, x - t*]."""
-    near0, nearx = _offsets(last, rest)
+    near0, nearx = _offsets(last, rest, cs.mult)
     cols = [-ts, xs]
-    cols += [np.full_like(ts, c * w) for c in cs]
+    cols += [np.full_like(ts, c * w) for c in cs.sad]
     cols += [a - ts for a in near0]
     cols += [xs - a for a in nearx]
     pts = np.clip(np.stack(cols, axis=1), -ts[:, None], xs[:, None])
@@ -345,7 +359,7 @@ def _tau_panels_float(ts: np.ndarray, xs: np.ndarray, w: float, last: _FGroup,
 
 
 def _conv_scaled_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int,
-                       cs: list[float]) -> np.ndarray:
+                       cs: _Panels) -> np.ndarray:
     """``P(sum > x) exp(x**2/(2 V))`` (kind 'sf') or the density times it ('pdf'), x >= 0.
 
     With ``tau = t - t*`` the Gaussian factors of the two groups combine exactly into
@@ -372,20 +386,20 @@ def _conv_scaled_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int,
     return out
 
 
-def _panels_float(x: np.ndarray, last: _FGroup, rest: list[_FGroup], cs: list[float]
+def _panels_float(x: np.ndarray, last: _FGroup, rest: list[_FGroup], cs: _Panels
                   ) -> np.ndarray:
     """Sorted panel breakpoints in ``t``, shape (len(x), K), clipped to [0, x]."""
     tstar, _, w = _split(last, rest, x, math.sqrt)
-    near0, nearx = _offsets(last, rest)
+    near0, nearx = _offsets(last, rest, cs.mult)
     cols = [np.zeros_like(x), x]
-    cols += [tstar + w * c for c in cs]
+    cols += [tstar + w * c for c in cs.sad]
     cols += [np.full_like(x, a) for a in near0]
     cols += [x - a for a in nearx]
     pts = np.clip(np.stack(cols, axis=1), 0.0, x[:, None])
     return np.sort(pts, axis=1)
 
 
-def _conv_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int, cs: list[float]
+def _conv_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int, cs: _Panels
                 ) -> np.ndarray:
     """``P(sum <= x)`` (kind 'cdf') on array x (no Gaussian factor to take out)."""
     if len(groups) == 1:
@@ -414,7 +428,7 @@ def _mp_gl(n: int) -> tuple[list[mpmath.mpf], list[mpmath.mpf]]:
 
 
 def _conv_scaled_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int,
-                    cs: list[float]) -> mpmath.mpf:
+                    cs: _Panels) -> mpmath.mpf:
     """mpmath :func:`_conv_scaled_float` (one threshold ``x``)."""
     if len(groups) == 1:
         return groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
@@ -422,8 +436,8 @@ def _conv_scaled_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int,
         return mpmath.mpf(1) if kind == "sf" else mpmath.mpf(0)
     last, rest = groups[-1], groups[:-1]
     ts, xs, w = _split(last, rest, x, mpmath.sqrt)
-    near0, nearx = _offsets(last, rest)
-    raw = [c * w for c in cs] + [a - ts for a in near0] + [xs - a for a in nearx]
+    near0, nearx = _offsets(last, rest, cs.mult)
+    raw = [c * w for c in cs.sad] + [a - ts for a in near0] + [xs - a for a in nearx]
     pts = sorted({-ts, xs} | {min(max(p, -ts), xs) for p in raw})
     xg, wg = _mp_gl(n)
     total = mpmath.mpf(0)
@@ -441,7 +455,7 @@ def _conv_scaled_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int,
     return total
 
 
-def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int, cs: list[float]
+def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int, cs: _Panels
              ) -> mpmath.mpf:
     """``P(sum <= x)`` (kind 'cdf') at one threshold."""
     if len(groups) == 1:
@@ -450,8 +464,8 @@ def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int, cs: list[f
         return mpmath.mpf(0)
     last, rest = groups[-1], groups[:-1]
     tstar, _, w = _split(last, rest, x, mpmath.sqrt)
-    near0, nearx = _offsets(last, rest)
-    raw = [tstar + c * w for c in cs] + list(near0) + [x - a for a in nearx]
+    near0, nearx = _offsets(last, rest, cs.mult)
+    raw = [tstar + c * w for c in cs.sad] + list(near0) + [x - a for a in nearx]
     pts = sorted({mpmath.mpf(0), x} | {min(max(p, 0), x) for p in raw})
     xg, wg = _mp_gl(n)
     total = mpmath.mpf(0)
