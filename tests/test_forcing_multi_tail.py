@@ -291,3 +291,13 @@ def test_far_tail_density_is_minus_the_derivative_of_sf():
         assert rel(pdf, fd) < 1e-17
         assert S.pdf(30.0) == 0.0  # 7.6e-510
         assert rel(S.pdf(20.0), S.pdf(20, dps=20)) < 1e-12  # ~1e-226
+
+
+def test_small_scale_structure_resolved_at_30_digits():
+    """Scales (3, 2, 0.7, 1e-4): the pair (0.7, 1e-4) has structure ``exp(-t**2/(2e-8))`` near
+    t = 0 that the panels at 0.5, 2, 8 scales left at e**-32 (no convergence at 30 digits,
+    ArithmeticError); now 20 and 30 digits agree and the float64 value matches."""
+    S = RayleighSum(["3", "1e-4", "2", "0.7"])
+    hi = S.logsf("7.35", dps=30)
+    assert rel(S.logsf("7.35", dps=20), hi) < 1e-19
+    assert rel(S.logsf(7.35), hi) < 1e-14
