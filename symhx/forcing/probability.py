@@ -14,7 +14,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.forcing.arguments import ForcingParams, elementwise, float_arg
+from symhx.forcing.arguments import ForcingParams, elementwise, float_arg, mp_arg
 from symhx.forcing.kernels_float import single_float
 from symhx.forcing.kernels_mp import (
     estimate,
@@ -86,8 +86,13 @@ def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:
         if dps is None:
             S = RayleighSum(scales_of(f))
             return getattr(S, kind)(float(f.d))
-        with mpmath.workdps(dps + 15):
-            S = RayleighSum(scales_of(f, dps + 15))
+        # a relative error eps of a scale moves log p by ~2 E eps (p = exp(-E), E = d**2/(2
+        # sum s**2)): the scales carry log10(E) more digits (RayleighSum takes them exactly)
+        with mpmath.workdps(20):
+            dd = mp_arg("d", f.d)
+            e = dd * dd / (2 * mpmath.fsum(s * s for s in scales_of(f, 20)))
+            extra = int(mpmath.log10(e)) + 1 if e > 1 else 0
+        S = RayleighSum(scales_of(f, dps + 15 + extra))
         return getattr(S, kind)(f.d, dps=dps)
 
     return elementwise(fp, one, dtype=float if dps is None else object)

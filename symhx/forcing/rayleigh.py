@@ -10,10 +10,18 @@ integrands::
     P(A + B > x)  = P(B > x) + int_0^x f_B(t) P(A > x - t) dt,
     P(A + B <= x) = int_0^x f_B(t) P(A <= x - t) dt,
 
-so both tails keep their relative accuracy. The panels are placed around the Gaussian saddle of
-the integrand *and* at multiples of every scale from both ends of ``[0, x]`` (where a small scale
-puts its structure), so scales spread over many orders of magnitude are resolved. The error
-estimate is the difference of two rule orders plus the rounding of the closed forms.
+so both tails keep their relative accuracy. The upper tail and the density are computed scaled:
+``P(S > x) = m(x) exp(-x**2/(2V))`` (``V = sum s_i**2``) with the Gaussian factors of the groups
+combined analytically, ``exp(-t**2/(2 V_B) - (x - t)**2/(2 V_A)) = exp(-x**2/(2V))
+exp(-(t - t*)**2/(2 w**2))``, so ``log P(S > x) = log m - x**2/(2V)`` stays finite and accurate
+where ``P(S > x)`` underflows (float64) or needs many guard digits (mpmath); the cdf is ``1 - sf``
+where ``sf <= 1/2``. The panels are placed around the Gaussian saddle ``t*`` (in ``tau = t - t*``,
+out to where ``exp(-tau**2/(2 w**2))`` is negligible at the requested digits) *and* at multiples
+of every scale from both ends of ``[0, x]`` (where a small scale puts its structure), so scales
+spread over many orders of magnitude are resolved. The error estimate is the difference of two
+rule orders plus the rounding of the closed forms. float64 only: beyond ``x min(s) = 1e9 V`` the
+log tail is the Laplace asymptotic (:func:`_laplace_logsf`), below ``x = 1e-9 min(s)`` the log cdf
+its leading power.
 """
 
 from __future__ import annotations
@@ -26,6 +34,7 @@ from typing import Any, NamedTuple
 
 import mpmath
 import numpy as np
+from scipy import special as sc
 
 from symhx.forcing.arguments import (
     ForcingParams,
@@ -37,13 +46,14 @@ from symhx.forcing.arguments import (
     rational_arg,
 )
 from symhx.forcing.kernels_float import (
+    SQRT_PI,
     delta_float,
     gauss_legendre,
     i2_float,
     pq_float,
     uv_from_h,
 )
-from symhx.forcing.kernels_mp import mp_i2, mp_p_from_xy, mp_q_from_xy
+from symhx.forcing.kernels_mp import MAX_EXPONENT, mp_i2, mp_q_from_xy
 from symhx.validation import check_array, check_choice, check_dps, check_seed, to_rational
 
 __all__ = [
@@ -143,6 +153,10 @@ def rayleigh_scales(
 
 
 # =========================================================================== groups
+#: chunk length of the float64 group functions on the (large) nested node arrays
+_CHUNK = 16384
+
+
 class _FGroup:
     """float64 group of one or two Rayleigh scales (closed forms on arrays)."""
 
@@ -154,17 +168,6 @@ class _FGroup:
         a, b = self.scales
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             return uv_from_h(t / (math.sqrt(2.0) * a), t / (math.sqrt(2.0) * b))
-
-    def sf(self, t: np.ndarray) -> np.ndarray:
-        t = np.maximum(t, 0.0)
-        if len(self.scales) == 1:
-            with np.errstate(under="ignore", over="ignore"):
-                return np.exp(-0.5 * (t / self.scales[0]) ** 2)
-        out = np.ones_like(t)
-        pos = t > 0
-        with np.errstate(under="ignore"):
-            out[pos] = pq_float(self._uv(t[pos]), "p")
-        return out
 
     def cdf(self, t: np.ndarray) -> np.ndarray:
         t = np.maximum(t, 0.0)
@@ -191,6 +194,36 @@ class _FGroup:
         out[pos] = np.where(np.isfinite(val), val, 0.0)
         return out
 
+    def msf(self, t: np.ndarray) -> np.ndarray:
+        """``sf(t) exp(t**2/(2 var))`` (the group's Gaussian factor taken out), ``t > 0``."""
+        if len(self.scales) == 1:
+            return np.ones_like(t)
+        out = np.ones_like(t)
+        with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+            for i in range(0, t.shape[0], _CHUNK):  # in cache-sized chunks (nested arrays)
+                tc = t[i : i + _CHUNK]
+                pos = tc > 0
+                uv = self._uv(tc[pos])
+                u, v = uv.u, uv.v
+                b = v * np.exp(-u * u) + u * np.exp(-v * v)
+                b += SQRT_PI * u * v * (sc.erf(u) + sc.erf(v))
+                out[i : i + _CHUNK][pos] = b / uv.r
+        return out
+
+    def mpdf(self, t: np.ndarray) -> np.ndarray:
+        """``pdf(t) exp(t**2/(2 var))``."""
+        out = np.zeros_like(t)
+        pos = t > 0
+        tp = t[pos]
+        with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+            if len(self.scales) == 1:
+                out[pos] = tp / (self.scales[0] ** 2)
+                return out
+            uv = self._uv(tp)
+            val = 4.0 * (uv.u / uv.r) * (uv.v / tp) * i2_float(uv.u, uv.v)
+        out[pos] = np.where(np.isfinite(val), val, 0.0)
+        return out
+
 
 class _MGroup:
     """mpmath group of one or two Rayleigh scales (closed forms on scalars)."""
@@ -202,13 +235,6 @@ class _MGroup:
     def _xy(self, t: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
         a, b = self.scales
         return t * t / (2 * a * a), t * t / (2 * b * b)
-
-    def sf(self, t: mpmath.mpf) -> mpmath.mpf:
-        if t <= 0:
-            return mpmath.mpf(1)
-        if len(self.scales) == 1:
-            return mpmath.exp(-t * t / (2 * self.scales[0] ** 2))
-        return mp_p_from_xy(*self._xy(t))
 
     def cdf(self, t: mpmath.mpf) -> mpmath.mpf:
         if t <= 0:
@@ -228,6 +254,28 @@ class _MGroup:
         u, v = x / r, y / r
         return 4 * u * v / r * mpmath.exp(-u * v) * mp_i2(u, v) / t
 
+    def msf(self, t: mpmath.mpf) -> mpmath.mpf:
+        """``sf(t) exp(t**2/(2 var))`` (all terms positive)."""
+        if t <= 0 or len(self.scales) == 1:
+            return mpmath.mpf(1)
+        x, y = self._xy(t)
+        r = mpmath.sqrt(x + y)
+        u, v = x / r, y / r
+        b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+        b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+        return b / r
+
+    def mpdf(self, t: mpmath.mpf) -> mpmath.mpf:
+        """``pdf(t) exp(t**2/(2 var))``."""
+        if t <= 0:
+            return mpmath.mpf(0)
+        if len(self.scales) == 1:
+            return t / self.scales[0] ** 2
+        x, y = self._xy(t)
+        r = mpmath.sqrt(x + y)
+        u, v = x / r, y / r
+        return 4 * u * v / r * mp_i2(u, v) / t
+
 
 def make_groups(scales: Sequence[Any]) -> list[tuple[Any, ...]]:
     """Pairs of adjacent scales after sorting (closed forms; a pair holds comparable scales); a
@@ -241,50 +289,131 @@ def make_groups(scales: Sequence[Any]) -> list[tuple[Any, ...]]:
 
 
 # =========================================================================== panels
-#: offsets (in units of the saddle's width) of the panels around the Gaussian saddle
-_PANEL_C = (-12.0, -8.0, -5.0, -3.0, -1.5, 0.0, 1.5, 3.0, 5.0, 8.0, 12.0)
+#: first offsets (in units of the saddle's width ``w``) of the panels around the Gaussian
+#: saddle; further panels every 4 widths out to :func:`_saddle_c`'s ``c_max``
+_PANEL_C = (0.0, 1.5, 3.0, 5.0, 8.0, 12.0)
 #: multiples of each scale at which panels start from the ends of [0, x]
 _SCALE_C = (0.5, 2.0, 8.0)
+#: the digits the float64 panels resolve
+_FLOAT_DIGITS = 16
 
 
-def _offsets(last: Any, rest: list[Any]) -> tuple[list[float], list[float], list[float]]:
-    """Saddle offsets, scales of the last group (near t = 0) and of the rest (near t = x)."""
-    near0 = [c * s for s in last.scales for c in _SCALE_C]
-    nearx = [c * s for g in rest for s in g.scales for c in _SCALE_C]
-    return list(_PANEL_C), near0, nearx
+class _Panels(NamedTuple):
+    """Saddle offsets (units of the width ``w``) and scale multiples of the panel breakpoints."""
+
+    sad: list[float]
+    mult: list[float]
 
 
-def _panels_float(x: np.ndarray, last: _FGroup, rest: list[_FGroup]) -> np.ndarray:
-    """Sorted panel breakpoints, shape (len(x), K), clipped to [0, x]."""
-    var_rest = sum(g.var for g in rest)
-    tstar = x * (last.var / (last.var + var_rest))
-    w = math.sqrt(last.var * var_rest / (last.var + var_rest))
-    sad, near0, nearx = _offsets(last, rest)
+def _saddle_c(digits: int, n_scales: int, ratio: float) -> _Panels:
+    """Saddle offsets ``c`` (both signs, units of ``w``) out to ``c_max``, scale multiples out to
+    ``sqrt(2 (digits + 10) ln 10)``.
+
+    Beyond ``c_max`` the Gaussian factor ``exp(-c**2/2)``, times the largest growth of the
+    polynomial factors over ``[0, x]`` (below ``(2 + ratio)**(2 n + 1)`` with ``ratio >= x/w``)
+    and the length of the interval, is below ``10**-(digits + 10)`` of the peak: the long
+    outer panels then carry nothing at the target precision, however large ``x/w`` (a fixed
+    ``c_max`` left a long unresolved panel at ``e**-72`` of the peak, fatal beyond 30 digits).
+    Likewise the structure of a scale ``s`` (``exp(-t**2/(2 s**2))``) is resolved out to where
+    it is below ``10**-(digits + 10)`` (a fixed ``8 s`` left ``e**-32``).
+    """
+    lr = math.log(2.0 + ratio)
+    cmax = math.sqrt(2 * (digits + 10) * math.log(10) + 2 * (2 * n_scales + 2) * lr)
+    cs = list(_PANEL_C)
+    while cs[-1] < cmax:
+        cs.append(cs[-1] + 4.0)
+    mmax = math.sqrt(2 * (digits + 10) * math.log(10))
+    mult = list(_SCALE_C)
+    while mult[-1] < mmax:
+        mult.append(mult[-1] + 4.0)
+    return _Panels([-c for c in reversed(cs[1:])] + cs, mult)
+
+
+def _offsets(last: Any, rest: list[Any], mult: list[float]) -> tuple[list[Any], list[Any]]:
+    """Scale multiples of the last group (near t = 0) and of the rest (near t = x)."""
+    near0 = [c * s for s in last.scales for c in mult]
+    nearx = [c * s for g in rest for s in g.scales for c in mult]
+    return near0, nearx
+
+
+def _split(last: Any, rest: list[Any], x: Any, sqrt: Any) -> tuple[Any, Any, Any]:
+    """``(t*, x - t*, w)``: the saddle ``t* = x V_B/V`` of ``exp(-t**2/(2 V_B) - (x - t)**2/
+    (2 V_A))`` and its width ``w = sqrt(V_A V_B/V)``; the exponent is ``x**2/(2 V) +
+    (t - t*)**2/(2 w**2)`` exactly."""
+    vb = last.var
+    va = sum(g.var for g in rest)
+    v = va + vb
+    return x * (vb / v), x * (va / v), sqrt(va * (vb / v))  # (va * vb may overflow)
+
+
+def _tau_panels_float(ts: np.ndarray, xs: np.ndarray, w: float, last: _FGroup,
+                      rest: list[_FGroup], cs: _Panels) -> np.ndarray:
+    """Sorted breakpoints in ``tau = t - t*``, shape (len(x), K), clipped to [-t*, x - t*]."""
+    near0, nearx = _offsets(last, rest, cs.mult)
+    cols = [-ts, xs]
+    cols += [np.full_like(ts, c * w) for c in cs.sad]
+    cols += [a - ts for a in near0]
+    cols += [xs - a for a in nearx]
+    pts = np.clip(np.stack(cols, axis=1), -ts[:, None], xs[:, None])
+    return np.sort(pts, axis=1)
+
+
+def _conv_scaled_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int,
+                       cs: _Panels) -> np.ndarray:
+    """``P(sum > x) exp(x**2/(2 V))`` (kind 'sf') or the density times it ('pdf'), x >= 0.
+
+    With ``tau = t - t*`` the Gaussian factors of the two groups combine exactly into
+    ``exp(-x**2/(2 V)) exp(-tau**2/(2 w**2))``: the first is taken out (so nothing underflows
+    however far the tail), the second is evaluated from ``tau`` (no cancellation in
+    ``t - t*``) and only the smooth scaled group functions see ``t = t* + tau``.
+    """
+    if len(groups) == 1:
+        return groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
+    last, rest = groups[-1], groups[:-1]
+    ts, xs, w = _split(last, rest, x, math.sqrt)
+    bp = _tau_panels_float(ts, xs, w, last, rest, cs)
+    xg, wg = gauss_legendre(n)
+    a, b = bp[:, :-1], bp[:, 1:]
+    h = 0.5 * (b - a)
+    tau = (0.5 * (a + b))[..., None] + h[..., None] * xg  # (nx, panels, n)
+    t = ts[:, None, None] + tau
+    y = np.maximum(xs[:, None, None] - tau, 0.0)
+    inner = _conv_scaled_float(rest, y.ravel(), kind, n, cs).reshape(tau.shape)
+    f = last.mpdf(t.ravel()).reshape(tau.shape) * inner * np.exp(-0.5 * (tau / w) ** 2)
+    out = np.sum(h * (f @ wg), axis=1)
+    if kind == "sf":
+        out = out + last.msf(x) * np.exp(-0.5 * (xs / w) ** 2)
+    return out
+
+
+def _panels_float(x: np.ndarray, last: _FGroup, rest: list[_FGroup], cs: _Panels
+                  ) -> np.ndarray:
+    """Sorted panel breakpoints in ``t``, shape (len(x), K), clipped to [0, x]."""
+    tstar, _, w = _split(last, rest, x, math.sqrt)
+    near0, nearx = _offsets(last, rest, cs.mult)
     cols = [np.zeros_like(x), x]
-    cols += [tstar + w * c for c in sad]
+    cols += [tstar + w * c for c in cs.sad]
     cols += [np.full_like(x, a) for a in near0]
     cols += [x - a for a in nearx]
     pts = np.clip(np.stack(cols, axis=1), 0.0, x[:, None])
     return np.sort(pts, axis=1)
 
 
-def _conv_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int) -> np.ndarray:
-    """``P(sum > x)`` (kind 'sf'), ``P(sum <= x)`` ('cdf') or the density ('pdf') on array x."""
+def _conv_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int, cs: _Panels
+                ) -> np.ndarray:
+    """``P(sum <= x)`` (kind 'cdf') on array x (no Gaussian factor to take out)."""
     if len(groups) == 1:
-        return getattr(groups[0], kind)(x)
+        return groups[0].cdf(x)
     last, rest = groups[-1], groups[:-1]
-    bp = _panels_float(np.maximum(x, 0.0), last, rest)
+    bp = _panels_float(np.maximum(x, 0.0), last, rest, cs)
     xg, wg = gauss_legendre(n)
     a, b = bp[:, :-1], bp[:, 1:]
     h = 0.5 * (b - a)
     t = (0.5 * (a + b))[..., None] + h[..., None] * xg  # (nx, panels, n)
     xr = np.broadcast_to(x[:, None, None], t.shape)
-    inner = _conv_float(rest, (xr - t).ravel(), kind, n).reshape(t.shape)
+    inner = _conv_float(rest, (xr - t).ravel(), kind, n, cs).reshape(t.shape)
     f = last.pdf(t.ravel()).reshape(t.shape) * inner
-    out = np.sum(h * (f @ wg), axis=1)
-    if kind == "sf":
-        out = out + last.sf(x)
-    return out
+    return np.sum(h * (f @ wg), axis=1)
 
 
 _MP_GL_CACHE: dict[tuple[int, int], tuple[list[mpmath.mpf], list[mpmath.mpf]]] = {}
@@ -298,17 +427,45 @@ def _mp_gl(n: int) -> tuple[list[mpmath.mpf], list[mpmath.mpf]]:
     return _MP_GL_CACHE[key]
 
 
-def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int) -> mpmath.mpf:
+def _conv_scaled_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int,
+                    cs: _Panels) -> mpmath.mpf:
+    """mpmath :func:`_conv_scaled_float` (one threshold ``x``)."""
     if len(groups) == 1:
-        return getattr(groups[0], kind)(x)
+        return groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
     if x <= 0:
         return mpmath.mpf(1) if kind == "sf" else mpmath.mpf(0)
     last, rest = groups[-1], groups[:-1]
-    var_rest = sum(g.var for g in rest)
-    tstar = x * last.var / (last.var + var_rest)
-    w = mpmath.sqrt(last.var * var_rest / (last.var + var_rest))
-    sad, near0, nearx = _offsets(last, rest)
-    raw = [tstar + c * w for c in sad] + list(near0) + [x - a for a in nearx]
+    ts, xs, w = _split(last, rest, x, mpmath.sqrt)
+    near0, nearx = _offsets(last, rest, cs.mult)
+    raw = [c * w for c in cs.sad] + [a - ts for a in near0] + [xs - a for a in nearx]
+    pts = sorted({-ts, xs} | {min(max(p, -ts), xs) for p in raw})
+    xg, wg = _mp_gl(n)
+    total = mpmath.mpf(0)
+    for a, b in itertools.pairwise(pts):
+        h = (b - a) / 2
+        m = (a + b) / 2
+        s = mpmath.mpf(0)
+        for xi, wi in zip(xg, wg, strict=True):
+            tau = m + h * xi
+            s += (wi * last.mpdf(ts + tau) * _conv_scaled_mp(rest, xs - tau, kind, n, cs)
+                  * mpmath.exp(-(tau / w) ** 2 / 2))
+        total += h * s
+    if kind == "sf":
+        total += last.msf(x) * mpmath.exp(-(xs / w) ** 2 / 2)
+    return total
+
+
+def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int, cs: _Panels
+             ) -> mpmath.mpf:
+    """``P(sum <= x)`` (kind 'cdf') at one threshold."""
+    if len(groups) == 1:
+        return groups[0].cdf(x)
+    if x <= 0:
+        return mpmath.mpf(0)
+    last, rest = groups[-1], groups[:-1]
+    tstar, _, w = _split(last, rest, x, mpmath.sqrt)
+    near0, nearx = _offsets(last, rest, cs.mult)
+    raw = [tstar + c * w for c in cs.sad] + list(near0) + [x - a for a in nearx]
     pts = sorted({mpmath.mpf(0), x} | {min(max(p, 0), x) for p in raw})
     xg, wg = _mp_gl(n)
     total = mpmath.mpf(0)
@@ -316,68 +473,198 @@ def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int) -> mpmath.
         h = (b - a) / 2
         m = (a + b) / 2
         s = mpmath.fsum(
-            wi * last.pdf(m + h * xi) * _conv_mp(rest, x - (m + h * xi), kind, n)
+            wi * last.pdf(m + h * xi) * _conv_mp(rest, x - (m + h * xi), kind, n, cs)
             for xi, wi in zip(xg, wg, strict=True)
         )
         total += h * s
-    if kind == "sf":
-        total += last.sf(x)
     return total
 
 
 #: float64 rule orders whose difference is the quadrature error estimate
 _N_LO, _N_HI = 12, 24
 _EPS = float(np.finfo(float).eps)
+#: float64 quadrature range: ``x <= _X_QUAD max(s)`` (the scaled group functions, powers of
+#: ``x/s`` up to the 8th, stay far from overflow)
+_X_QUAD = 1e30
+#: Laplace regime: ``x min(s) >= _X_LAPLACE V``; the neglected relative corrections of the
+#: asymptotic log-tail are ``O((V/(x s_i))**2) <= 1e-18`` absolute on ``log P(S > x) <= -5e17``
+_X_LAPLACE = 1e9
+
+
+def _regions(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Masks ``(laplace, out)`` of the float64 sf/pdf: the asymptotic regime, and the rest of
+    the region beyond the quadrature range (only for scales spread over > 1e21) or, for one or
+    two scales (closed forms, no quadrature), beyond ``x/min(s) = 1e150``."""
+    var = math.fsum(s * s for s in scales)
+    laplace = x * min(scales) >= _X_LAPLACE * var
+    lim = _X_QUAD * max(scales) if len(scales) > 2 else 1e150 * min(scales)
+    out = (x > lim) & ~laplace
+    return laplace, out
+
+
+def _float_scaled(scales: Sequence[float], x: np.ndarray, kind: str
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(m, err_m, E)`` with ``sf`` (or ``pdf``) ``= m exp(-E)``, ``E = x**2/(2 V)``, for
+    ``0 <= x`` in the quadrature range (see :func:`_regions`)."""
+    groups = [_FGroup(g) for g in make_groups(scales)]
+    var = math.fsum(s * s for s in scales)
+    xp = np.maximum(x, 0.0)
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+        e = xp * xp / (2.0 * var)
+        if len(groups) == 1:
+            m = groups[0].msf(xp) if kind == "sf" else groups[0].mpdf(xp)
+            return m, 4 * _EPS * np.abs(m), e
+        ratio = 2.0 * float(np.max(xp, initial=0.0)) / min(scales)
+        cs = _saddle_c(_FLOAT_DIGITS, len(scales), ratio)
+        lo = _conv_scaled_float(groups, xp, kind, _N_LO, cs)
+        hi = _conv_scaled_float(groups, xp, kind, _N_HI, cs)
+        return hi, np.abs(hi - lo) + 4 * _EPS * np.abs(hi) * len(scales), e
 
 
 def _float_with_error(scales: Sequence[float], x: np.ndarray, kind: str
                       ) -> tuple[np.ndarray, np.ndarray]:
-    # far tail: sum R_i <= sqrt(M+1) sqrt(sum R_i**2), so sf and pdf are below a polynomial
-    # times exp(-x**2 / (2 (M+1) max s**2)) < exp(-2e6): exactly 0 in float64 (cdf: 1); the
-    # kernels would overflow there (x**2 beyond float64)
-    far = x > _FAR_TAIL * math.sqrt(len(scales)) * max(scales)
+    laplace, out = _regions(scales, x)
+    far = laplace | out
     if far.any():
+        # E >= 5e17 there: sf and pdf are exactly 0 in float64 (cdf: 1)
         val = np.full(x.shape, 1.0 if kind == "cdf" else 0.0)
         err = np.zeros(x.shape)
         if (~far).any():
             val[~far], err[~far] = _float_with_error(scales, x[~far], kind)
         return val, err
-    groups = [_FGroup(g) for g in make_groups(scales)]
+    if kind == "cdf":
+        # 1 - sf where sf <= 1/2 (no cancellation; the tail of the cdf's own quadrature would
+        # need panels out to the saddle), the quadrature of the cdf below
+        sf, err = _float_with_error(scales, x, "sf")
+        low = sf > 0.5
+        err = err + np.minimum(_EPS, sf)  # the rounding of 1 - sf (1 is a float)
+        sf = 1.0 - sf
+        if low.any():
+            sf[low], err[low] = _float_cdf(scales, x[low])
+        return sf, err
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-        if len(groups) == 1:
-            val = getattr(groups[0], kind)(x)
-            return val, 4 * _EPS * np.abs(val) * (2 + np.abs(np.log(np.maximum(val, 1e-300))))
-        lo = _conv_float(groups, x, kind, _N_LO)
-        hi = _conv_float(groups, x, kind, _N_HI)
-        # quadrature (difference of two orders) + rounding: exp(-E) with E ~ |ln value| carries
-        # ~E * few eps from the roundings of its exponent
-        logterm = np.abs(np.log(np.maximum(np.abs(hi), 1e-300)))
-        err = np.abs(hi - lo) + 4 * _EPS * np.abs(hi) * (len(scales) + 2 * logterm)
+        m, err_m, e = _float_scaled(scales, x, kind)
+        g = np.exp(-e)
+        hi = m * g
+        # rounding: exp(-E) carries ~E * few eps from the roundings of its exponent
+        err = err_m * g + 4 * _EPS * np.abs(hi) * (len(scales) + 2 * e)
     return hi, err
+
+
+def _float_cdf(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``P(S <= x)`` and its error by the quadrature of the cdf (where it is below ~1/2)."""
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+        groups = [_FGroup(g) for g in make_groups(scales)]
+        if len(groups) == 1:
+            val = groups[0].cdf(x)
+            return val, 4 * _EPS * np.abs(val) * (2 + np.abs(np.log(np.maximum(val, 1e-300))))
+        ratio = 2.0 * float(np.max(x, initial=0.0)) / min(scales)
+        cs = _saddle_c(_FLOAT_DIGITS, len(scales), ratio)
+        lo = _conv_float(groups, x, "cdf", _N_LO, cs)
+        hi = _conv_float(groups, x, "cdf", _N_HI, cs)
+        return hi, np.abs(hi - lo) + 4 * _EPS * np.abs(hi) * (len(scales) + 2)
+
+
+def _float_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
+    """``log P(S > x)`` where ``P(S > x) <= 1/2``: ``log m - E`` (no underflow), the Laplace
+    asymptotic beyond the quadrature range."""
+    laplace, out = _regions(scales, x)
+    if out.any():
+        i = int(np.argmax(out))
+        raise ValueError(f"x = {x[i]!r}: log sf of Rayleigh scales spread over more than 21 "
+                         "orders of magnitude is beyond the float64 range; use dps=")
+    res = np.empty(x.shape)
+    q = ~laplace
+    if q.any():
+        m, _, e = _float_scaled(scales, x[q], "sf")
+        with np.errstate(divide="ignore"):
+            res[q] = np.log(m) - e
+    if laplace.any():
+        res[laplace] = _laplace_logsf(scales, x[laplace])
+    return res
+
+
+def _laplace_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
+    r"""Leading Laplace asymptotic of ``log P(S > x)`` for ``x min(s_i) >> sum s_i**2``.
+
+    The density of the sum concentrates at ``r_i = x s_i**2/V`` (``V = sum s_i**2``); the
+    Gaussian integral over the hyperplane ``sum r_i = x`` gives ``f_S(x) ~ (x/V)**n
+    (2 pi)**((n-1)/2) prod(s_i) V**(-1/2) exp(-x**2/(2V))`` and ``P(S > x) ~ f_S(x) V/x``, with
+    relative corrections ``O(sum_i (V/(x s_i))**2)``.
+    """
+    n = len(scales)
+    var = math.fsum(s * s for s in scales)
+    const = (math.fsum(math.log(s) for s in scales) - math.log(var) / 2
+             + (n - 1) * math.log(2 * math.pi) / 2)
+    with np.errstate(over="ignore"):
+        return -(x / math.sqrt(2 * var)) ** 2 + (n - 1) * (np.log(x) - math.log(var)) + const
+
+
+def _mp_scaled_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
+                          ) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+    """``(m, err_m, E)`` with ``sf`` (or ``pdf``) ``= m exp(-E)``, ``E = x**2/(2 V)``, ``x >
+    0``, ``m`` correct to ``dps`` digits (call inside the working precision)."""
+    # E at the caller's precision (its exp needs log10(E) guard digits), the scaled quadrature
+    # at dps + 12 digits: m is a smooth function of x and the scales, and the Gaussian factors
+    # inside it only need their absolute accuracy relative to the peak
+    e = x * x / (2 * mpmath.fsum(s * s for s in scales))
+    with mpmath.workdps(dps + 12):
+        groups = [_MGroup(g) for g in make_groups(scales)]
+        if len(groups) == 1:
+            m = groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
+            return m, abs(m) * mpmath.mpf(10) ** (-dps - 10), e
+        cs = _saddle_c(dps, len(scales), float(2 * x / min(scales)))
+        cur, err = _converge(lambda n: _conv_scaled_mp(groups, x, kind, n, cs), dps)
+    return cur, err, e
+
+
+def _converge(fn: Any, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """Raise the rule order until two successive orders agree to ``dps + 3`` digits."""
+    tol = mpmath.mpf(10) ** (-dps - 3)
+    n = 6 + dps // 4
+    prev = fn(n)
+    err = abs(prev)
+    for _ in range(8):
+        n2 = (3 * n) // 2 + 2
+        cur = fn(n2)
+        err = abs(cur - prev)
+        if err <= tol * abs(cur):
+            return cur, err
+        prev, n = cur, n2
+    raise ArithmeticError(  # pragma: no cover - the panels resolve every scale
+        f"Rayleigh sum: the quadrature did not converge to {dps} digits (error {err})")
+
+
+def _upper_half(scales: Sequence[Any], x: mpmath.mpf) -> bool:
+    """Whether ``P(S > x)`` may be ``<= 0.55`` (the float64 value decides; True when it cannot
+    be formed): the mpmath cdf is then ``1 - sf``, else its own quadrature (both are accurate
+    near 1/2, only the far tail needs ``1 - sf``)."""
+    fs = [float(s) for s in scales]
+    xf = float(x)
+    if not all(1e-150 < s < 1e150 for s in fs) or not 0 < xf < 1e150:
+        return xf > 0
+    return bool(_float_with_error(fs, np.array([xf]), "sf")[0][0] <= 0.55)
 
 
 def _mp_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
                    ) -> tuple[mpmath.mpf, mpmath.mpf]:
     """Value and error estimate at ``dps`` digits (call inside the working precision)."""
+    if kind != "cdf":
+        if x <= 0:
+            return (mpmath.mpf(1) if kind == "sf" else mpmath.mpf(0)), mpmath.mpf(0)
+        m, err, e = _mp_scaled_with_error(scales, x, kind, dps)
+        g = mpmath.exp(-e)
+        return m * g, err * g
+    if _upper_half(scales, x):
+        sf, err = _mp_with_error(scales, x, "sf", dps)
+        if sf <= 0.5:  # no cancellation in 1 - sf (see _float_with_error)
+            return 1 - sf, err
     groups = [_MGroup(g) for g in make_groups(scales)]
     if len(groups) == 1:
-        val = getattr(groups[0], kind)(x)
+        val = groups[0].cdf(x)
         return val, abs(val) * mpmath.mpf(10) ** (-dps - 10)
-    tol = mpmath.mpf(10) ** (-dps - 3)
-    n = 6 + dps // 4
-    prev = _conv_mp(groups, x, kind, n)
-    err = abs(prev)
-    for _ in range(8):
-        n2 = (3 * n) // 2 + 2
-        cur = _conv_mp(groups, x, kind, n2)
-        err = abs(cur - prev)
-        if err <= tol * abs(cur):
-            break
-        prev, n = cur, n2
-    else:
-        raise ArithmeticError(  # pragma: no cover - the panels resolve every scale
-            f"Rayleigh sum: the quadrature did not converge to {dps} digits (error {err})")
-    return cur, err
+    cs = _saddle_c(dps, len(scales), float(2 * max(x, 0) / min(scales)))
+    return _converge(lambda n: _conv_mp(groups, x, kind, n, cs), dps)
 
 
 # =========================================================================== the distribution
@@ -504,7 +791,12 @@ class RayleighSum:
             xm = mpmath.mpf(fr.numerator) / fr.denominator if fr is not None else mpmath.mpf(0)
             var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
             e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
-            return int(mpmath.log10(e)) + 1 if e > 1 else 0
+        if e > MAX_EXPONENT:
+            raise ValueError(
+                f"x: P(S > x) = exp(-E) with E ~ {mpmath.nstr(e, 3)} above the cap MAX_EXPONENT "
+                f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
+                "guard digits); logsf has no cap")
+        return int(mpmath.log10(e)) + 1 if e > 1 else 0
 
     def _float_scales(self) -> list[float]:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
@@ -528,16 +820,27 @@ class RayleighSum:
             for idx in np.ndindex(xs.shape):
                 out[idx] = self._eval(xs[idx], kind, dps)
             return out
-        with mpmath.workdps(dps + 15 + self._exp_digits(x)):
+        # exp(-E) needs log10(E) guard digits; log sf = log m - E does not (its absolute
+        # error E 10**-prec is relative 10**-prec), so its cost does not grow with E
+        guard = 15 + (0 if kind == "logsf" else self._exp_digits(x))
+        with mpmath.workdps(dps + guard):
             xm = _mp_x(x)
             scales = [mpf_of(s) for s in self._exact]
             if kind in ("sf", "cdf", "pdf"):
                 val = _mp_with_error(scales, xm, kind, dps)[0]
+            elif kind == "logsf":
+                # log P(S > x) = log m - E: no exp(-E) (and no guard digits for it) needed
+                if xm <= 0:
+                    val = mpmath.mpf(0)
+                else:
+                    m, _, e = _mp_scaled_with_error(scales, xm, "sf", dps + 5)
+                    val = mpmath.log(m) - e
+                    if val > -mpmath.log(2):
+                        val = mpmath.log1p(-_mp_with_error(scales, xm, "cdf", dps + 5)[0])
             else:
-                main, other = ("sf", "cdf") if kind == "logsf" else ("cdf", "sf")
-                v = _mp_with_error(scales, xm, main, dps + 5)[0]
+                v = _mp_with_error(scales, xm, "cdf", dps + 5)[0]
                 if v > 0.5:
-                    val = mpmath.log1p(-_mp_with_error(scales, xm, other, dps + 5)[0])
+                    val = mpmath.log1p(-_mp_with_error(scales, xm, "sf", dps + 5)[0])
                 else:
                     val = mpmath.log(v) if v > 0 else mpmath.mpf("-inf")
         with mpmath.workdps(dps):
@@ -547,19 +850,42 @@ class RayleighSum:
         sc = self._float_scales()
         if kind in ("sf", "cdf", "pdf"):
             return _float_with_error(sc, x, kind)[0]
-        main, other = ("sf", "cdf") if kind == "logsf" else ("cdf", "sf")
-        v = _float_with_error(sc, x, main)[0]
-        out = np.empty_like(v)
+        if kind == "logsf":
+            out = _float_logsf(sc, x)
+            big = out > -math.log(2.0)
+            if big.any():
+                out[big] = np.log1p(-_float_with_error(sc, x[big], "cdf")[0])
+            return out
+        tiny = (x > 0) & (x <= _X_SMALL * min(sc))
+        out = np.empty(x.shape)
+        if tiny.any():
+            out[tiny] = _float_small_logcdf(sc, x[tiny])
+        rest = ~tiny
+        v = _float_with_error(sc, x[rest], "cdf")[0]
         big = v > 0.5
         with np.errstate(divide="ignore"):
-            out[~big] = np.log(v[~big])
+            r = np.log(v)
             if big.any():
-                out[big] = np.log1p(-_float_with_error(sc, x[big], other)[0])
+                r[big] = np.log1p(-_float_with_error(sc, x[rest][big], "sf")[0])
+        out[rest] = r
         return out
 
 
-#: ``x / (sqrt(M+1) max s)`` beyond which the float64 sf/pdf are 0 and the cdf 1
-_FAR_TAIL = 2000.0
+#: lower tail: ``x <= _X_SMALL min(s)`` takes the leading power of ``P(S <= x)`` (relative
+#: corrections ``<= sum_i x**2/(2 s_i**2) <= 1e-17``), where the cdf itself may underflow
+_X_SMALL = 1e-9
+
+
+def _float_small_logcdf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
+    r"""``log P(S <= x) = sum_i 2 log(x/s_i) - log((2n)!)`` for ``x << min(s_i)``: each density
+    is ``r/s_i**2 (1 + O(r**2/s_i**2))`` near 0 and the ``n``-fold convolution of ``r`` is
+    ``x**(2n-1)/(2n-1)!``."""
+    out = np.full(x.shape, -math.lgamma(2 * len(scales) + 1))
+    with np.errstate(under="ignore", divide="ignore"):
+        for s in scales:
+            q = x / s
+            out += 2 * np.where(q > 1e-300, np.log(q), np.log(x) - math.log(s))
+    return out
 
 
 def _to_float(fr: Fraction) -> float:
