@@ -194,11 +194,15 @@ def test_engine_state_closed_form(mp):
     import mpmath
 
     from symhx.impact.engine import Engine, MPContext
+    from symhx.impact.history import History
 
     row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
     with mpmath.workdps(40):
         eng = Engine(row, MPContext() if mp else FloatContext(), v_stick=1e-6)
         eng.run(1.0)
+        assert len(eng.log) == 1  # the one impact
+        h = History.from_log(row, 1.0, 30 if mp else None, eng.log, eng.F,
+                             wdps=40 if mp else None)
         ts = mpmath.pi / 6
         s3 = mpmath.sqrt(3)
         tol = 1e-35 if mp else 1e-14
@@ -206,7 +210,7 @@ def test_engine_state_closed_form(mp):
         for t, x_ref, v_ref in ((t1, 1 + 2 * mpmath.sin(t1), 2 * mpmath.cos(t1)),
                                 (t2, 1 + mpmath.cos(t2 - ts) - s3 * mpmath.sin(t2 - ts),
                                  -mpmath.sin(t2 - ts) - s3 * mpmath.cos(t2 - ts))):
-            xs, vs = eng.state(t if mp else float(t))
+            xs, vs = h.state(t if mp else float(t))
             assert len(xs) == len(vs) == 1
             assert abs(xs[0] - x_ref) < tol and abs(vs[0] - v_ref) < tol
 

@@ -79,7 +79,6 @@ Every cluster ends (bounds on the number of events)
 from __future__ import annotations
 
 import math
-from bisect import bisect_right
 from dataclasses import dataclass
 from enum import IntEnum
 from typing import Any
@@ -383,15 +382,6 @@ class EventLog:
         upd_t, upd_c = self._lists()
         upd_t[j].append(t)
         upd_c[j].append(coef)
-
-    def extend(self, events: np.ndarray, updates: np.ndarray) -> None:
-        """Take the C engine's arrays (into an empty log): ``events`` rows ``(t, site, kind, u0,
-        u1, aux)``, ``updates`` rows ``(j, t, coef...)``."""
-        if (self._events or self._ev_arr is not None
-                or (self._upd_t is not None and any(len(u) > 1 for u in self._upd_t))):
-            raise ValueError("extend needs an empty EventLog")
-        self._ev_arr = events
-        self._up_arr = updates
 
     def event_arrays(self, dtype: Any = float) -> tuple[np.ndarray, ...]:
         """``(times, sites, kinds, u_before, u_after, aux)`` as arrays (``dtype`` for the real
@@ -907,16 +897,5 @@ class Engine:
         self.stuck[i] = True
         self.set_motion(lo, hi, t, X, Vel)
         self._record(t, i, STICK, -u, self.zero, aux)
-
-    # ---------------------------------------------------------------- state
-    def state(self, t: Any) -> tuple[list[Any], list[Any]]:
-        xs, vs = [], []
-        for j in range(1, self.n + 1):
-            upd_t, upd_c = self.log.updates()
-            k = bisect_right(upd_t[j], t) - 1
-            x, v, _, _ = self.derivs(upd_c[j][max(k, 0)], t)
-            xs.append(x)
-            vs.append(v)
-        return xs, vs
 
 
