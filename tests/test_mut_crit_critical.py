@@ -676,3 +676,26 @@ def test_mode_path_names_p_max_and_keeps_dps_and_the_critical_point():
     for N, pc in ((5, Fraction(1, 2)), (3, Fraction(1)), (4, Fraction(2, 3))):
         bp = mode_path(N, p_max=2).breakpoints[0][0]
         assert type(bp) is Fraction and bp == pc
+
+
+def test_log_c_from_a_low_start_is_correct_to_the_last_bit(monkeypatch):
+    # the loop stops only once the ball is 100x narrower than a unit of the dps-th digit, so
+    # the returned mpf is within one unit in the last place (dps digits = mpmath's prec bits)
+    # of the true value, for every dps (a stop at the dps-th digit itself misses this)
+    monkeypatch.setattr(C, "bits_for", lambda N, extra: 16 + 0 * N + 0 * int(extra))
+    for N, k in ((101, 20), (10**6, 3802), (10**40, 10**20)):
+        for dps in range(1, 121):
+            got = log_c(N, k, dps=dps)
+            ref = log_c_direct(N, k, 3 * dps)
+            with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+                ulp = mpmath.mpf(2) ** (1 - mpmath.libmp.dps_to_prec(dps))
+                assert abs(got - ref) <= ulp * abs(ref), (N, k, dps)
+
+
+@pytest.mark.parametrize("N", [5, 101, 10**30])
+@pytest.mark.parametrize("dps", [3, 20, 70])
+def test_every_returned_mpf_is_rounded_to_dps_digits(N, dps):
+    cp = critical_point(N, dps=dps)
+    with mpmath.workdps(dps):
+        for x in (cp.p, cp.q, cp.p_d, cp.q_d, log_c(N, 3, dps=dps)):
+            assert +x == x  # already a dps-digit number: rounding it changes nothing
