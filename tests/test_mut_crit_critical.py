@@ -522,7 +522,7 @@ def test_a_seed_a_few_steps_off_costs_a_few_more_signs(N, e_calls):
 @pytest.mark.parametrize("N", [30, 101, 1000, *COST_N, 10**60])
 def test_a_far_seed_costs_a_gallop_and_a_bisection(N, e_calls):
     k = _first_argmin_ref(N)
-    for seed in (2, N):
+    for seed in (2, 3, N - 1, N):  # from k >= N - 1 the search gallops down at once
         e_calls.clear()
         got = C._argmin_c(N, seed)
         assert got[:2] == (k, False)
