@@ -190,3 +190,72 @@ def test_erf_raw_is_within_one_ulp_of_prec():
             with mpmath.workprec(3 * prec):
                 ref = mpmath.erf(mpmath.mpf(uf))
                 assert abs(got - ref) <= mpmath.mpf(2) ** (-prec) * abs(ref), (prec, uf)
+
+
+# ---- "the same operations, roundings and precisions as the mpf-object code", bit for bit
+# (where both use mpmath's erf series: u, v < 2, so that _erf_raw is mpmath.erf)
+BIT_POINTS = [(0.3, None, 1.0, None, 1.0), (0.2, 0.7, 0.8, 1.7, 0.6), (0.9, 0.35, 1.3, 0.9, 2.0),
+              (0.45, 0.45, 2.0, 1.0, 1.0), (0.6, 1.5, 1.0, 3.0, 4.0), (1.7, 0.25, 1.1, None, 0.9)]
+
+
+def _raw(v):
+    return None if v is None else mpmath.libmp.from_float(v)
+
+
+@pytest.mark.parametrize("prec", [53, 113, 200])
+@pytest.mark.parametrize("pt", BIT_POINTS)
+def test_raw_xy_and_closed_form_are_the_object_code_bit_for_bit(pt, prec):
+    from symhx.forcing.kernels_mp import _uv_b_over_r
+    from symhx.forcing.rawmp import _raw_p_parts, from_xy_raw, raw_xy
+
+    s0, s1, om, Om, d = pt
+    x, y = raw_xy(_raw(s0), _raw(s0 if s1 is None else s1), _raw(om), _raw(Om), _raw(d), prec)
+    with mpmath.workprec(prec):
+        xm, ym = mp_xy_forcing(s0, s1, om, Om, d)
+        assert (x, y) == (xm._mpf_, ym._mpf_)
+        nuv, b, r = _raw_p_parts(x, y, prec)
+        uv, b_r = _uv_b_over_r(xm, ym)
+        assert nuv == (-uv)._mpf_
+        assert mpmath.libmp.mpf_div(b, r, prec, mpmath.libmp.round_nearest) == b_r._mpf_
+        p = mp_p_from_xy(xm, ym)
+        assert from_xy_raw(x, y, prec, "p", 12, False) == p
+        assert from_xy_raw(x, y, prec, "logp", 12, False) == -uv + mpmath.log(b_r)
+        # 1 - p formed directly (p near 1/2 here: nothing cancels)
+        assert from_xy_raw(x, y, prec, "q", 12, True) == 1 - p
+        assert from_xy_raw(x, y, prec, "logq", 12, True) == mpmath.log(1 - p)
+        if p > 0.5:  # not planned as direct: the caller's adaptive 1 - p
+            assert from_xy_raw(x, y, prec, "q", 12, False) is None
+            assert from_xy_raw(x, y, prec, "logq", 12, False) is None
+        else:
+            assert from_xy_raw(x, y, prec, "q", 12, False) == 1 - p
+            assert from_xy_raw(x, y, prec, "logq", 12, False) == mpmath.log(1 - p)
+
+
+def test_raw_xy_resonance_and_default_omega():
+    from symhx.forcing.rawmp import raw_xy
+
+    one = mpmath.libmp.from_int(1)
+    assert raw_xy(one, one, one, one, one, 60) is None  # omega == Omega
+    x, y = raw_xy(one, one, one, None, one, 60)  # Omega**2 = 2: delta = -1
+    assert (mpmath.mpf(x), mpmath.mpf(y)) == (0.25, 0.25)
+
+
+def test_from_xy_raw_leaves_small_p_logs_and_deep_cancellation_to_the_caller():
+    from symhx.forcing.rawmp import from_xy_raw
+
+    prec = 120
+    with mpmath.workprec(prec):
+        big, tiny = mpmath.mpf(40)._mpf_, mpmath.mpf("1e-10")._mpf_
+        # p ~ 2e-9 < 2**-16: log(1 - p) is log1p(-p) of the caller
+        assert from_xy_raw(big, big, prec, "logq", 12, False) is None
+        assert from_xy_raw(big, big, prec, "q", 12, False) is not None
+        # x = y = 1e-10: 1 - p ~ 1e-20 cancels ~66 bits; 12 guard digits allow 3.3 * 8 bits
+        assert from_xy_raw(tiny, tiny, prec, "q", 12, True) is None
+        assert from_xy_raw(tiny, tiny, prec, "logq", 12, True) is None
+        # 30 guard digits allow 3.3 * 26 = 85.8 bits: taken, and right to its working bits
+        q = from_xy_raw(tiny, tiny, prec, "q", 30, True)
+        lq = from_xy_raw(tiny, tiny, prec, "logq", 30, True)
+    with mpmath.workdps(80):
+        ref_q = 1 - mp_p_from_xy(mpmath.mpf("1e-10"), mpmath.mpf("1e-10"))
+        assert abs(q / ref_q - 1) < mpmath.mpf(2) ** (-prec + 70)
+        assert abs(lq - mpmath.log(ref_q)) < mpmath.mpf(2) ** (-prec + 70)

@@ -700,3 +700,47 @@ def test_screened_sympy_irrational(screened):
     d = distribution(N, p, space=base, dps=20)
     assert N not in d._terms
     assert _close(d.pmf(N), W[-1] / sum(W), 20)
+
+
+def test_simple_space_distribution_keeps_dps():
+    """``distribution(..., space="simple", dps=30)`` is the mpmath SimpleDistribution at 30 digits
+    (a float p is taken at its exact binary value): checked against exact Fractions."""
+    N, p = 12, 0.3
+    d = distribution(N, p, space="simple", dps=30)
+    assert isinstance(d, SimpleDistribution) and d.dps == 30
+    fr = Fraction(p)
+    w = {k: fr**k * Fraction(math.factorial(N), k * math.factorial(N - k)) for k in range(1, N + 1)}
+    tot = sum(w.values())
+    for k in (1, 5, 12):
+        got = d.pmf(k)
+        assert isinstance(got, mpmath.mpf)
+        with mpmath.workdps(60):
+            ref = mpmath.mpf(w[k].numerator) / w[k].denominator / tot
+            assert abs(got / ref - 1) < mpmath.mpf(10) ** -29, k
+
+
+def test_modes_refuse_N_below_one():
+    for space in ("simple", "eq41"):
+        with pytest.raises(ValueError, match="N"):
+            modes(0, Fraction(1, 3), space=space)
+
+
+def test_simple_modes_of_an_irrational_p():
+    """A sympy irrational p (no exact rational value) in the simple space: the argmax of the
+    weights p**k N!/(k (N-k)!) evaluated at 60 digits."""
+    import sympy
+
+    N = 40
+    for p in (sympy.sqrt(2) / 7, sympy.pi / 30):
+        with mpmath.workdps(60):
+            pm = mpmath.mpf(sympy.N(p, 70))
+            lw = [k * mpmath.log(pm) + mpmath.log(math.factorial(N) // math.factorial(N - k))
+                  - mpmath.log(k) for k in range(1, N + 1)]
+            top = max(lw)
+            ref = tuple(k for k, v in enumerate(lw, 1) if v == top)
+        assert modes(N, p, space="simple") == ref, p
+
+
+def test_space_distribution_refuses_an_unparsed_space():
+    with pytest.raises(TypeError, match=r"got str 'eq41'"):
+        dist.SpaceDistribution(5, Fraction(1, 3), "eq41")

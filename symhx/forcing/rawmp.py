@@ -12,7 +12,7 @@ import mpmath
 
 from symhx.forcing.kernels_mp import estimate_float, precision_plan
 
-__all__ = ["from_xy_raw", "single_mp_fast"]
+__all__ = ["from_xy_raw", "raw_xy", "single_mp_fast"]
 
 _lm = mpmath.libmp
 _RND = _lm.round_nearest
@@ -91,9 +91,9 @@ def single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
     s0 = _raw_in(sigma)
     s1 = s0 if sigma1 is None else _raw_in(sigma1)
     om = _raw_in(omega)
-    Om = _lm.ftwo if Omega is None else _raw_in(Omega)
+    Om = None if Omega is None else _raw_in(Omega)
     dd = _raw_in(d)
-    if s0 is None or s1 is None or om is None or Om is None or dd is None:
+    if s0 is None or s1 is None or om is None or dd is None or (Om is None) != (Omega is None):
         return None
     est = estimate_float(sigma, sigma1, omega, Omega, d)
     if est is None:
@@ -102,15 +102,27 @@ def single_mp_fast(sigma, sigma1, omega, Omega, d, dps: int, want: str) -> Any:
         return None  # log1p(-(1 - p)) in the general path
     guard, direct_q = precision_plan(est, want)
     prec = _lm.dps_to_prec(dps + guard)
+    xy = raw_xy(s0, s1, om, Om, dd, prec)
+    if xy is None:
+        return None  # resonance: the general path raises
+    return from_xy_raw(*xy, prec, want, guard, direct_q)
+
+
+def raw_xy(s0: tuple, s1: tuple, om: tuple, Om: tuple | None, dd: tuple, prec: int
+           ) -> tuple[tuple, tuple] | None:
+    """``x = d**2/(4 sigma0**2)``, ``y = d**2 (omega**2 - Omega**2)**2/(4 sigma1**2)`` from raw
+    inputs (``Om`` None: ``Omega**2 = 2``), rounded as
+    :func:`~symhx.forcing.kernels_mp.mp_xy_forcing` rounds them at ``prec`` bits; None at
+    resonance."""
     mul, div, sub, rnd = _lm.mpf_mul, _lm.mpf_div, _lm.mpf_sub, _RND
-    om2 = Om if Omega is None else mul(Om, Om, prec, rnd)
+    om2 = _lm.ftwo if Om is None else mul(Om, Om, prec, rnd)
     delta = sub(mul(om, om, prec, rnd), om2, prec, rnd)
     if not delta[1]:
-        return None  # resonance: the general path raises
+        return None
     x = div(mul(dd, dd, prec, rnd), mul(mul(_MP_FOUR, s0, prec, rnd), s0, prec, rnd), prec, rnd)
     t = mul(dd, delta, prec, rnd)
     y = div(mul(t, t, prec, rnd), mul(mul(_MP_FOUR, s1, prec, rnd), s1, prec, rnd), prec, rnd)
-    return from_xy_raw(x, y, prec, want, guard, direct_q)
+    return x, y
 
 
 def from_xy_raw(x: tuple, y: tuple, prec: int, want: str, guard: int, direct_q: bool) -> Any:
@@ -124,7 +136,7 @@ def from_xy_raw(x: tuple, y: tuple, prec: int, want: str, guard: int, direct_q: 
     if want == "logp":
         lg = _lm.mpf_log(div(b, r, prec, rnd), prec, rnd)
         return make(_lm.mpf_add(nuv, lg, prec, rnd))
-    p = div(mul(_lm.mpf_exp(nuv, prec, rnd), b, prec, rnd), r, prec, rnd)
+    p = mul(_lm.mpf_exp(nuv, prec, rnd), div(b, r, prec, rnd), prec, rnd)
     if want == "p":
         return make(p)
     if not direct_q and _lm.mpf_gt(p, _MP_HALF):
