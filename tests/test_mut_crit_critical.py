@@ -11,6 +11,7 @@ from fractions import Fraction
 import mpmath
 import pytest
 from _reference import brute_modes, log_c_direct
+from flint import arb
 
 from symhx import critical as C
 from symhx.certify import UndecidedError
@@ -704,3 +705,16 @@ def test_every_returned_mpf_is_rounded_to_dps_digits(N, dps):
     with mpmath.workdps(dps):
         for x in (cp.p, cp.q, cp.p_d, cp.q_d, log_c(N, 3, dps=dps)):
             assert +x == x  # already a dps-digit number: rounding it changes nothing
+
+
+@pytest.mark.parametrize("t", [3, 4, 7, 12, 21, 30])
+def test_search_on_a_synthetic_exact_tie_from_every_seed(t, monkeypatch):
+    # the search logic alone, on E(k) = k - t (an exact zero at k = t: c_{t+1} = c_t, a tie
+    # like N = 5 has at t = 2): from every seed it must return the first k with E(k) >= 0,
+    # t, and report the tie; the brute-force reference is that first index itself
+    monkeypatch.setattr(C, "_E_arb", lambda N, k: arb(k - t))
+    monkeypatch.setattr(C._SignOracle, "_exact", lambda self, k: (k > t) - (k < t))
+    for N in (t + 1, t + 2, t + 3, 2 * t + 5, 40):
+        for seed in range(2, N + 1):
+            kstar, tie, _ = C._argmin_c(N, seed)
+            assert (kstar, tie) == (t, True), (N, seed)
