@@ -302,3 +302,46 @@ def test_space_candidates_resolve_a_deep_near_tie():
         assert space_candidates(space, 101, p, 50) == [50, 51]
     p = Fraction(2**150 - 1, 50 * 2**150)  # now W(50) / W(51) = 1 / (1 - 2**-150) > 1
     assert space_candidates(parse_space("excess<=0"), 101, p, 50) == [50]
+
+
+# ------------------------------------------------------------- more boundaries (issue 16)
+def test_certified_sign_of_an_exact_zero_goes_to_the_integers():
+    # a ball [0 +/- 0] is neither > 0 nor < 0: the exact fall-back decides (a tie), however
+    # many doublings
+    calls = []
+
+    def zero():
+        calls.append(flint.ctx.prec)
+        return arb(0)
+
+    assert certified_sign(zero, start_bits=64, max_bits=256, exact_fn=lambda: 0) == 0
+    assert calls == [64, 128, 256]
+    half = arb(fmpq(1, 2), fmpq(1, 2))  # [0, 1]: touches 0, not certified either
+    assert certified_sign(lambda: half, start_bits=64, max_bits=64, exact_fn=lambda: 5) == 5
+    assert certified_sign(lambda: -half, start_bits=64, max_bits=64, exact_fn=lambda: 5) == 5
+
+
+def test_certified_sign_message_shows_the_ball():
+    x = arb(fmpq(1, 10**12), fmpq(1, 10**10))
+    want = (f"sign not certified at 128 bits (ball {x.str(5, radius=True)}); an exact tie is "
+            "likely and the integers involved are too large to compare exactly")
+    assert "+/-" in want
+    with pytest.raises(UndecidedError) as info:
+        certified_sign(lambda: x, start_bits=64, max_bits=128)
+    assert str(info.value) == want
+
+
+def test_rel_width_ok_exact_equality_and_balls_around_one():
+    # radius * 4 * 10**dps == |mid| exactly (dyadic radius): not below, so not ok
+    for dps in (2, 10):
+        with arb_prec(300):
+            x0 = arb(1, arb(2) ** -10)
+            rad = x0.rad()  # the radius as Arb stores it (a 30-bit mag)
+            mid = rad * 4 * arb(10) ** dps
+            x = (x0 - x0.mid()) + mid  # exact shifts keep the radius
+            assert x.rad() == rad and x.mid() == mid and mid.is_exact()  # exact, as meant
+            assert not rel_width_ok(x, dps)
+            assert rel_width_ok(x + mid * arb(2) ** -40, dps)
+    # a tight ball around 1 (it contains 1, not 0) is fine
+    assert rel_width_ok(arb(1, arb(2) ** -100), 20)
+    assert rel_width_ok(arb(-1, arb(2) ** -100), 20)

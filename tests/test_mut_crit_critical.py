@@ -11,6 +11,7 @@ from fractions import Fraction
 import mpmath
 import pytest
 from _reference import brute_modes, log_c_direct
+from flint import arb
 
 from symhx import critical as C
 from symhx.certify import UndecidedError
@@ -446,3 +447,274 @@ def test_log_c_precision_loop_from_a_low_start(monkeypatch):
     got = log_c(101, 20, dps=400)
     with mpmath.workdps(500):
         assert abs(got - log_c_direct(101, 20, 400)) < mpmath.mpf(10) ** -150
+
+
+# ------------------------------------------------- the documented cost of the certification
+# Each certified sign is one Arb ball of E(k) at the start precision (the ball separates at
+# once unless E(k) = 0 exactly), a correct seed is proved by exactly the two signs
+# E(k*-1) < 0 <= E(k*), a seed a few steps off costs a few more, and a far seed costs a
+# gallop plus a bisection: at most 2 log2(distance) + 2 signs. The spies count calls of the
+# ball functions; the first argmin itself comes from an independent reference.
+@pytest.fixture
+def e_calls(monkeypatch):
+    calls: list[int] = []
+    orig = C._E_arb
+
+    def spy(N, k):
+        calls.append(k)
+        return orig(N, k)
+
+    monkeypatch.setattr(C, "_E_arb", spy)
+    return calls
+
+
+def _first_argmin_ref(N: int) -> int:
+    """The first argmin: exact integers for small N, else the Lambert-W neighbourhood checked
+    with mpmath loggamma (c_{k-1} > c_k <= c_{k+1} and unimodality)."""
+    if N <= 200:
+        return _exact_argmins(N)[0]
+    k = certified_argmin(N)[0]
+    s0, s1, s2 = (log_c_direct(N, j, 30) for j in (k - 1, k, k + 1))
+    assert s0 > s1 <= s2
+    return k
+
+
+COST_N = [10**4, 10**6, 10**9 + 7, 10**12, 10**18, 10**30]
+
+
+@pytest.mark.parametrize("N", [3, 4, 6, 7, 8, 12, 30, 101, *COST_N])
+def test_a_correct_seed_costs_exactly_the_two_proving_signs(N, e_calls):
+    k = _first_argmin_ref(N)
+    e_calls.clear()
+    got = C._argmin_c(N, k)
+    assert got == (k, False, 1 if k == 2 else 2)
+    assert sorted(e_calls) == ([2] if k == 2 else [k - 1, k])  # one ball per sign
+    # certified_argmin passes its seed on: the same two balls
+    e_calls.clear()
+    assert certified_argmin(N, seed=k) == (k,)
+    assert sorted(e_calls) == ([2] if k == 2 else [k - 1, k])
+    # and critical_point reports the signs its own (Lambert-W) seed needed
+    e_calls.clear()
+    cp = critical_point(N, dps=5)
+    assert cp.argmins[0] == k
+    assert cp.sign_evaluations == len(set(e_calls)) == len(e_calls) >= (1 if k == 2 else 2)
+
+
+def test_the_exact_tie_costs_the_full_doubling_then_integers(e_calls):
+    # N = 5: E(2) = 0 exactly, so the ball of E(2) contains 0 at every precision: it is tried at
+    # start, 2, 4, 8 and 16 x start bits (max_bits = 16 x start), then the integers decide
+    assert C._argmin_c(5, 2) == (2, True, 1)
+    assert e_calls == [2] * 5
+
+
+@pytest.mark.parametrize("N", COST_N)
+def test_a_seed_a_few_steps_off_costs_a_few_more_signs(N, e_calls):
+    k = _first_argmin_ref(N)
+    for d in range(-6, 7):
+        e_calls.clear()
+        got = C._argmin_c(N, k + d)
+        assert got[:2] == (k, False)
+        # off by one: the failed check shows the direction, one more sign proves k*;
+        # further off: one secant step on the two balls lands on k* (E is nearly linear there)
+        assert got[2] == (2 if d == 0 else 3 if abs(d) == 1 else 4), (N, d, got)
+        assert len(e_calls) == got[2]
+
+
+@pytest.mark.parametrize("N", [30, 101, 1000, *COST_N, 10**60])
+def test_a_far_seed_costs_a_gallop_and_a_bisection(N, e_calls):
+    k = _first_argmin_ref(N)
+    for seed in (2, 3, N - 1, N):  # from k >= N - 1 the search gallops down at once
+        e_calls.clear()
+        got = C._argmin_c(N, seed)
+        assert got[:2] == (k, False)
+        dist = abs(seed - k)
+        assert got[2] <= 2 * dist.bit_length() + 2, (N, seed, got)
+        assert len(e_calls) == got[2]
+
+
+def test_small_N_argmin_costs():
+    # N = 2: nothing to compare; N = 3, 4: c_3 > c_2 is the one sign that proves k* = 2
+    assert C._argmin_c(2) == (2, False, 0)
+    assert C._argmin_c(3) == (2, False, 1)
+    assert C._argmin_c(4) == (2, False, 1)
+    assert critical_point(3).sign_evaluations == 1
+
+
+@pytest.mark.parametrize("N", [6, 12, 101, 10**6, 10**30])
+@pytest.mark.parametrize("dps", [1, 15, 60, 200])
+def test_critical_point_encloses_with_one_ball(N, dps, monkeypatch):
+    # the start precision of the p_c enclosure already meets the width: a single ball of s(k*)
+    calls = []
+    orig = C._s_arb
+
+    def spy(n, k):
+        calls.append(k)
+        return orig(n, k)
+
+    monkeypatch.setattr(C, "_s_arb", spy)
+    cp = critical_point(N, dps=dps)
+    assert cp.p_exact is None and calls == [cp.argmins[0]]
+    # p_d (eq. 16), where f first gets real roots: the larger root of (N p - 1)**2 = 4 p
+    with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+        pd = (1 + mpmath.sqrt(N + 1)) ** 2 / N**2
+        assert abs(cp.p_d - pd) <= mpmath.mpf(10) ** (1 - dps) * pd
+
+
+# ------------------------------------------- compare_with_critical: balls, integers, limits
+def _spy(monkeypatch, name):
+    calls = []
+    orig = getattr(C, name)
+
+    def spy(*args):
+        calls.append(args)
+        return orig(*args)
+
+    monkeypatch.setattr(C, name, spy)
+    return calls
+
+
+@pytest.mark.parametrize("N, dps", [(12, 5), (101, 20), (101, 60), (10**6, 30), (10**30, 15)])
+def test_compare_near_p_c_one_ball_then_two(N, dps, monkeypatch):
+    cp = critical_point(N, dps=dps)
+    k = cp.argmins[0]
+    ref = _ref_pc(N, k, 2 * dps + 40)  # independent p_c, far beyond the distances used
+    lo, hi = (C._frac(b) for b in cp.p_bounds)
+    g_calls = _spy(monkeypatch, "G_arb")
+    perm_calls = _spy(monkeypatch, "_perm")
+    start = C.bits_for(N, int(dps * 3.33) + 2 * k.bit_length() + 40)
+    tested = set()
+    for sgn in (-1, 1):
+        for extra, balls in ((int(dps * 3.33) + 2 * k.bit_length() + 20, 1), (start + 24, 2)):
+            with mpmath.workdps(2 * dps + 40 + 2 * len(str(N))):
+                fr = C._frac(ref * (1 + sgn * mpmath.mpf(2) ** -extra))
+            if not lo < fr < hi:  # p_c sits near one end of the (hulled) bounds
+                continue
+            g_calls.clear()
+            assert C.compare_with_critical(cp, fr) == sgn
+            # the start precision separates at 2**-(dps*3.33 + 2 log2 k + 20); closer
+            # (2**-(start + 24)) the doubled precision does: never the exact integers
+            assert len(g_calls) == balls and not perm_calls, (sgn, extra)
+            tested.add(balls)
+    assert tested == {1, 2}
+
+
+def test_compare_exact_fallback_against_factorials(monkeypatch):
+    # force the exact integer path (as if no ball separated) and check it against
+    # fr**(k-1) vs c_k**(k-1) = k (N-k)! / (N-1)! in Fractions
+    cps = [critical_point(N, dps=10) for N in (6, 12, 30, 101)]
+    monkeypatch.setattr(C, "certified_sign", lambda ball, *, start_bits, max_bits, exact_fn:
+                        exact_fn())
+    for cp in cps:
+        N, k = cp.N, cp.argmins[0]
+        wide = dataclasses.replace(cp, p_bounds=(mpmath.mpf(0), mpmath.mpf(10)))
+        pc = C._frac(cp.p)
+        for fr in (Fraction(1, 2 * N), pc * Fraction(999, 1000), pc, pc * Fraction(1001, 1000),
+                   Fraction(2, 3), Fraction(7, 5)):
+            a, b = fr ** (k - 1), _ck_power(N, k)
+            assert C.compare_with_critical(wide, fr) == (a > b) - (a < b), (N, fr)
+
+
+def test_compare_exact_fallback_size_limit(monkeypatch):
+    N = 101
+    cp = dataclasses.replace(critical_point(N, dps=10), p_bounds=(mpmath.mpf(0), mpmath.mpf(1)))
+    monkeypatch.setattr(C, "certified_sign", lambda ball, *, start_bits, max_bits, exact_fn:
+                        exact_fn())
+    k = cp.argmins[0]
+    fr = Fraction(3, 250)  # below p_c = 0.01289...
+    size = k * (N.bit_length() + fr.numerator.bit_length() + fr.denominator.bit_length())
+    monkeypatch.setattr(C, "EXACT_BITS_LIMIT", size)
+    assert C.compare_with_critical(cp, fr) == -1  # at the limit: still exact
+    monkeypatch.setattr(C, "EXACT_BITS_LIMIT", size - 1)
+    with pytest.raises(UndecidedError,
+                       match=r"^p=3/250 vs p_c for N=101: exact comparison too big$"):
+        C.compare_with_critical(cp, fr)
+
+
+def test_compare_on_an_exact_tie_doubles_to_16x_then_integers(monkeypatch):
+    # N = 5 with p_exact withheld: the ball of the exact zero is tried at start, 2, 4, 8 and
+    # 16 x start bits, then the integers say 0
+    blind = dataclasses.replace(critical_point(5), p_exact=None,
+                                p_bounds=(mpmath.mpf("0.4"), mpmath.mpf("0.6")))
+    g_calls = _spy(monkeypatch, "G_arb")
+    assert C.compare_with_critical(blind, Fraction(1, 2)) == 0
+    assert len(g_calls) == 5
+
+
+# ------------------------------------------------------------------- _root_possible, direct
+def _vp(n: int, p: int) -> int:
+    v = 0
+    while n % p == 0:
+        n //= p
+        v += 1
+    return v
+
+
+def test_root_possible_against_direct_valuations():
+    passed = []
+    for N in range(3, 400):
+        for k in range(2, (N if N < 70 else 12) + 1):
+            perm = math.perm(N - 1, k - 1)
+            want = all((_vp(k, p) - _vp(perm, p)) % (k - 1) == 0 for p in (2, 3, 5, 7))
+            assert C._root_possible(N, k) == want, (N, k)
+            if want and k >= 3:
+                passed.append((N, k))
+    # e.g. N = 110, k = 4: 4 / (109 * 108 * 107) has exponents 2 - 2 = 0 of 2 and 0 - 3 of 3
+    assert (110, 4) in passed and (5, 3) in passed
+
+
+# ------------------------------------------------------------------------ mode_path, more
+def test_mode_path_names_p_max_and_keeps_dps_and_the_critical_point():
+    with pytest.raises(ValueError, match=r"^p_max must be a number such as"):
+        mode_path(10, p_max="x")
+    with pytest.raises(ValueError, match=r"^p_max must be finite, got nan$"):
+        mode_path(10, p_max=float("nan"))
+    path = mode_path(101, p_max=Fraction(1, 20), dps=7)
+    assert path.critical.dps == 7
+    ref = _ref_pc(101, 20, 7)
+    with mpmath.workdps(40):
+        assert abs(path.breakpoints[0][0] - ref) <= mpmath.mpf(10) ** -7 * ref
+    # an empty path still carries the critical point it was compared with
+    low = mode_path(101, p_max=Fraction(1, 100), dps=9)
+    assert low.breakpoints == () and low.critical.dps == 9 and low.critical.argmins == (20,)
+    with mpmath.workdps(40):
+        assert abs(low.critical.p - ref) <= mpmath.mpf(10) ** -7 * ref
+    # a rational jump point is the exact Fraction (not its mpf)
+    for N, pc in ((5, Fraction(1, 2)), (3, Fraction(1)), (4, Fraction(2, 3))):
+        bp = mode_path(N, p_max=2).breakpoints[0][0]
+        assert type(bp) is Fraction and bp == pc
+
+
+def test_log_c_from_a_low_start_is_correct_to_the_last_bit(monkeypatch):
+    # the loop stops only once the ball is 100x narrower than a unit of the dps-th digit, so
+    # the returned mpf is within one unit in the last place (dps digits = mpmath's prec bits)
+    # of the true value, for every dps (a stop at the dps-th digit itself misses this)
+    monkeypatch.setattr(C, "bits_for", lambda N, extra: 16 + 0 * N + 0 * int(extra))
+    for N, k in ((101, 20), (10**6, 3802), (10**40, 10**20)):
+        for dps in range(1, 121):
+            got = log_c(N, k, dps=dps)
+            ref = log_c_direct(N, k, 3 * dps)
+            with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
+                ulp = mpmath.mpf(2) ** (1 - mpmath.libmp.dps_to_prec(dps))
+                assert abs(got - ref) <= ulp * abs(ref), (N, k, dps)
+
+
+@pytest.mark.parametrize("N", [5, 101, 10**30])
+@pytest.mark.parametrize("dps", [3, 20, 70])
+def test_every_returned_mpf_is_rounded_to_dps_digits(N, dps):
+    cp = critical_point(N, dps=dps)
+    with mpmath.workdps(dps):
+        for x in (cp.p, cp.q, cp.p_d, cp.q_d, log_c(N, 3, dps=dps)):
+            assert +x == x  # already a dps-digit number: rounding it changes nothing
+
+
+@pytest.mark.parametrize("t", [3, 4, 7, 12, 21, 30])
+def test_search_on_a_synthetic_exact_tie_from_every_seed(t, monkeypatch):
+    # the search logic alone, on E(k) = k - t (an exact zero at k = t: c_{t+1} = c_t, a tie
+    # like N = 5 has at t = 2): from every seed it must return the first k with E(k) >= 0,
+    # t, and report the tie; the brute-force reference is that first index itself
+    monkeypatch.setattr(C, "_E_arb", lambda N, k: arb(k - t))
+    monkeypatch.setattr(C._SignOracle, "_exact", lambda self, k: (k > t) - (k < t))
+    for N in (t + 1, t + 2, t + 3, 2 * t + 5, 40):
+        for seed in range(2, N + 1):
+            kstar, tie, _ = C._argmin_c(N, seed)
+            assert (kstar, tie) == (t, True), (N, seed)
