@@ -372,11 +372,26 @@ def _exact_root(a: Fraction, n: int) -> Fraction | None:
 
 
 def _fmt_int(N: int) -> str:
-    """``N`` for messages and reprs (no str() of ints beyond Python's digit limit)."""
+    """``N`` for messages and reprs (no str() of ints beyond Python's digit limit): exact up to
+    160 bits, else ``~d.dddde+E``, ``N`` correctly rounded to 15 significant digits (integer
+    arithmetic: one rounding, half to even).
+
+    >>> _fmt_int(95676649905087550000000000000004549377870619113110)
+    '~9.56766499050876e+49'
+    """
     if N.bit_length() <= 160:
         return str(N)
-    with mpmath.workdps(15):
-        return f"~{mpmath.nstr(mpmath.mpf(N), 15)}"
+    e = int((N.bit_length() - 1) * 0.30102999566398120)  # floor(log10 N) or one below
+    if N >= 10 ** (e + 1):
+        e += 1
+    scale = 10 ** (e - 14)
+    q, r = divmod(N, scale)  # 10**14 <= q < 10**15
+    if 2 * r > scale or (2 * r == scale and q % 2):
+        q += 1
+    if q == 10**15:
+        q, e = 10**14, e + 1
+    digits = str(q).rstrip("0")
+    return f"~{digits[0]}.{digits[1:] or '0'}e+{e}"
 
 
 @dataclass(frozen=True, repr=False)

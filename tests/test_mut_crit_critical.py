@@ -718,3 +718,27 @@ def test_search_on_a_synthetic_exact_tie_from_every_seed(t, monkeypatch):
         for seed in range(2, N + 1):
             kstar, tie, _ = C._argmin_c(N, seed)
             assert (kstar, tie) == (t, True), (N, seed)
+
+
+def test_fmt_int_is_correctly_rounded_to_15_digits():
+    """Huge N in messages: exact up to 160 bits, else N rounded once to 15 significant digits
+    (reference: mpmath at 60 digits, then Decimal rounding half to even)."""
+    import random
+    from decimal import ROUND_HALF_EVEN, Decimal, localcontext
+
+    from symhx.critical import _fmt_int
+
+    assert _fmt_int(2**160 - 1) == str(2**160 - 1)
+    rng = random.Random(7)
+    cases = [95676649905087550000000000000004549377870619113110, 10**200, 10**200 - 1,
+             10**49 * 999999999999999 + 5 * 10**48, 10**49 * 999999999999998 + 5 * 10**48]
+    cases += [rng.randrange(2**160, 10 ** rng.randint(49, 300)) for _ in range(300)]
+    for N in cases:
+        if N.bit_length() <= 160:
+            continue
+        with localcontext() as ctx:
+            ctx.prec = 15
+            ctx.rounding = ROUND_HALF_EVEN
+            ref = +Decimal(N)  # N's digits fit Decimal: exact, then one rounding
+        got = _fmt_int(N)
+        assert got.startswith("~") and Decimal(got[1:]) == ref, (N, got, ref)
