@@ -308,3 +308,125 @@ def test_theory_curve_tiny_p_and_limits():
     with pytest.raises(TypeError, match=r"^theory_curve: sigma1, omega, Omega and d must be "
                                         r"scalars$"):
         F.theory_curve(0.1, d=[1.0, 2.0])
+
+
+# The float64 accuracy of the inverse (documented: relative 1e-14 where p(sigma) is well
+# conditioned), both tails, scales away from 1, fixed sigma1, other frequencies. The reference is
+# the bisection root of the independent closed form for the float inputs' exact binary values.
+_FLOAT_PS = [1e-300, 1e-50, 1e-8, 0.05, 0.5, 0.65, 0.999999, 1 - 1e-12]
+
+
+@pytest.mark.parametrize("kw", [{}, {"d": 1e8}, {"d": 1e-8}, {"sigma1": 0.05},
+                                {"omega": 0.5, "Omega": 3.0}])
+def test_inverse_float_accuracy_grid(kw):
+    args = [Fraction(kw[k]) if k in kw else v
+            for k, v in (("sigma1", None), ("omega", 1), ("Omega", None), ("d", 1))]
+    for p in _FLOAT_PS:
+        if "sigma1" in kw and p < 1e-43:  # below P(R1 > 1) = exp(-100): not reachable
+            with pytest.raises(ValueError, match=r"^p = 1e-(300|50) is not reachable for these "
+                                                 r"parameters \(sigma1 fixed\?\)$"):
+                F.sigma_for_impact_probability(p, **kw)
+            continue
+        got = F.sigma_for_impact_probability(p, **kw)
+        want = _root_ref(Fraction(p), *args, work=32)
+        assert isinstance(got, float) and rel(got, want) < 1e-14, (p, kw, rel(got, want))
+
+
+def test_inverse_float_roots_far_from_d():
+    """Roots at sigma ~ 1e-200 d (omega**2 - Omega**2 ~ 1e-200): the bracket steps double."""
+    for p in (0.5, 1e-10):
+        got = F.sigma_for_impact_probability(p, omega=1e-100, Omega=2e-100)
+        want = _root_ref(Fraction(p), None, Fraction(1e-100), Fraction(2e-100), work=32)
+        assert rel(got, want) < 1e-13, (p, rel(got, want))
+        gm = F.sigma_for_impact_probability(repr(p), omega="1e-100", Omega="2e-100", dps=30)
+        assert rel(gm, _root_ref(repr(p), None, "1e-100", "2e-100", work=70)) <= tol(30)
+
+
+# mpmath path: both tails (the bisection start below 1e-300 and for 1 - p below 1e-16), scales
+# 1e+-8 and 1e100, frequencies near resonance, fixed sigma1, dps 5 / 15 / 45.
+_MP_CASES = [
+    ("1e-400", {"d": "1e8"}, 15), ("1e-400", {"d": "1e-8"}, 45), ("1e-400", {"d": "1e100"}, 5),
+    ("1e-12", {"d": "1e8"}, 45), ("0.3", {"d": "1e-8"}, 15), ("0.9", {"d": "1e8"}, 5),
+    ("1 - 1e-25", {"d": "1e-8"}, 15), ("1 - 1e-25", {"d": "1e100"}, 45),
+    ("0.5", {"Omega": "1.000001"}, 45), ("1e-20", {"Omega": "1.000001"}, 15),
+    ("0.98", {"sigma1": "3"}, 15), ("1e-6", {"sigma1": "1e-3"}, 45),
+    ("1e-350", {"sigma1": "0.01"}, 15),
+]
+
+
+@pytest.mark.parametrize("p, kw, dps", _MP_CASES)
+def test_inverse_mp_scales_tails_and_precisions(p, kw, dps):
+    with mpmath.workdps(dps + 60):
+        pt = 1 - mpmath.mpf(p[4:]) if p.startswith("1 - ") else mpmath.mpf(p)
+    target = Fraction(1) - Fraction(p[4:]) if p.startswith("1 - ") else p
+    want = _root_ref(pt, kw.get("sigma1"), kw.get("omega", 1), kw.get("Omega"), kw.get("d", 1),
+                     work=dps + 40)
+    got = F.sigma_for_impact_probability(target, **kw, dps=dps)
+    assert isinstance(got, mpmath.mpf)
+    assert rel(got, want) <= tol(dps), (p, kw, dps, mpmath.nstr(rel(got, want), 3))
+
+
+def test_inverse_mp_polishes_the_float_root(monkeypatch):
+    """Where float64 has a root, the mpmath path starts from it: a few secant steps at the
+    working precision (not a bracket and 60 bisections)."""
+    import symhx.forcing.inverse as inv
+
+    calls = []
+    real = inv.evaluate
+
+    def counting(fp, dps, want):
+        calls.append(dps)
+        return real(fp, dps, want)
+
+    monkeypatch.setattr(inv, "evaluate", counting)
+    for p in ("1e-250", "0.3", "0.9", Fraction(1) - Fraction(1, 10**15)):
+        calls.clear()
+        got = F.sigma_for_impact_probability(p, dps=30)
+        assert rel(got, _root_ref(p, work=70)) <= tol(30)
+        assert 0 < sum(d is not None for d in calls) <= 10, (p, calls)
+    calls.clear()
+    F.sigma_for_impact_probability("0.3", d="1e8", dps=30)
+    assert 0 < sum(d is not None for d in calls) <= 10, calls
+
+
+def test_inverse_mp_several_components_with_sigma1():
+    """sigma1 given per component (a list): mpmath against float64 and the round trip."""
+    kw = {"sigma1": ["0.3", "0.4"], "Omega": ["1.7", "2.2"]}
+    sm = F.sigma_for_impact_probability("0.2", **kw, dps=12)
+    sf = F.sigma_for_impact_probability(0.2, sigma1=[0.3, 0.4], Omega=[1.7, 2.2])
+    assert isinstance(sm, mpmath.mpf) and rel(sm, sf) < 1e-11
+    assert rel(F.impact_probability(sm, **kw, dps=12), "0.2") <= 3 * tol(12)
+    s1 = F.sigma_for_impact_probability("0.2", sigma1=["0.3"], Omega=["1.7"], dps=20)
+    assert rel(s1, _root_ref("0.2", "0.3", 1, "1.7", work=60)) <= tol(20)
+
+
+def test_inverse_symbolic_targets_keep_their_digits():
+    """A sympy irrational is evaluated to the digits the precision needs (of 1 - p near 1)."""
+    import sympy
+
+    s = F.sigma_for_impact_probability(sympy.sqrt(2) / 4, dps=60)
+    with mpmath.workdps(120):
+        want = _root_ref(mpmath.sqrt(2) / 4, work=100)
+    assert rel(s, want) <= tol(60)
+    s = F.sigma_for_impact_probability(1 - sympy.exp(-50), dps=20)
+    with mpmath.workdps(120):
+        want = _root_ref(1 - mpmath.exp(-50), work=120)
+    assert rel(s, want) <= tol(20)
+    s = F.sigma_for_impact_probability(1 - sympy.exp(-20))
+    with mpmath.workdps(120):
+        pt = 1 - mpmath.exp(-20)
+        want = _root_ref(Fraction(float(pt)), work=40)  # the float nearest to p
+    assert isinstance(s, float) and rel(s, want) < 1e-14
+
+
+@pytest.mark.parametrize("dps", [None, 20])
+def test_inverse_bad_targets_name_p(dps):
+    import sympy
+
+    for bad, exc, msg in [("abc", ValueError, "p must be a number such as"),
+                          (float("nan"), ValueError, "p must be finite, got nan"),
+                          (True, TypeError, "p must be a real number, got bool"),
+                          (sympy.Symbol("x"), TypeError, "p must be a finite real number"),
+                          (2, ValueError, r"p must be in \(0, 1\), got 2$")]:
+        with pytest.raises(exc, match="^" + msg):
+            F.sigma_for_impact_probability(bad, dps=dps)
