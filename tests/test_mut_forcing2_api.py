@@ -334,12 +334,17 @@ def test_inverse_float_accuracy_grid(kw):
 
 def test_inverse_float_roots_far_from_d():
     """Roots at sigma ~ 1e-200 d (omega**2 - Omega**2 ~ 1e-200): the bracket steps double."""
-    for p in (0.5, 1e-10):
-        got = F.sigma_for_impact_probability(p, omega=1e-100, Omega=2e-100)
-        want = _root_ref(Fraction(p), None, Fraction(1e-100), Fraction(2e-100), work=32)
-        assert rel(got, want) < 1e-13, (p, rel(got, want))
-        gm = F.sigma_for_impact_probability(repr(p), omega="1e-100", Omega="2e-100", dps=30)
-        assert rel(gm, _root_ref(repr(p), None, "1e-100", "2e-100", work=70)) <= tol(30)
+    for p, om in ((0.5, 1e-100), (1e-10, 1e-100), (0.5, 1e-150)):  # 1e-150: ln sigma = -690
+        got = F.sigma_for_impact_probability(p, omega=om, Omega=2 * om)
+        want = _root_ref(Fraction(p), None, Fraction(om), Fraction(2 * om), work=32)
+        assert rel(got, want) < 1e-13, (p, om, rel(got, want))
+    for p in ("0.5", "1e-10"):
+        gm = F.sigma_for_impact_probability(p, omega="1e-100", Omega="2e-100", dps=30)
+        assert rel(gm, _root_ref(p, None, "1e-100", "2e-100", work=70)) <= tol(30)
+    # root at ln sigma = 705 (d = 1e303): the search is clipped at the float64 range (a step
+    # to 712 would overflow)
+    got = F.sigma_for_impact_probability(1 - 1e-15, d=1e303)
+    assert rel(got, _root_ref(Fraction(1 - 1e-15), d=Fraction(1e303), work=32)) < 1e-13
 
 
 # mpmath path: both tails (the bisection start below 1e-300 and for 1 - p below 1e-16), scales
@@ -384,9 +389,24 @@ def test_inverse_mp_polishes_the_float_root(monkeypatch):
         got = F.sigma_for_impact_probability(p, dps=30)
         assert rel(got, _root_ref(p, work=70)) <= tol(30)
         assert 0 < sum(d is not None for d in calls) <= 10, (p, calls)
-    calls.clear()
-    F.sigma_for_impact_probability("0.3", d="1e8", dps=30)
-    assert 0 < sum(d is not None for d in calls) <= 10, calls
+    for p, kw in [("0.3", {"d": "1e8"}), ("0.1", {"sigma1": "0.3"}),
+                  ("0.01", {"sigma1": "4", "d": "20"}),
+                  ("0.2", {"omega": "1.3", "Omega": "1.000001"}),
+                  ("0.2", {"sigma1": ["0.3", "0.4"], "Omega": ["1.7", "2.2"]})]:
+        calls.clear()
+        F.sigma_for_impact_probability(p, **kw, dps=12)
+        assert 0 < sum(d is not None for d in calls) <= 10, (p, kw, calls)
+
+
+def test_inverse_mp_unreachable_messages(monkeypatch):
+    with pytest.raises(ValueError, match=r"^p = 1\.0e-400 is not reachable for these parameters "
+                                         r"\(no root with \|ln\(sigma/d\)\| < 32767\)$"):
+        F.sigma_for_impact_probability("1e-400", sigma1="0.1", dps=10)
+    import symhx.forcing.inverse as inv
+
+    monkeypatch.setattr(inv, "_bracket", lambda *args: None)  # as if no root within the range
+    with pytest.raises(ValueError, match=r"^1 - p = 1\.0e-400 is not reachable for these "):
+        F.sigma_for_impact_probability(Fraction(1) - Fraction(1, 10**400), dps=10)
 
 
 def test_inverse_mp_several_components_with_sigma1():
