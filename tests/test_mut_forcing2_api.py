@@ -399,13 +399,16 @@ def test_inverse_mp_polishes_the_float_root(monkeypatch):
 
 
 def test_inverse_mp_unreachable_messages(monkeypatch):
-    with pytest.raises(ValueError, match=r"^p = 1\.0e-400 is not reachable for these parameters "
-                                         r"\(no root with \|ln\(sigma/d\)\| < 32767\)$"):
-        F.sigma_for_impact_probability("1e-400", sigma1="0.1", dps=10)
+    with pytest.raises(ValueError, match=r"^p = 1\.23456789e-400 is not reachable for these "
+                                         r"parameters \(no root with \|ln\(sigma/d\)\| < "
+                                         r"32767\)$"):
+        F.sigma_for_impact_probability("1.2345678901234e-400", sigma1="0.1", dps=10)
     import symhx.forcing.inverse as inv
 
     monkeypatch.setattr(inv, "_bracket", lambda *args: None)  # as if no root within the range
-    with pytest.raises(ValueError, match=r"^1 - p = 1\.0e-400 is not reachable for these "):
+    with pytest.raises(ValueError, match=r"^1 - p = 1\.0e-400 is not reachable for these "
+                                         r"parameters \(no root with \|ln\(sigma/d\)\| < "
+                                         r"32767\)$"):
         F.sigma_for_impact_probability(Fraction(1) - Fraction(1, 10**400), dps=10)
 
 
