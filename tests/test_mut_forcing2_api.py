@@ -453,3 +453,18 @@ def test_inverse_bad_targets_name_p(dps):
                           (2, ValueError, r"p must be in \(0, 1\), got 2$")]:
         with pytest.raises(exc, match="^" + msg):
             F.sigma_for_impact_probability(bad, dps=dps)
+
+
+def test_inverse_bracket_contract():
+    """The doubling search returns lo < hi with f(lo) <= 0 <= f(hi) in both directions, stays
+    inside the clip, and gives None when f keeps its sign (or is NaN)."""
+    from symhx.forcing.inverse import _bracket
+
+    for x, r in [(0.0, 5.5), (0.0, -5.5), (2.0, 2.5), (3.0, -700.25), (-20.0, 600.5)]:
+        br = _bracket(lambda t, r=r: t - r, x, 12)
+        assert br is not None and br[0] < br[1] and br[0] - r <= 0 <= br[1] - r, (x, r, br)
+        assert br[1] - br[0] <= max(1.0, abs(r - x)), (x, r, br)  # the last (doubled) step
+    assert _bracket(lambda t: t - 706.0, 690.0, 12, (-744.0, 709.0)) == (705.0, 709.0)
+    assert _bracket(lambda t: t - 720.0, 690.0, 12, (-744.0, 709.0)) is None
+    assert _bracket(lambda t: 1.0, 0.0, 12) is None
+    assert _bracket(lambda t: float("nan"), 0.0, 12) is None
