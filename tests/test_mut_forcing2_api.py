@@ -431,9 +431,9 @@ def test_inverse_symbolic_targets_keep_their_digits():
     with mpmath.workdps(120):
         want = _root_ref(mpmath.sqrt(2) / 4, work=100)
     assert rel(s, want) <= tol(60)
-    s = F.sigma_for_impact_probability(1 - sympy.exp(-50), dps=20)
+    s = F.sigma_for_impact_probability(1 - sympy.exp(-100), dps=20)  # 1 - p = 3.7e-44
     with mpmath.workdps(120):
-        want = _root_ref(1 - mpmath.exp(-50), work=120)
+        want = _root_ref(1 - mpmath.exp(-100), work=120)
     assert rel(s, want) <= tol(20)
     s = F.sigma_for_impact_probability(1 - sympy.exp(-20))
     with mpmath.workdps(120):
@@ -453,6 +453,9 @@ def test_inverse_bad_targets_name_p(dps):
                           (2, ValueError, r"p must be in \(0, 1\), got 2$")]:
         with pytest.raises(exc, match="^" + msg):
             F.sigma_for_impact_probability(bad, dps=dps)
+    if dps is None:  # the float64 array path converts p once (float_arg)
+        with pytest.raises(TypeError, match=r"^p must hold real numbers, got an array of dtype"):
+            F.sigma_for_impact_probability([0.5, "x"])
 
 
 def test_inverse_bracket_contract():
