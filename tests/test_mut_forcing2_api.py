@@ -440,6 +440,9 @@ def test_inverse_symbolic_targets_keep_their_digits():
         pt = 1 - mpmath.exp(-20)
         want = _root_ref(Fraction(float(pt)), work=40)  # the float nearest to p
     assert isinstance(s, float) and rel(s, want) < 1e-14
+    with mpmath.workdps(40):
+        nearest = float(mpmath.pi / 10)
+    assert F.sigma_for_impact_probability(sympy.pi / 10) == F.sigma_for_impact_probability(nearest)
 
 
 @pytest.mark.parametrize("dps", [None, 20])
