@@ -308,3 +308,169 @@ def test_theory_curve_tiny_p_and_limits():
     with pytest.raises(TypeError, match=r"^theory_curve: sigma1, omega, Omega and d must be "
                                         r"scalars$"):
         F.theory_curve(0.1, d=[1.0, 2.0])
+
+
+# The float64 accuracy of the inverse (documented: relative 1e-14 where p(sigma) is well
+# conditioned), both tails, scales away from 1, fixed sigma1, other frequencies. The reference is
+# the bisection root of the independent closed form for the float inputs' exact binary values.
+_FLOAT_PS = [1e-300, 1e-50, 1e-8, 0.05, 0.5, 0.65, 0.999999, 1 - 1e-12]
+
+
+@pytest.mark.parametrize("kw", [{}, {"d": 1e8}, {"d": 1e-8}, {"sigma1": 0.05},
+                                {"omega": 0.5, "Omega": 3.0}])
+def test_inverse_float_accuracy_grid(kw):
+    args = [Fraction(kw[k]) if k in kw else v
+            for k, v in (("sigma1", None), ("omega", 1), ("Omega", None), ("d", 1))]
+    for p in _FLOAT_PS:
+        if "sigma1" in kw and p < 1e-43:  # below P(R1 > 1) = exp(-100): not reachable
+            with pytest.raises(ValueError, match=r"^p = 1e-(300|50) is not reachable for these "
+                                                 r"parameters \(sigma1 fixed\?\)$"):
+                F.sigma_for_impact_probability(p, **kw)
+            continue
+        got = F.sigma_for_impact_probability(p, **kw)
+        want = _root_ref(Fraction(p), *args, work=32)
+        assert isinstance(got, float) and rel(got, want) < 1e-14, (p, kw, rel(got, want))
+
+
+def test_inverse_float_roots_far_from_d():
+    """Roots at sigma ~ 1e-200 d (omega**2 - Omega**2 ~ 1e-200): the bracket steps double."""
+    for p, om in ((0.5, 1e-100), (1e-10, 1e-100), (0.5, 1e-150)):  # 1e-150: ln sigma = -690
+        got = F.sigma_for_impact_probability(p, omega=om, Omega=2 * om)
+        want = _root_ref(Fraction(p), None, Fraction(om), Fraction(2 * om), work=32)
+        assert rel(got, want) < 1e-13, (p, om, rel(got, want))
+    for p in ("0.5", "1e-10"):
+        gm = F.sigma_for_impact_probability(p, omega="1e-100", Omega="2e-100", dps=30)
+        assert rel(gm, _root_ref(p, None, "1e-100", "2e-100", work=70)) <= tol(30)
+    # root at ln sigma = 705 (d = 1e303): the search is clipped at the float64 range (a step
+    # to 712 would overflow)
+    got = F.sigma_for_impact_probability(1 - 1e-15, d=1e303)
+    assert rel(got, _root_ref(Fraction(1 - 1e-15), d=Fraction(1e303), work=32)) < 1e-13
+
+
+# mpmath path: both tails (the bisection start below 1e-300 and for 1 - p below 1e-16), scales
+# 1e+-8 and 1e100, frequencies near resonance, fixed sigma1, dps 5 / 15 / 45.
+_MP_CASES = [
+    ("1e-400", {"d": "1e8"}, 15), ("1e-400", {"d": "1e-8"}, 45), ("1e-400", {"d": "1e100"}, 5),
+    ("1e-12", {"d": "1e8"}, 45), ("0.3", {"d": "1e-8"}, 15), ("0.9", {"d": "1e8"}, 5),
+    ("1 - 1e-25", {"d": "1e-8"}, 15), ("1 - 1e-25", {"d": "1e100"}, 45),
+    ("0.5", {"Omega": "1.000001"}, 45), ("1e-20", {"Omega": "1.000001"}, 15),
+    ("0.98", {"sigma1": "3"}, 15), ("1e-6", {"sigma1": "1e-3"}, 45),
+    ("1e-350", {"sigma1": "0.01"}, 15),
+]
+
+
+@pytest.mark.parametrize("p, kw, dps", _MP_CASES)
+def test_inverse_mp_scales_tails_and_precisions(p, kw, dps):
+    with mpmath.workdps(dps + 60):
+        pt = 1 - mpmath.mpf(p[4:]) if p.startswith("1 - ") else mpmath.mpf(p)
+    target = Fraction(1) - Fraction(p[4:]) if p.startswith("1 - ") else p
+    want = _root_ref(pt, kw.get("sigma1"), kw.get("omega", 1), kw.get("Omega"), kw.get("d", 1),
+                     work=dps + 40)
+    got = F.sigma_for_impact_probability(target, **kw, dps=dps)
+    assert isinstance(got, mpmath.mpf)
+    assert rel(got, want) <= tol(dps), (p, kw, dps, mpmath.nstr(rel(got, want), 3))
+
+
+def test_inverse_mp_polishes_the_float_root(monkeypatch):
+    """Where float64 has a root, the mpmath path starts from it: a few secant steps at the
+    working precision (not a bracket and 60 bisections)."""
+    import symhx.forcing.inverse as inv
+
+    calls = []
+    real = inv.evaluate
+
+    def counting(fp, dps, want):
+        calls.append(dps)
+        return real(fp, dps, want)
+
+    monkeypatch.setattr(inv, "evaluate", counting)
+    for p in ("1e-250", "0.3", "0.9", Fraction(1) - Fraction(1, 10**15)):
+        calls.clear()
+        got = F.sigma_for_impact_probability(p, dps=30)
+        assert rel(got, _root_ref(p, work=70)) <= tol(30)
+        assert 0 < sum(d is not None for d in calls) <= 10, (p, calls)
+    for p, kw in [("0.3", {"d": "1e8"}), ("0.1", {"sigma1": "0.3"}),
+                  ("0.01", {"sigma1": "4", "d": "20"}),
+                  ("0.2", {"omega": "1.3", "Omega": "1.000001"}),
+                  ("0.2", {"sigma1": ["0.3", "0.4"], "Omega": ["1.7", "2.2"]})]:
+        calls.clear()
+        F.sigma_for_impact_probability(p, **kw, dps=12)
+        assert 0 < sum(d is not None for d in calls) <= 10, (p, kw, calls)
+
+
+def test_inverse_mp_unreachable_messages(monkeypatch):
+    with pytest.raises(ValueError, match=r"^p = 1\.23456789e-400 is not reachable for these "
+                                         r"parameters \(no root with \|ln\(sigma/d\)\| < "
+                                         r"32767\)$"):
+        F.sigma_for_impact_probability("1.2345678901234e-400", sigma1="0.1", dps=10)
+    import symhx.forcing.inverse as inv
+
+    monkeypatch.setattr(inv, "_bracket", lambda *args: None)  # as if no root within the range
+    with pytest.raises(ValueError, match=r"^1 - p = 1\.0e-400 is not reachable for these "
+                                         r"parameters \(no root with \|ln\(sigma/d\)\| < "
+                                         r"32767\)$"):
+        F.sigma_for_impact_probability(Fraction(1) - Fraction(1, 10**400), dps=10)
+
+
+def test_inverse_mp_several_components_with_sigma1():
+    """sigma1 given per component (a list): mpmath against float64 and the round trip."""
+    kw = {"sigma1": ["0.3", "0.4"], "Omega": ["1.7", "2.2"]}
+    sm = F.sigma_for_impact_probability("0.2", **kw, dps=12)
+    sf = F.sigma_for_impact_probability(0.2, sigma1=[0.3, 0.4], Omega=[1.7, 2.2])
+    assert isinstance(sm, mpmath.mpf) and rel(sm, sf) < 1e-11
+    assert rel(F.impact_probability(sm, **kw, dps=12), "0.2") <= 3 * tol(12)
+    s1 = F.sigma_for_impact_probability("0.2", sigma1=["0.3"], Omega=["1.7"], dps=20)
+    assert rel(s1, _root_ref("0.2", "0.3", 1, "1.7", work=60)) <= tol(20)
+
+
+def test_inverse_symbolic_targets_keep_their_digits():
+    """A sympy irrational is evaluated to the digits the precision needs (of 1 - p near 1)."""
+    import sympy
+
+    s = F.sigma_for_impact_probability(sympy.sqrt(2) / 4, dps=60)
+    with mpmath.workdps(120):
+        want = _root_ref(mpmath.sqrt(2) / 4, work=100)
+    assert rel(s, want) <= tol(60)
+    s = F.sigma_for_impact_probability(1 - sympy.exp(-100), dps=20)  # 1 - p = 3.7e-44
+    with mpmath.workdps(120):
+        want = _root_ref(1 - mpmath.exp(-100), work=120)
+    assert rel(s, want) <= tol(20)
+    s = F.sigma_for_impact_probability(1 - sympy.exp(-20))
+    with mpmath.workdps(120):
+        pt = 1 - mpmath.exp(-20)
+        want = _root_ref(Fraction(float(pt)), work=40)  # the float nearest to p
+    assert isinstance(s, float) and rel(s, want) < 1e-14
+    with mpmath.workdps(40):
+        nearest = float(mpmath.pi / 10)
+    assert F.sigma_for_impact_probability(sympy.pi / 10) == F.sigma_for_impact_probability(nearest)
+
+
+@pytest.mark.parametrize("dps", [None, 20])
+def test_inverse_bad_targets_name_p(dps):
+    import sympy
+
+    for bad, exc, msg in [("abc", ValueError, "p must be a number such as"),
+                          (float("nan"), ValueError, "p must be finite, got nan"),
+                          (True, TypeError, "p must be a real number, got bool"),
+                          (sympy.Symbol("x"), TypeError, "p must be a finite real number"),
+                          (2, ValueError, r"p must be in \(0, 1\), got 2$")]:
+        with pytest.raises(exc, match="^" + msg):
+            F.sigma_for_impact_probability(bad, dps=dps)
+    if dps is None:  # the float64 array path converts p once (float_arg)
+        with pytest.raises(TypeError, match=r"^p must hold real numbers, got an array of dtype"):
+            F.sigma_for_impact_probability([0.5, "x"])
+
+
+def test_inverse_bracket_contract():
+    """The doubling search returns lo < hi with f(lo) <= 0 <= f(hi) in both directions, stays
+    inside the clip, and gives None when f keeps its sign (or is NaN)."""
+    from symhx.forcing.inverse import _bracket
+
+    for x, r in [(0.0, 5.5), (0.0, -5.5), (2.0, 2.5), (3.0, -700.25), (-20.0, 600.5)]:
+        br = _bracket(lambda t, r=r: t - r, x, 12)
+        assert br is not None and br[0] < br[1] and br[0] - r <= 0 <= br[1] - r, (x, r, br)
+        assert br[1] - br[0] <= max(1.0, abs(r - x)), (x, r, br)  # the last (doubled) step
+    assert _bracket(lambda t: t - 706.0, 690.0, 12, (-744.0, 709.0)) == (705.0, 709.0)
+    assert _bracket(lambda t: t - 720.0, 690.0, 12, (-744.0, 709.0)) is None
+    assert _bracket(lambda t: 1.0, 0.0, 12) is None
+    assert _bracket(lambda t: float("nan"), 0.0, 12) is None

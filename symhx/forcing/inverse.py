@@ -11,19 +11,23 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.forcing.arguments import ForcingParams, float_arg, is_array, mp_arg, mpf_of
+from symhx.forcing.arguments import ForcingParams, float_arg, is_array, mpf_of
 from symhx.forcing.probability import evaluate, impact_probability
 from symhx.validation import check_dps, to_rational
 
 __all__ = ["sigma_for_impact_probability"]
 
 
-def _target(p: Any, name: str = "p") -> Fraction:
-    fr = to_rational(p, name)
+def _target(p: Any, digits: int) -> Fraction:
+    """``p`` as an exact Fraction; a real sympy irrational is evaluated to ``digits`` digits (of
+    ``1 - p`` when ``p > 1/2``, which keeps the relative accuracy of ``1 - p`` near 1)."""
+    fr = to_rational(p, "p")
     if fr is None:
-        fr = Fraction(str(p.evalf(40)))
+        fr = Fraction(str(p.evalf(digits)))
+        if fr > Fraction(1, 2):
+            fr = 1 - Fraction(str((1 - p).evalf(digits)))
     if not 0 < fr < 1:
-        raise ValueError(f"{name} must be in (0, 1), got {p!r}")
+        raise ValueError(f"p must be in (0, 1), got {p!r}")
     return fr
 
 
@@ -40,9 +44,11 @@ def sigma_for_impact_probability(
 
     ``p(sigma)`` increases strictly from 0 to 1 (with ``sigma1`` fixed: from ``P(R_1 > d)``).
     The root of ``ln p(sigma) = ln p`` (or ``ln(1 - p(sigma)) = ln(1 - p)`` when ``p > 1/2``,
-    which keeps the relative accuracy of both tails) is bracketed in ``ln sigma`` from the tail
-    asymptotics, found by Brent's method in float64 and, for ``dps``, polished by the secant
-    method at the working precision.
+    which keeps the relative accuracy of both tails) is bracketed in ``ln sigma`` by steps from
+    ``ln d`` that double, found by Brent's method in float64 (relative error below ``1e-14``
+    where ``p(sigma)`` is well conditioned) and, for ``dps``, polished by the secant method at
+    ``dps + 15`` digits (correct to ``dps`` digits; roots with ``|ln(sigma/d)| < 32767``). A
+    sympy irrational ``p`` is evaluated to ``dps + 20`` digits (of ``1 - p`` when ``p > 1/2``).
 
     Parameters
     ----------
@@ -86,16 +92,13 @@ def sigma_for_impact_probability(
             for idx in np.ndindex(pa.shape):
                 out[idx] = _inverse_float(float(pa[idx]), fp)
             return out
-        pf = float(_target(p))
+        pf = float(_target(p, 40))
         if not 0.0 < pf < 1.0:
             raise ValueError(f"p = {p!r} rounds to {pf} in float64; use dps=")
         return _inverse_float(pf, fp)
 
     def one(pv: Any) -> mpmath.mpf:
-        fr = _target(pv)
-        with mpmath.workdps(dps + 15):
-            pm = mpf_of(fr)
-        return _inverse_mp(pm, fp, dps, fr)
+        return _inverse_mp(_target(pv, dps + 20), fp, dps)
 
     if is_array(p):
         pa = np.asarray(p, dtype=object)
@@ -121,71 +124,78 @@ def _inverse_objective(p_target: float, fp: ForcingParams) -> Callable[[float], 
     return lambda ls: lt - float(evaluate(_with_sigma(fp, math.exp(ls)), None, "logq"))
 
 
+def _bracket(f: Callable[[Any], Any], x: Any, tries: int,
+             clip: tuple[float, float] | None = None) -> tuple[Any, Any] | None:
+    """``(lo, hi)`` with ``f(lo) <= 0 <= f(hi)`` for an increasing ``f``, by steps from ``x``
+    towards the root that double (1, 2, 4, ...) and stay inside ``clip``; ``None`` when ``tries``
+    steps find no change of sign (or ``f`` is NaN)."""
+    down = f(x) > 0
+    a, step = x, 1
+    for _ in range(tries):
+        b = a - step if down else a + step
+        if clip is not None:
+            b = min(max(b, clip[0]), clip[1])
+        fb = f(b)
+        if (fb <= 0) if down else (fb >= 0):
+            return (b, a) if down else (a, b)
+        a, step = b, 2 * step
+    return None
+
+
+# ln sigma inside the float64 range (subnormals included): exp never overflows, never gives 0
+_FLOAT_LS = (-744.0, 709.0)
+
+
+def _float_params(fp: ForcingParams) -> ForcingParams:
+    """The float64 copy of exact parameters (the start of the mpmath path)."""
+    def conv(v: Any) -> Any:
+        return None if v is None else [float(x) for x in v] if isinstance(v, tuple) else float(v)
+
+    return ForcingParams.validated(float(fp.sigma), conv(fp.sigma1), float(fp.omega),
+                                   conv(fp.Omega), float(fp.d))
+
+
 def _inverse_float(p: float, fp: ForcingParams) -> float:
     from scipy.optimize import brentq
 
-    if fp.exact:  # the float64 start of the mpmath path
-        fp = ForcingParams.validated(
-            1, None if fp.sigma1 is None else (tuple(float(s) for s in fp.sigma1)
-                                               if isinstance(fp.sigma1, tuple)
-                                               else float(fp.sigma1)),
-            float(fp.omega),
-            None if fp.Omega is None else (list(float(o) for o in fp.Omega)
-                                           if fp.components else float(fp.Omega)),
-            float(fp.d), dps=None)
     f = _inverse_objective(p, fp)
-    d = float(fp.d)
-    lo = hi = math.log(d)
-    for _ in range(400):
-        if f(lo) < 0:
-            break
-        lo -= 1.0
-    else:
+    br = _bracket(f, math.log(float(fp.d)), 12, _FLOAT_LS)
+    if br is None:
         raise ValueError(f"p = {p!r} is not reachable for these parameters (sigma1 fixed?)")
-    for _ in range(400):
-        if f(hi) > 0:
-            break
-        hi += 1.0
-    else:  # pragma: no cover
-        raise ValueError(f"p = {p!r} is not reachable for these parameters")
-    ls = brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+    ls = brentq(f, br[0], br[1], xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
     return math.exp(ls)
 
 
-def _inverse_mp(p: mpmath.mpf, fp: ForcingParams, dps: int, exact: Fraction) -> mpmath.mpf:
-    """Secant polish at ``dps + 15`` digits; the target's log (or log of ``1 - p``) is taken
-    from the exact ``Fraction``, so ``1 - p`` keeps its relative accuracy for ``p`` near 1."""
-    try:
-        s0 = _inverse_float(float(p), fp) if 1e-300 < p < 1 - 1e-16 else None
-    except (ValueError, OverflowError):
-        s0 = None
+def _inverse_mp(exact: Fraction, fp: ForcingParams, dps: int) -> mpmath.mpf:
+    """Secant polish at ``dps + 15`` digits from the float64 root (or, outside float64, from a
+    bracket refined by bisection); the target's log (or log of ``1 - p``) is taken from the exact
+    ``Fraction``, so ``1 - p`` keeps its relative accuracy for ``p`` near 1."""
+    upper = exact > Fraction(1, 2)
     work = dps + 15
     with mpmath.workdps(work):
-        if p <= 0.5:
-            lt = mpmath.log(mpf_of(exact))
-
-            def f(ls: mpmath.mpf) -> mpmath.mpf:
-                return evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logp") - lt
-        else:
-            lt = mpmath.log(mpf_of(1 - exact))
-
+        tail = mpf_of(1 - exact if upper else exact)  # p, or 1 - p when p > 1/2
+        lt = mpmath.log(tail)
+    s0 = None
+    if tail > 1e-300:  # the float64 start (p and 1 - p representable)
+        try:
+            s0 = _inverse_float(float(exact), _float_params(fp))
+        except (ValueError, OverflowError):  # not reachable in float64: bracket below
+            pass
+    with mpmath.workdps(work):
+        if upper:
             def f(ls: mpmath.mpf) -> mpmath.mpf:
                 return lt - evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logq")
+        else:
+            def f(ls: mpmath.mpf) -> mpmath.mpf:
+                return evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logp") - lt
 
         if s0 is None:  # far outside float64: bracket, then bisect in ln(sigma)
-            lo = hi = mpmath.log(mp_arg("d", fp.d))
-            for _ in range(2000):
-                if not f(lo) > 0:
-                    break
-                lo -= 4
-            else:
-                raise ValueError(f"p = {p} is not reachable for these parameters")
-            for _ in range(2000):
-                if not f(hi) < 0:
-                    break
-                hi += 4
-            else:
-                raise ValueError(f"p = {p} is not reachable for these parameters")
+            br = _bracket(f, mpmath.log(mpf_of(fp.d)), 15)  # |ln(sigma/d)| < 2**15
+            if br is None:
+                raise ValueError(f"{'1 - p' if upper else 'p'} = {mpmath.nstr(tail, 10)} is "
+                                 "not reachable for these parameters (no root with "
+                                 "|ln(sigma/d)| < 32767)")
+            lo, hi = br
             for _ in range(60):
                 mid = (lo + hi) / 2
                 if f(mid) > 0:
