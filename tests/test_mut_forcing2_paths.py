@@ -562,3 +562,19 @@ def test_precision_plan_sees_every_input_at_huge_exponents(sigma, sigma1, omega,
     for k, want in ((0, "p"), (2, "logp")):
         got = FUNCS[want](sigma, sigma1=sigma1, omega=omega, Omega=Omega, d=1, dps=dps)
         assert rel(got, r[k], digits=60) <= mpmath.mpf(10) ** -dps, (want, sigma, sigma1)
+
+
+@pytest.mark.parametrize("dps", [15, 60, 120])
+def test_sympy_irrational_inputs_keep_every_digit(dps):
+    """A sympy irrational sigma (or d) is taken to dps + IRRATIONAL_EXTRA_DIGITS digits: p and
+    log p to dps digits, also where p = exp(-E) amplifies the input's error by 2E ~ 1e14 (it
+    used to be rounded to 40 digits: 2.7e-39 off at dps = 60)."""
+    import sympy
+
+    for sigma, d in [(sympy.sqrt(2) / 10, 1), (sympy.pi / 10**7, sympy.sqrt(3))]:
+        with mpmath.workdps(dps + 200):
+            s_mp, d_mp = mpmath.mpf(sympy.N(sigma, dps + 200)), mpmath.mpf(sympy.N(d, dps + 200))
+            r = ref(s_mp, None, 1, None, d_mp, dps=dps)
+        for k, want in ((0, "p"), (2, "logp")):
+            got = FUNCS[want](sigma, d=d, dps=dps)
+            assert rel(got, r[k], digits=dps + 40) <= mpmath.mpf(10) ** -dps, (want, sigma, dps)

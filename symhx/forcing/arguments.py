@@ -28,6 +28,7 @@ import numpy as np
 from symhx.validation import check_array, check_dps, to_rational
 
 __all__ = [
+    "IRRATIONAL_EXTRA_DIGITS",
     "ForcingParams",
     "bad_index",
     "elementwise",
@@ -58,13 +59,19 @@ def bad_index(arr: np.ndarray, bad: np.ndarray) -> str:
     return f" at index {idx[0] if len(idx) == 1 else tuple(int(i) for i in idx)}"
 
 
-def rational_arg(name: str, value: Any) -> Fraction:
-    """A scalar ``> 0`` as an exact Fraction (sympy irrationals: 40 digits)."""
+#: extra digits of a sympy irrational input over the requested ``dps``: ``p = exp(-E)`` turns a
+#: relative error ``eps`` of sigma, omega, Omega or d into ``~2 E eps`` in ``p``, and ``E`` may
+#: reach ``MAX_EXPONENT`` (~1.8e308) in the mpmath evaluation
+IRRATIONAL_EXTRA_DIGITS = 330
+
+
+def rational_arg(name: str, value: Any, digits: int = 40) -> Fraction:
+    """A scalar ``> 0`` as an exact Fraction (a sympy irrational rounded to ``digits``)."""
     if isinstance(value, Fraction) and value > 0:
         return value
     fr = to_rational(value, name)
     if fr is None:  # a real sympy irrational such as sqrt(2)
-        fr = Fraction(str(value.evalf(40)))
+        fr = Fraction(str(value.evalf(digits)))
     if not fr > 0:
         raise ValueError(f"{name} must be > 0, got {value!r}")
     return fr
@@ -116,14 +123,14 @@ def mp_arg(name: str, value: Any) -> mpmath.mpf:
     return mpf_of(rational_arg(name, value))
 
 
-def _object_rationals(name: str, value: Any) -> np.ndarray:
+def _object_rationals(name: str, value: Any, digits: int = 40) -> np.ndarray:
     """An object array of exact positive Fractions (first bad index in errors)."""
     arr = np.asarray(value, dtype=object)
     out = np.empty(arr.shape, dtype=object)
     for idx in np.ndindex(arr.shape):
         where = f" at index {idx[0] if len(idx) == 1 else idx}" if arr.ndim else ""
         try:
-            out[idx] = rational_arg(name, arr[idx])
+            out[idx] = rational_arg(name, arr[idx], digits)
         except (TypeError, ValueError) as exc:
             raise type(exc)(f"{exc}{where}") from None
     return out
@@ -168,11 +175,14 @@ class ForcingParams:
             raise ValueError("Omega: an empty array of forcing frequencies (give a scalar, a "
                              "list of components or None for the paper's sqrt(2))")
 
+        digits = (dps or 0) + IRRATIONAL_EXTRA_DIGITS  # for sympy irrational inputs
+
         def conv(name: str, v: Any) -> Any:
             if v is None:
                 return None
             if exact:
-                return _object_rationals(name, v) if is_array(v) else rational_arg(name, v)
+                return (_object_rationals(name, v, digits) if is_array(v)
+                        else rational_arg(name, v, digits))
             return float_arg(name, v)
 
         if is_components(Omega):
