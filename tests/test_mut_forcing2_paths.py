@@ -578,3 +578,20 @@ def test_sympy_irrational_inputs_keep_every_digit(dps):
         for k, want in ((0, "p"), (2, "logp")):
             got = FUNCS[want](sigma, d=d, dps=dps)
             assert rel(got, r[k], digits=dps + 40) <= mpmath.mpf(10) ** -dps, (want, sigma, dps)
+
+
+@pytest.mark.parametrize("sigma", [0.5, 0.9, 3.0, 30.0, 3e3, 3e5, 3e7])
+def test_planned_one_minus_p_needs_no_adaptive_loop(sigma, monkeypatch):
+    """The precision plan adds the digits that 1 - p cancels up front (x y / 6 for small x, y):
+    1 - p and log(1 - p) near and above p = 1/2 are formed directly, right to dps, and the
+    adaptive loop (the a posteriori safety net) is never entered."""
+    r = ref(sigma, dps=40)
+
+    def boom(*args):
+        raise AssertionError("adaptive 1 - p loop entered")
+
+    monkeypatch.setattr(P, "mp_q_from_xy", boom)
+    for dps in (15, 40):
+        for k, want in ((1, "q"), (3, "logq")):
+            got = FUNCS[want](sigma, dps=dps)
+            assert rel(got, r[k], digits=80) <= mpmath.mpf(10) ** -dps, (want, sigma, dps)
