@@ -267,3 +267,31 @@ def test_sympy_irrationals_take_40_digits():
     got = rational_arg("s", sympy.sqrt(2))
     assert got == Fraction("1.414213562373095048801688724209698078570")  # 40 digits
     assert float(float_arg("x", sympy.pi)) == 3.141592653589793
+
+
+@pytest.mark.parametrize("dps", [15, 60, 200])
+def test_sympy_irrationals_are_taken_to_dps_plus_the_extra_digits(dps):
+    """Scalars and arrays of sympy irrationals become Fractions within 10**-(dps + 320) of the
+    irrational (reference: sympy's own evaluation at more digits)."""
+    import sympy
+
+    from symhx.forcing.arguments import IRRATIONAL_EXTRA_DIGITS, ForcingParams
+
+    assert IRRATIONAL_EXTRA_DIGITS >= 320
+    s, om = sympy.sqrt(2) / 10, sympy.pi / 3
+    fp = ForcingParams.validated(s, None, om, None, np.array([sympy.sqrt(3), sympy.E],
+                                                            dtype=object), dps=dps)
+    assert isinstance(fp.sigma, Fraction) and isinstance(fp.omega, Fraction)
+    assert fp.d.dtype == object and all(isinstance(v, Fraction) for v in fp.d)
+    tol = sympy.Rational(1, 10 ** (dps + 320))
+    for got, exact in ((fp.sigma, s), (fp.omega, om), (fp.d[0], sympy.sqrt(3)),
+                       (fp.d[1], sympy.E)):
+        err = abs(sympy.Rational(got.numerator, got.denominator) - exact)
+        assert sympy.N(err - tol * exact, dps + 400) < 0, (exact, dps)
+
+
+def test_empty_Omega_array_message():
+    with pytest.raises(ValueError, match=r"^Omega: an empty array of forcing frequencies \(give a "
+                                         r"scalar, a list of components or None for the "
+                                         r"paper's sqrt\(2\)\)$"):
+        ForcingParams.validated(0.3, Omega=np.array([]))

@@ -119,7 +119,7 @@ def mpf_of(fr: Fraction) -> mpmath.mpf:
 def mp_arg(name: str, value: Any) -> mpmath.mpf:
     """A scalar ``> 0`` as an mpf at the current precision (floats and mpf exactly)."""
     if isinstance(value, mpmath.mpf) and mpmath.isfinite(value) and value > 0:
-        return +value if value.context is mpmath.mp else mpmath.mpf(value)
+        return +value  # (mpmath.mpf is the class of mpmath.mp's numbers only)
     return mpf_of(rational_arg(name, value))
 
 
