@@ -196,8 +196,8 @@ def test_no_reference_to_files_outside_the_repository(word: str) -> None:
     assert hits == []
 
 
-def test_mypy_clean_on_the_public_layers() -> None:
-    """``mypy`` (configured in pyproject.toml: the files CI checks) reports no error."""
+def test_mypy_clean_on_the_whole_package() -> None:
+    """``mypy`` (configured in pyproject.toml: every file of symhx) reports no error."""
     pytest.importorskip("mypy")
     res = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental"], cwd=ROOT,
                          capture_output=True, text=True, env={"PYTHONPATH": str(ROOT),
