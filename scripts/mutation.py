@@ -306,6 +306,12 @@ def main(argv: list[str] | None = None) -> int:
     if args.rerun or args.resume:
         for dest in (workdir / "tests", workdir / "mutants" / "tests"):
             shutil.copytree(ROOT / "tests", dest, dirs_exist_ok=True)
+        # mutmut copies the files it does not mutate (the C engine's source and build) into
+        # mutants/ only once: refresh them, or a rebuilt extension is tested against its old copy
+        for src in (*(ROOT / "symhx").rglob("*.so"), *(ROOT / "symhx").rglob("*.c")):
+            dst = workdir / "mutants" / src.relative_to(ROOT)
+            if dst.parent.is_dir():
+                shutil.copy2(src, dst)
         # new tests are only run for a mutant once mutmut has re-collected which tests
         # execute which function
         (workdir / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
