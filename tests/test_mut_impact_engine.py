@@ -67,6 +67,18 @@ def test_work_dps_cascade_bound_and_v_stick_formulas():
         default_v_stick(3, 10)
 
 
+def test_cos_sin_reduction_range():
+    # Cody-Waite reduction for |x| < 823549.6 (~2**19 pi/2), libm beyond (both engines)
+    from symhx.impact.engine import _cos_sin
+
+    for x in (823549.6, -823549.6, 823549.60037, 823549.60333, 823550.5, -823549.60037, 1e7):
+        assert _cos_sin(x) == (math.cos(x), math.sin(x))
+    with mpmath.workdps(40):
+        for x in (823549.5, 1e5 + 0.3, -2.5, 0.7853981633974483):
+            c, s = _cos_sin(x)
+            assert abs(c - mpmath.cos(x)) <= EPS and abs(s - mpmath.sin(x)) <= EPS
+
+
 def test_bounds_are_the_documented_sums():
     # M_k = sum_m c_m F_m**k with c_m = |(a_m, b_m)|; zero frequencies fold into c0
     eng = Engine(_row(Omega=(2.0, 0.0, 3.0)), FloatContext(), v_stick=1e-6)
@@ -119,7 +131,8 @@ def test_c_log_length_and_chunk_option():
     h = simulate(row, 20.0, engine="c")
     assert len(h._log) == len(h.times) > 10
     assert Engine(row, FloatContext(), v_stick=1e-6, chunk=0.5).chunk == 0.5
-    assert Engine(row, FloatContext(), v_stick=1e-6).chunk == 2 / row.omega
+    eng = Engine(row, FloatContext(), v_stick=1e-6)
+    assert eng.chunk == 2 / row.omega and eng.row is row
 
 
 # ---------------------------------------------------------------- the certified search
@@ -216,6 +229,9 @@ def test_graze_helper():
     # g = -1 + cos t at t = 0: D = V = 0, A = -1 < 0: no minimum to look for -- the touch is there
     g = [-1.0, 1.0, 0.0, 0.0, 0.0]
     assert eng._graze(g, 0.0, 0.0, 1e-14) == (0.0, Outcome.GRAZE)
+    # ... also when the gap there is below its rounding allowance (nothing to refine between
+    # the start and itself)
+    assert eng._graze([-1.0 - 2e-14, 1.0, 0.0, 0.0, 0.0], 0.0, 0.0, 1e-14) == (0.0, Outcome.GRAZE)
     # g = 1e-12 (1 + ...) dipping 3e-12 below zero near t = pi: a real (slow) crossing, refined
     # between the start and the minimum
     gd = [-2e-12 + 1.0, 1.0, 0.0, 0.0, 0.0]          # min at pi: -2e-12 + 1 - 1 = -2e-12
@@ -256,7 +272,7 @@ def test_refine_against_mpmath(g, lo, hi):
     x = eng.refine(g, lo, hi)
     root = _root(g, lo, hi, F=(1.0, 3.0))
     assert abs(x - root) <= 4 * EPS * abs(root)
-    assert len(calls) <= 8      # fourth-order iteration: a handful of evaluations
+    assert len(calls) <= 5      # fourth-order iteration from these starts: at most 5 steps
 
 
 # ---------------------------------------------------------------- the impact rule
@@ -281,7 +297,7 @@ def _gap_with(u, A, J):
 def test_impact_opening_contact_is_a_touch():
     eng = _eng()
     kinds, ev = _impact(eng, [-1.0, 1.0, 0.5, 0.0, 0.0])   # V = +1/2: not approaching
-    assert kinds == [(0, GRAZE)] and ev[0][3:] == (0.5, 0.5, 0.0)
+    assert kinds == [(0, GRAZE)] and ev[0][0] == 0.0 and ev[0][3:] == (0.5, 0.5, 0.0)
     assert eng.coef[1] == [-1.0, 1.0, 0.5, 0.0, 0.0] and not any(eng.stuck)
 
 
@@ -318,6 +334,45 @@ def test_impact_compression_decides_sticking():
     ta = tolA(0.0, 0.5, 100.0)
     assert not sticks(ta / 2, 0.5, 100.0) and not sticks(-ta / 2, 0.5, 100.0)
     assert sticks(-2 * ta, 0.5, 100.0)
+
+
+def test_impact_compression_rule_at_its_exact_boundaries():
+    # A = -tolA or +tolA exactly, and J = 0 exactly (all with u' = v_stick): the inequalities
+    # of the rule as written -- A < -tolA or (|A| <= tolA and J < 0)
+    def gap(A_sign, J_zero):
+        # F = (1, 2): a0 = 0 so that A = -4 a1 exactly; b0 = -8 b1 makes J = -b0 - 8 b1 = 0
+        b1 = 1 / 6 if J_zero else -0.25
+        b0 = -8 * b1 if J_zero else -1.0 - 2 * b1
+        a1 = 0.0
+        for _ in range(5):      # tolA depends on a1 (through M2) very weakly: a fixed point
+            g = [-a1, 0.0, b0, a1, b1]
+            M2 = _eng().bounds(g)[3]
+            a1 = -A_sign * TOL * EPS * M2 / 4
+        g = [-a1, 0.0, b0, a1, b1]
+        D, V, A, J = _eng().derivs(g, 0.0)
+        _, _, _, M2, _, _ = _eng().bounds(g)
+        assert D == 0 and A == A_sign * TOL * EPS * M2 and (J == 0) == J_zero and V < 0
+        return g, -0.5 * V
+
+    def kinds(g, v_stick):
+        return [k for _, k in _impact(_eng(v_stick=v_stick), g)[0]]
+
+    g, vs = gap(-1, False)        # A = -tolA, J > 0: not compressed
+    assert _eng().derivs(g, 0.0)[3] > 0 and kinds(g, vs) == [IMPACT]
+    g, vs = gap(+1, False)        # A = +tolA, J > 0
+    assert kinds(g, vs) == [IMPACT]
+    g, vs = gap(0, True)          # A = 0, J = 0: not compressed
+    assert kinds(g, vs) == [IMPACT]
+    # A = +tolA with J < 0: compressed (|A| <= tolA counts as zero curvature)
+    b1, b0 = 0.25, -1.5
+    a1 = 0.0
+    for _ in range(5):
+        _, _, _, M2, _, _ = _eng().bounds([-a1, 0.0, b0, a1, b1])
+        a1 = -TOL * EPS * M2 / 4
+    g = [-a1, 0.0, b0, a1, b1]
+    D, V, A, J = _eng().derivs(g, 0.0)
+    assert D == 0 and A == TOL * EPS * _eng().bounds(g)[3] and J < 0 and V < 0
+    assert kinds(g, -0.5 * V) == [IMPACT, STICK]
 
 
 def test_impact_velocity_threshold_and_accumulation_time():
@@ -419,6 +474,15 @@ def test_stick_positions_with_d_not_one(mp):
         eng._stick(2, 1, 3, t, eng.zero, ctx.num(-1), 2, None)
         assert eng.coef[1][0] == eng.coef[2][0] == 3 * eng.d
         assert float(eng._pos_vel(2, ctx.num(5))[0]) == pytest.approx(3 * d, abs=1e-15)
+    # the reference engine takes d exactly: "0.6" is 3/5, not the float64 0.6
+    with mpmath.workdps(40):
+        row = PipeRow(2, d="0.6", restitution=0, alpha=[["0"], ["0"]], beta=[["0"], ["0"]],
+                      x0=["0.5", "1.1"], v0=["0.3", "-0.3"])
+        eng = Engine(row, MPContext(), v_stick=1e-6)
+        eng._stick(1, 1, 2, mpmath.mpf(1) / 4, eng.zero, mpmath.mpf(-1), 1, 1)
+        assert abs(eng.coef[1][0] - mpmath.mpf(9) / 10) < mpmath.mpf(10) ** -38
+        eng._stick(2, 1, 3, mpmath.mpf(1) / 4, eng.zero, mpmath.mpf(-1), 2, None)
+        assert abs(eng.coef[1][0] - mpmath.mpf(9) / 5) < mpmath.mpf(10) ** -38
 
 
 # ---------------------------------------------------------------- whole runs
@@ -559,6 +623,9 @@ def _rare_rows():
                          d=0.6), 25.0, {}
     yield PipeRow.random(6, 0.5, seed=2, restitution=0.5, Omega=(0.0, 2.3, 0.37), omega=1.7,
                          d=0.6), 25.0, {}
+    yield PipeRow.random(6, 2.0, seed=1, restitution=0.0, Omega=(0.0, 2.3, 0.37), omega=1.7,
+                         d=0.6), 25.0, {}
+    yield PipeRow.random(5, 10.0, seed=0, restitution=0.3), 30.0, {}
     yield PipeRow.random(7, 1.0, seed=1, restitution=0.0, omega=0.5, d=6.0,
                          Omega=(1.3, 0.9)), 100.0, {}
     yield _chatter_row(0.4, 3.0, d=0.6), 6.0, {}
@@ -567,7 +634,7 @@ def _rare_rows():
 
 
 @pytest.mark.skipif(not fast_mod.available(), reason="C extension not built")
-@pytest.mark.parametrize("k", range(5))
+@pytest.mark.parametrize("k", range(7))
 def test_rare_paths_c_equals_python(k):
     row, t_end, kw = list(_rare_rows())[k]
     a = simulate(row, t_end, engine="c", **kw)

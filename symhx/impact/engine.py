@@ -274,7 +274,6 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     n, K = row.n, len(row.Omega)
     if ctx.is_mp:
         num = ctx.num
-        dtype: Any = object
         om, d = num(row.exact("omega")), num(row.exact("d"))
         F = np.array([om] + [num(w) for w in row.exact("Omega")], dtype=object)
         alpha = np.vectorize(num, otypes=[object])(row.exact("alpha"))
@@ -283,7 +282,6 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
         v0 = np.vectorize(num, otypes=[object])(row.exact("v0"))
         zero = num(0)
     else:
-        dtype = np.float64
         om, d = float(row.omega), float(row.d)
         F = np.array([om] + [float(w) for w in row.Omega])
         alpha, beta = row.alpha, row.beta
@@ -291,11 +289,12 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
         zero = 0.0
     L = 3 + 2 * K
     om2 = om * om
-    forced = np.full((n + 2, L), zero, dtype=dtype)
-    raw = np.full((n + 2, L), zero, dtype=dtype)
-    coef = np.full((n + 2, L), zero, dtype=dtype)
-    fx: Any = 0
-    fv: Any = 0
+    # float64 arrays, or object arrays of mpf: the dtype follows the fill value
+    forced = np.full((n + 2, L), zero)
+    raw = np.full((n + 2, L), zero)
+    coef = np.full((n + 2, L), zero)
+    fx: Any = zero   # the forced part's position and velocity at t = 0, summed over m
+    fv: Any = zero
     for m in range(K):
         a = alpha[:, m]
         b = beta[:, m]
@@ -306,9 +305,9 @@ def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
         forced[1:n + 1, 4 + 2 * m] = fb
         raw[1:n + 1, 3 + 2 * m] = a
         raw[1:n + 1, 4 + 2 * m] = b
-        fx = fa if m == 0 else fx + fa
-        fv = fb * F[m + 1] if m == 0 else fv + fb * F[m + 1]
-    jd = np.arange(1, n + 1, dtype=dtype) * d
+        fx = fx + fa
+        fv = fv + fb * F[m + 1]
+    jd = np.arange(1, n + 1) * d
     coef[1:n + 1] = forced[1:n + 1]
     coef[1:n + 1, 0] = jd
     coef[1:n + 1, 1] = x0 - jd - fx
@@ -365,7 +364,7 @@ class EventLog:
         return len(self._events) if self._ev_arr is None else len(self._ev_arr)
 
     def _lists(self) -> tuple[list[list[Any]], list[list[Any]]]:
-        if self._upd_t is None or self._upd_c is None:
+        if self._upd_t is None or self._upd_c is None:   # built together, on first use
             coef0 = self._coef0_rows()
             zero = coef0[0][0] * 0
             self._upd_t = [[zero] for _ in range(len(coef0))]
@@ -386,12 +385,9 @@ class EventLog:
     def event_arrays(self, dtype: Any = float) -> tuple[np.ndarray, ...]:
         """``(times, sites, kinds, u_before, u_after, aux)`` as arrays (``dtype`` for the real
         columns: ``float`` or ``object`` for mpf; sites int64, kinds int8)."""
-        if self._ev_arr is not None:
-            ev = self._ev_arr
-            if ev.dtype.names:   # the C engine's records: the fields as they are (no copies)
-                return (ev["t"], ev["site"], ev["kind"], ev["u0"], ev["u1"], ev["aux"])
-            return (ev[:, 0], ev[:, 1].astype(np.int64), ev[:, 2].astype(np.int8), ev[:, 3],
-                    ev[:, 4], ev[:, 5])
+        ev = self._ev_arr
+        if ev is not None:   # the C engine's records: the fields as they are (no copies)
+            return (ev["t"], ev["site"], ev["kind"], ev["u0"], ev["u1"], ev["aux"])
         cols = list(zip(*self._events, strict=True)) if self._events else [()] * 6
         return (np.array(cols[0], dtype=dtype), np.array(cols[1], dtype=np.int64),
                 np.array(cols[2], dtype=np.int8), np.array(cols[3], dtype=dtype),
@@ -440,9 +436,7 @@ class Engine:
         self.om = ra.F[0]
         self.d = num(row.exact("d")) if ctx.is_mp else float(row.d)
         self.F = ra.F.tolist()
-        K = len(row.Omega)
-        self.K = K
-        L = 3 + 2 * K
+        L = 3 + 2 * len(row.Omega)
         self.L = L
         zero = num(0)
         self.zero = zero
@@ -885,10 +879,8 @@ class Engine:
             aux = t + 2 * u / ((-A) * (1 - r))
         else:
             aux = t
-        if lo == 0:
-            X, Vel = self.zero, self.zero
-        elif hi == self.n + 1:
-            X, Vel = (self.n + 1) * self.d, self.zero
+        if self._is_wall(lo, hi):   # a wall body does not move: set_motion places it
+            X = Vel = self.zero
         else:
             xL, vL = self._pos_vel(i, t)
             xR, vR = self._pos_vel(i + 1, t)
