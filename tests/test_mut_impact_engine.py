@@ -223,6 +223,48 @@ def test_search_small_print():
     assert eng.search(g, 0.0, 10.0)[1] == Outcome.ROOT
 
 
+def test_search_slope_exactly_at_its_rounding_bound():
+    # at t = 0 over F = (1, 2) with only sine parts: D = c0 = 0, A = 0, V = b0 + 2 b1 and
+    # M1 = |b0| + 2 |b1| = 4, so V = +-2**-44 is exactly the slope's rounding bound
+    # tolV = 64 eps M1: not a slope at all -- the third derivative J = -b0 - 8 b1 ~ 6 decides:
+    # the gap opens (its dip below zero, ~1e-20, is below rounding) and closes at its next root
+    eng = _eng()
+    h = 2.0**-46
+    for sign, b0, b1 in ((1, 2 * (1 + h), -(1 - h)), (-1, 2 * (1 - h), -(1 + h))):
+        g = [0.0, 0.0, b0, 0.0, b1]
+        D, V, A, J = eng.derivs(g, 0.0)
+        assert (D, A) == (0, 0) and V == sign * TOL * EPS * eng.bounds(g)[2] == sign * 2.0**-44
+        assert J > 5
+        t, code = eng.search(g, 0.0, 10.0)
+        assert code == Outcome.ROOT and t > 1
+        assert abs(t - _root(g, t - 1e-3, t + 1e-3)) < 1e-14
+    # a slope one ulp beyond the bound is a slope: closing at once
+    g = [0.0, 0.0, 2 * (1 - h), 0.0, np.nextafter(-(1 + h), -2.0)]
+    assert eng.derivs(g, 0.0)[1] < -TOL * EPS * eng.bounds(g)[2]
+    assert eng.search(g, 0.0, 10.0) == (0.0, Outcome.NOW)
+
+
+def test_search_curvature_exactly_at_its_rounding_bound():
+    # F = (1, 2, 3, 4): A = -4 a1 (a cosine at frequency 2 only), V = 3 b3 + 4 b4 = 0 with
+    # b4 = -3 b3 / 4, J = -(27 b3 + 64 b4) = 21 b3; a1 is set so that A = +-tolA exactly
+    # (tolA = 64 eps M2 depends on a1 only through 4 |a1|: a fixed point).  A curvature at its
+    # rounding bound is no curvature: J decides
+    eng = Engine(_row(Omega=(2.0, 3.0, 4.0)), FloatContext(), v_stick=1e-6)
+    for sign, b3 in ((-1, 0.25), (1, -0.25)):
+        a1 = 0.0
+        for _ in range(5):
+            g = [-a1, 0.0, 0.0, a1, 0.0, 0.0, b3, 0.0, -0.75 * b3]
+            a1 = -sign * TOL * EPS * eng.bounds(g)[3] / 4
+        g = [-a1, 0.0, 0.0, a1, 0.0, 0.0, b3, 0.0, -0.75 * b3]
+        D, V, A, J = eng.derivs(g, 0.0)
+        assert (D, V) == (0, 0) and A == sign * TOL * EPS * eng.bounds(g)[3]
+        t, code = eng.search(g, 0.0, 10.0)
+        if sign < 0:    # A = -tolA, J = 21/4 > 0: opening
+            assert J > 0 and code != Outcome.NOW and t > 0.1
+        else:           # A = +tolA, J < 0: closing now
+            assert J < 0 and (t, code) == (0.0, Outcome.NOW)
+
+
 # ---------------------------------------------------------------- graze and touch step
 def test_graze_helper():
     eng = _eng()
