@@ -64,6 +64,12 @@ __all__ = ["critical_point", "root_estimates"]
 #: (doubled, up to 20 times, on a side that does not bracket the root)
 ROOT_BRACKET = 40.0
 
+#: a lone argmin k (no tie) is still tried as an exact rational root c_k while
+#: ``k * N.bit_length()`` is below this many bits: the exact comparison of the polynomial
+#: weights costs about that size squared, and past it a rational c_k (none is known for k >= 3)
+#: is not worth the time -- p_c is then returned as a certified ball only
+RATIONAL_TRY_BITS = 200_000
+
 
 # --------------------------------------------------------------------------- float64 stage
 def root_estimates(space: Space | str, N: int) -> np.ndarray:
@@ -345,7 +351,7 @@ def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEF
         if p_exact is None:
             raise UndecidedError(f"c_k for k in {argmins} agree to {dps + 3} digits but no "
                                  f"exact rational tie was found (N={N}, {sp.name})")
-    elif best * N.bit_length() < 200_000:
+    elif best * N.bit_length() < RATIONAL_TRY_BITS:
         p_exact = _try_rational(sp, N, root(best), [best], wp)
     # the mode just above p_c: the tied k whose h_k grows fastest (largest k if equal)
     with mpmath.workdps(wp):
