@@ -34,8 +34,9 @@ _TINY = float(np.finfo(float).tiny)
 
 
 def delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
-    """``omega**2 - Omega**2`` with small relative error also close to resonance."""
-    with np.errstate(over="ignore", invalid="ignore"):
+    """``omega**2 - Omega**2`` with small relative error also close to resonance (whatever the
+    caller's numpy error state: over/underflow of the squares is expected)."""
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         if Omega is None:  # Omega**2 = 2 exactly: omega**2 = hi + lo exactly (Dekker), then - 2
             c = _SPLIT * omega
             hi = c - (c - omega)
@@ -149,14 +150,15 @@ class UV(NamedTuple):
 
 
 def uv_from_h(hx: np.ndarray, hy: np.ndarray) -> UV:
-    """x, y, r, u, v, uv from ``hx = sqrt(x)``, ``hy = sqrt(y)``."""
-    with np.errstate(over="ignore", invalid="ignore"):
+    """x, y, r, u, v, uv from ``hx = sqrt(x)``, ``hy = sqrt(y)`` (whatever the caller's numpy
+    error state: the squares may over/underflow)."""
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         r = np.hypot(hx, hy)
         u = hx * (hx / r)
         v = hy * (hy / r)
         m = hx * (hy / r)
         e = m * m
-    return UV(hx * hx, hy * hy, r, u, v, e)
+        return UV(hx * hx, hy * hy, r, u, v, e)
 
 
 def uv_forcing(sig0, sig1, omega, Omega, d) -> UV:
