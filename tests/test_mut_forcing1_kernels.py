@@ -647,7 +647,8 @@ def test_kernels_under_any_numpy_error_state():
     calls = [
         lambda: delta_float(np.array([2e160, 1e-200, 1.3]), None),
         lambda: delta_float(np.array([1e200, 1e-200]), np.array([1e-200, 3e-200])),
-        lambda: uv_forcing(big_small, big_small[::-1], np.array(1.0), None, np.array(1.0)),
+        lambda: uv_forcing(big_small, np.array([1e-200, 1e-200, 1e200]), np.array(1.0), None,
+                           np.array(1.0)),
         lambda: uv_from_h(np.array([1e200, 0.0, 1e-200]), np.array([1e-200, 0.0, 1e-200])),
         lambda: pq_float(uv_from_h(np.array([1e200, 1e-160, 0.5]),
                                    np.array([1e-200, 1e-160, 0.7])), "logq"),
