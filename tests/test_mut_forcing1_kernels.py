@@ -664,3 +664,14 @@ def test_kernels_under_any_numpy_error_state():
         for a, b in zip(ref if isinstance(ref, tuple) else (ref,),
                         got if isinstance(got, tuple) else (got,), strict=True):
             np.testing.assert_array_equal(a, b, err_msg=str(k))
+
+
+#: one scale beyond 1e75 against d and uv beyond every float (e = inf in the limit form of
+#: the mantissa path, where u and f are inf too): p = 0, 1 - p = 1, log p = -inf, no NaN
+UV_INF = [(4.7e-272, 1.5e-66, 2.9e93, None, 5e145), (2.8e-277, 1e-84, 6.8e93, None, 2.9e86),
+          (3.6e-259, 1.9e-232, 3.9e25, None, 2.9e113)]
+
+
+@pytest.mark.parametrize("pt", UV_INF)
+def test_float64_uv_beyond_floats_limit_form(pt):
+    _check_public(pt)
