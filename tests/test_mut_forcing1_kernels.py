@@ -376,7 +376,7 @@ def test_uv_building_blocks():
         with mpmath.workdps(40):
             x, y = _xy(float(s0), s1[i], float(om), float(Om), d)
             r = mpmath.sqrt(x + y)
-            for got, ref in ((uv.x, x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
+            for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
                              (uv.v[i], y / r), (uv.e[i], x * y / (x + y))):
                 assert rel(got, ref) < 8 * EPS
     p = pq_float(uv, "p")
@@ -675,3 +675,33 @@ UV_INF = [(4.7e-272, 1.5e-66, 2.9e93, None, 5e145), (2.8e-277, 1e-84, 6.8e93, No
 @pytest.mark.parametrize("pt", UV_INF)
 def test_float64_uv_beyond_floats_limit_form(pt):
     _check_public(pt)
+
+
+#: Delta = omega**2 - Omega**2 subnormal or underflowing to 0 (its float product loses digits),
+#: omega**2 beyond float64 with Omega None, sqrt(x) beyond float64: sqrt(y), uv still normal
+UV_FORCING_EDGES = [(0.5, 1e-300, 1e-160, 2e-160, 1.0), (0.5, 1e-300, 1e-200, 1e-199, 1.0),
+                    (0.5, 1e300, 1e200, None, 1.0), (0.5, 3e-300, 2e-160, 1e-160, 0.7)]
+
+
+def test_uv_forcing_where_delta_under_or_overflows():
+    """uv_forcing (the derivative's scales) against exact rational x, y: every field within a
+    few ulps where Delta itself is no normal float; uv right where sqrt(x) overflows; and the
+    float64 derivative there against its mpmath route (exact Delta, quadrature-free closed
+    forms at 30 digits: an independent evaluation of the same formula)."""
+    for s0, s1, om, Om, d in UV_FORCING_EDGES:
+        uv = uv_forcing(np.array(s0), np.array(s1), np.array(om),
+                        None if Om is None else np.array(Om), np.array(d))
+        with mpmath.workdps(40):
+            x, y = _xy(s0, s1, om, Om, d)
+            r = mpmath.sqrt(x + y)
+            for got, ref in ((uv.x, x), (uv.y, y), (uv.r, r), (uv.u, x / r), (uv.v, y / r),
+                             (uv.e, x * y / (x + y))):
+                assert rel(float(got), ref) < 8 * EPS, (s0, s1, om, Om, d)
+        got = F.dp_dsigma(s0, sigma1=s1, omega=om, Omega=Om, d=d)
+        ref = F.dp_dsigma(s0, sigma1=s1, omega=om, Omega=Om, d=d, dps=30)
+        assert rel(got, ref) < 64 * EPS, (s0, s1, om, Om, d, got, ref)
+    uv = uv_forcing(np.array(5e-324), np.array(0.5), np.array(1.0), None, np.array(1.0))
+    assert uv.r == math.inf
+    with mpmath.workdps(40):
+        x, y = _xy(5e-324, 0.5, 1.0, None, 1.0)
+        assert rel(float(uv.e), x * y / (x + y)) < 8 * EPS
