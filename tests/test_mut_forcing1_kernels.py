@@ -649,6 +649,8 @@ def test_kernels_under_any_numpy_error_state():
         lambda: delta_float(np.array([1e200, 1e-200]), np.array([1e-200, 3e-200])),
         lambda: uv_forcing(big_small, np.array([1e-200, 1e-200, 1e200]), np.array(1.0), None,
                            np.array(1.0)),
+        lambda: uv_forcing(np.array([5e-324, 0.3]), np.array([5e-324, 1e-300]),
+                           np.array([1.0, 1e-160]), np.array([2.0, 2e-160]), np.array(1.0)),
         lambda: uv_from_h(np.array([1e200, 0.0, 1e-200]), np.array([1e-200, 0.0, 1e-200])),
         lambda: pq_float(uv_from_h(np.array([1e200, 1e-160, 0.5]),
                                    np.array([1e-200, 1e-160, 0.7])), "logq"),
@@ -680,7 +682,8 @@ def test_float64_uv_beyond_floats_limit_form(pt):
 #: Delta = omega**2 - Omega**2 subnormal or underflowing to 0 (its float product loses digits),
 #: omega**2 beyond float64 with Omega None, sqrt(x) beyond float64: sqrt(y), uv still normal
 UV_FORCING_EDGES = [(0.5, 1e-300, 1e-160, 2e-160, 1.0), (0.5, 1e-300, 1e-200, 1e-199, 1.0),
-                    (0.5, 1e300, 1e200, None, 1.0), (0.5, 3e-300, 2e-160, 1e-160, 0.7)]
+                    (0.5, 1e300, 1e200, None, 1.0), (0.5, 3e-300, 2e-160, 1e-160, 0.7),
+                    (0.4, 0.3, 0.7, None, 1.2), (0.4, 0.3, 0.7, 1.9, 1.2)]
 
 
 def test_uv_forcing_where_delta_under_or_overflows():
@@ -700,8 +703,18 @@ def test_uv_forcing_where_delta_under_or_overflows():
         got = F.dp_dsigma(s0, sigma1=s1, omega=om, Omega=Om, d=d)
         ref = F.dp_dsigma(s0, sigma1=s1, omega=om, Omega=Om, d=d, dps=30)
         assert rel(got, ref) < 64 * EPS, (s0, s1, om, Om, d, got, ref)
-    uv = uv_forcing(np.array(5e-324), np.array(0.5), np.array(1.0), None, np.array(1.0))
-    assert uv.r == math.inf
-    with mpmath.workdps(40):
-        x, y = _xy(5e-324, 0.5, 1.0, None, 1.0)
-        assert rel(float(uv.e), x * y / (x + y)) < 8 * EPS
+    # sqrt(x) beyond float64 (then uv ~ y), both beyond (uv = inf), next to ordinary values and
+    # omega > 1e100 in one array
+    s0 = np.array([5e-324, 5e-324, 0.5, 0.4])
+    s1 = np.array([0.3, 5e-324, 1e300, 0.3])
+    om = np.array([1.0, 1.0, 1e200, 0.7])
+    uv = uv_forcing(s0, s1, om, None, np.array(1.0))
+    assert uv.r[0] == uv.r[1] == uv.e[1] == math.inf
+    for i in (0, 2, 3):
+        with mpmath.workdps(40):
+            x, y = _xy(float(s0[i]), float(s1[i]), float(om[i]), None, 1.0)
+            assert rel(uv.e[i], x * y / (x + y)) < 8 * EPS, i
+            if i:
+                assert rel(uv.u[i], x / mpmath.sqrt(x + y)) < 8 * EPS, i
+    with pytest.raises(ValueError, match="resonance"):
+        uv_forcing(np.array(0.3), np.array(0.3), np.array(1.5), np.array(1.5), np.array(1.0))
