@@ -376,7 +376,7 @@ def test_uv_building_blocks():
         with mpmath.workdps(40):
             x, y = _xy(float(s0), s1[i], float(om), float(Om), d)
             r = mpmath.sqrt(x + y)
-            for got, ref in ((uv.x, x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
+            for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
                              (uv.v[i], y / r), (uv.e[i], x * y / (x + y))):
                 assert rel(got, ref) < 8 * EPS
     p = pq_float(uv, "p")
@@ -462,3 +462,259 @@ def test_pq_float_keeps_the_shape_of_2d_input():
             for j in range(3):
                 r = ref_values(float(s0[i, j]), float(s0[i, j] * 0.7))
                 assert rel(out[i, j], r[k]) < C * EPS * (1 + float(r[4 + k])), (want, i, j)
+
+
+# ------------------------------------------------------------------------------ range checks
+#: one value past each range test of :func:`single_float`'s fast path whose every other test
+#: passes (so only that test sends it to the mantissa path): the fast path would be wrong there
+RANGE_EDGES = [
+    # |Delta| = 1.25e-312 is subnormal (its rounding error ~4e-12), d and r are ordinary
+    (1e50, 1e-262, 1.5e-156, 1e-156, 1e50),
+    # d = 1e200 > 1e100: d*d overflows, uv = 1.25e99 would be inf (log p = -inf)
+    (1e150, None, 1.0, None, 1e200),
+    # d/(2r) ~ 1.4e-160: sigma0**2 = 1e-320 is subnormal in uv
+    (1e-160, None, 1.0, None, 1e-100),
+]
+
+
+@pytest.mark.parametrize("pt", RANGE_EDGES)
+def test_single_float_each_range_test_alone(pt):
+    _check_public(pt)
+
+
+def test_single_float_range_tests_inside_arrays():
+    """The same values as entries of 2- and 3-element arrays of Delta (omega, Omega arrays) and
+    of d next to ordinary ones: every entry against the reference, arrays of two entries too
+    (one value of each chunk is taken with ``.item()`` only for one-element arrays)."""
+    pts = []
+    s0, s1, om, Om, d = RANGE_EDGES[0]
+    # the other entries ordinary (sqrt(y) ~ 1)
+    oms, Oms = np.array([om, 1.1, 0.7]), np.array([Om, 0.6, 1.3])
+    s1s = np.array([s1, 4e49, 6e49])
+    for n in (2, 3):
+        vals = [getattr(F, f)(s0, sigma1=s1s[:n], omega=oms[:n], Omega=Oms[:n], d=d) for f in
+                ("impact_probability", "no_impact_probability", "log_impact_probability",
+                 "log_no_impact_probability")]
+        pts += [([float(v[i]) for v in vals], (s0, float(s1s[i]), float(oms[i]),
+                                               float(Oms[i]), d)) for i in range(n)]
+    s0, s1, om, Om, d = RANGE_EDGES[1]
+    ds = np.array([d, 2.0e200, 3.0e200])
+    for n in (2, 3):
+        vals = [getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=ds[:n]) for f in
+                ("impact_probability", "no_impact_probability", "log_impact_probability",
+                 "log_no_impact_probability")]
+        pts += [([float(v[i]) for v in vals], (s0, s1, om, Om, float(ds[i]))) for i in range(n)]
+    for vals, pt in pts:
+        _check(vals, pt, {})
+
+
+def test_single_float_scalar_in_float_out_and_two_element_chunks():
+    fp = ForcingParams.validated(0.3, None, 1.0, None, 1.0)
+    for w in WANTS:
+        assert type(single_float(fp, w)) is float
+    # two entries in every argument: no one-element shortcut applies
+    s0, s1 = np.array([0.3, 2.0]), np.array([0.5, 0.4])
+    om, Om, d = np.array([1.2, 0.8]), np.array([0.5, 1.9]), np.array([0.7, 1.5])
+    vals = [getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d) for f in
+            ("impact_probability", "no_impact_probability", "log_impact_probability",
+             "log_no_impact_probability")]
+    for i in range(2):
+        _check([float(v[i]) for v in vals],
+               (float(s0[i]), float(s1[i]), float(om[i]), float(Om[i]), float(d[i])), {})
+
+
+def test_single_float_several_chunks_scalar_sigma1():
+    """More values than one chunk, every one on the fast path, sigma1 a scalar (so sqrt(y) is
+    one number broadcast over each chunk) and the last chunk of 2 values: each value against
+    the reference."""
+    base = [0.05, 0.3, 0.9, 4.0, 40.0]
+    n = 16384 + 2
+    s0 = np.array([base[i % len(base)] for i in range(n)])
+    for k, f in enumerate(("impact_probability", "no_impact_probability",
+                           "log_impact_probability", "log_no_impact_probability")):
+        arr = getattr(F, f)(s0, sigma1=0.7, omega=1.2, Omega=0.5, d=1.3)
+        for j, b in enumerate(base):
+            sel = arr[j::len(base)]
+            assert (sel == sel[0]).all(), (f, b)
+            ref = ref_values(b, 0.7, 1.2, 0.5, 1.3)
+            kappa = float(ref[4 if k in (0, 2) else 5])
+            if k < 2:
+                assert rel(sel[0], ref[k]) <= C * EPS * (1 + kappa), (f, b)
+            else:
+                assert abs(mpmath.mpf(sel[0]) - ref[k]) <= C * EPS * (1 + kappa
+                                                                      + abs(float(ref[k])))
+
+
+def test_uv_chunk_scalar_and_array_arguments():
+    """:func:`uv_chunk` takes 1-D arrays of length m or scalars: every field has length m and
+    the values of eqs. 24-25 (x, y, r, u, v, uv) within a few ulps, whatever mix is given."""
+    from symhx.forcing.kernels_float import uv_chunk
+
+    m = 3
+    s0v, s1v, dev, dv = [0.3, 0.45, 2.0], [0.5, 0.2, 7.0], [0.84, 1.5, 3.0], [1.3, 0.4, 2.5]
+    for mask in itertools.product((False, True), repeat=4):
+        args = [np.array(v) if a else np.float64(v[0])
+                for a, v in zip(mask, (s0v, s1v, dev, dv), strict=True)]
+        uv = uv_chunk(*args, m)
+        for f in uv:
+            assert isinstance(f, np.ndarray) and f.shape == (m,), mask
+        for i in range(m):
+            s0, s1, de, d = (mpmath.mpf(v[i] if a else v[0])
+                             for a, v in zip(mask, (s0v, s1v, dev, dv), strict=True))
+            with mpmath.workdps(40):
+                x, y = d * d / (4 * s0 * s0), (d * de) ** 2 / (4 * s1 * s1)
+                r = mpmath.sqrt(x + y)
+                for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
+                                 (uv.v[i], y / r), (uv.e[i], x * y / (x + y))):
+                    assert rel(got, ref) < 8 * EPS, (mask, i)
+
+
+#: (sigma0, sigma1) powers of two with omega = 1, Omega = None, d = 1, so that sqrt(x) =
+#: 1/(2 sigma0) and sqrt(y) = 1/(2 sigma1) are exact: pq_float on uv_from_h (the route of
+#: the Rayleigh-sum groups) sees the exact scales of the reference
+_UNDER = [
+    (2.0**536, 2.0**536),    # x = y = 2**-1074: uv = 2**-1075 rounds to 0, 1 - p underflows
+    (2.0**265, 2.0**265),    # x = y = 2**-532: 1 - p ~ xy/6 is subnormal
+    (2.0**265, 2.0**250),    # the same, unequal scales
+    (1.0, 0.5),              # x = 1/4, y = 1: the complement form, ordinary
+    (0.125, 0.0625),         # x = 16, y = 64: the direct form
+    (2.0**100, 0.5),         # x = 2**-202, y = 1: 1 - p ~ 1e-61, normal
+    (2.0**-201, 2.0**4),     # x = 2**400, y = 2**-10: log x + log y would cancel 2 digits
+    (2.0**-170, 2.0**3),     # x = 2**338, y = 2**-8
+    (2.0**-120, 2.0**2),     # x = 2**238, y = 2**-6
+]
+
+
+def test_pq_float_complement_underflow_and_zero_uv():
+    """1 - p below the normal range (and uv = 0 after rounding) next to ordinary values in one
+    array: 1 - p is 0 or subnormal, log(1 - p) the finite sum of logs, every other value to the
+    contract; then each value alone (the arrays share the complement form's chunk)."""
+    hx = np.array([0.5 / s0 for s0, _ in _UNDER])
+    hy = np.array([0.5 / s1 for _, s1 in _UNDER])
+    assert uv_from_h(hx[:1], hy[:1]).e[0] == 0.0  # the case of uv rounded to 0
+    sets = [list(range(len(_UNDER)))] + [[i] for i in range(len(_UNDER))]
+    for idx in sets:
+        uv = uv_from_h(hx[idx], hy[idx])
+        arrs = [pq_float(uv, w) for w in WANTS]
+        for k, i in enumerate(idx):
+            _check([float(a[k]) for a in arrs], (_UNDER[i][0], _UNDER[i][1], 1.0, None, 1.0), {})
+
+
+def test_delta_float_dense_near_sqrt2_and_message():
+    """omega**2 - 2 within one rounding of the exact rational value for 400 omegas within
+    1e-6 of sqrt(2) (where omega**2 - 2 cancels up to 6 digits, and up to 15 next to it)."""
+    from fractions import Fraction
+
+    r2 = math.sqrt(2.0)
+    oms = [r2 * (1 + k * 2.5e-9) for k in range(-200, 200)]
+    oms += [float(np.nextafter(r2, 3) + k * 2.0**-52) for k in range(-20, 20)]
+    got = delta_float(np.array(oms), None)
+    for o, g in zip(oms, got, strict=True):
+        exact = Fraction(o) ** 2 - 2
+        assert abs(Fraction(float(g)) - exact) <= abs(exact) * Fraction(EPS) / 2, (o, g)
+    with pytest.raises(ValueError, match=r"^Omega: resonance Omega == omega \(infinite forced "
+                                         r"amplitude\) at index 1"):
+        delta_float(np.array([1.0, 2.0]), np.array([1.5, 2.0]))
+
+
+#: omega > 1e100 with Omega = None (|Delta| = omega**2, maybe beyond float64) and both
+#: sqrt(x), sqrt(y) ~ 1: the mantissa path's both-moderate region
+OMEGA_HUGE = [(1.0, 1e240, 1e120, None, 1.0), (1e-160, 1e160, 1e160, None, 1e-160),
+              (0.7, 3e250, 2e125, None, 0.5)]
+
+
+@pytest.mark.parametrize("pt", OMEGA_HUGE)
+def test_float64_huge_omega_moderate_scales(pt):
+    _check_public(pt)
+
+
+def test_kernels_under_any_numpy_error_state():
+    """The kernels set their own numpy error state where they under/overflow on purpose: under
+    the caller's ``np.errstate(all="raise")`` every public float64 function gives the same
+    values at every extreme point above, and the building blocks run on inputs that overflow,
+    underflow and divide by zero inside them (with the values of the default error state)."""
+    from symhx.forcing.kernels_float import pq_extreme
+
+    fns = ("impact_probability", "no_impact_probability", "log_impact_probability",
+           "log_no_impact_probability")
+    for pt in EXTREME + MANTISSA + RANGE_EDGES + OMEGA_HUGE:
+        s0, s1, om, Om, d = pt
+        ref = [getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d) for f in fns]
+        with np.errstate(all="raise"):
+            got = [getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d) for f in fns]
+        assert got == ref, pt
+    big_small = np.array([1e-200, 1e200, 0.3])
+    calls = [
+        lambda: delta_float(np.array([2e160, 1e-200, 1.3]), None),
+        lambda: delta_float(np.array([1e200, 1e-200]), np.array([1e-200, 3e-200])),
+        lambda: uv_forcing(big_small, np.array([1e-200, 1e-200, 1e200]), np.array(1.0), None,
+                           np.array(1.0)),
+        lambda: uv_forcing(np.array([5e-324, 0.3]), np.array([5e-324, 1e-300]),
+                           np.array([1.0, 1e-160]), np.array([2.0, 2e-160]), np.array(1.0)),
+        lambda: uv_from_h(np.array([1e200, 0.0, 1e-200]), np.array([1e-200, 0.0, 1e-200])),
+        lambda: pq_float(uv_from_h(np.array([1e200, 1e-160, 0.5]),
+                                   np.array([1e-200, 1e-160, 0.7])), "logq"),
+        lambda: i2_float(np.array([30.0, 0.1, 27.0]), np.array([40.0, 0.2, 0.5])),
+        lambda: i3_float(np.array([30.0, 0.1, 27.0]), np.array([40.0, 0.2, 0.5])),
+        lambda: pq_extreme(big_small, big_small[::-1], np.array([1.0, 1e160, 2.0]), None,
+                           np.array([1.0, 1e-160, 1e200]), "logp"),
+    ]
+    for k, call in enumerate(calls):
+        ref = call()
+        with np.errstate(all="raise"):
+            got = call()
+        for a, b in zip(ref if isinstance(ref, tuple) else (ref,),
+                        got if isinstance(got, tuple) else (got,), strict=True):
+            np.testing.assert_array_equal(a, b, err_msg=str(k))
+
+
+#: one scale beyond 1e75 against d and uv beyond every float (e = inf in the limit form of
+#: the mantissa path, where u and f are inf too): p = 0, 1 - p = 1, log p = -inf, no NaN
+UV_INF = [(4.7e-272, 1.5e-66, 2.9e93, None, 5e145), (2.8e-277, 1e-84, 6.8e93, None, 2.9e86),
+          (3.6e-259, 1.9e-232, 3.9e25, None, 2.9e113)]
+
+
+@pytest.mark.parametrize("pt", UV_INF)
+def test_float64_uv_beyond_floats_limit_form(pt):
+    _check_public(pt)
+
+
+#: Delta = omega**2 - Omega**2 subnormal or underflowing to 0 (its float product loses digits),
+#: omega**2 beyond float64 with Omega None, sqrt(x) beyond float64: sqrt(y), uv still normal
+UV_FORCING_EDGES = [(0.5, 1e-300, 1e-160, 2e-160, 1.0), (0.5, 1e-300, 1e-200, 1e-199, 1.0),
+                    (0.5, 1e300, 1e200, None, 1.0), (0.5, 3e-300, 2e-160, 1e-160, 0.7),
+                    (0.4, 0.3, 0.7, None, 1.2), (0.4, 0.3, 0.7, 1.9, 1.2)]
+
+
+def test_uv_forcing_where_delta_under_or_overflows():
+    """uv_forcing (the derivative's scales) against exact rational x, y: every field within a
+    few ulps where Delta itself is no normal float; uv right where sqrt(x) overflows; and the
+    float64 derivative there against its mpmath route (exact Delta, quadrature-free closed
+    forms at 30 digits: an independent evaluation of the same formula)."""
+    for s0, s1, om, Om, d in UV_FORCING_EDGES:
+        uv = uv_forcing(np.array(s0), np.array(s1), np.array(om),
+                        None if Om is None else np.array(Om), np.array(d))
+        with mpmath.workdps(40):
+            x, y = _xy(s0, s1, om, Om, d)
+            r = mpmath.sqrt(x + y)
+            for got, ref in ((uv.x, x), (uv.y, y), (uv.r, r), (uv.u, x / r), (uv.v, y / r),
+                             (uv.e, x * y / (x + y))):
+                assert rel(float(got), ref) < 8 * EPS, (s0, s1, om, Om, d)
+        got = F.dp_dsigma(s0, sigma1=s1, omega=om, Omega=Om, d=d)
+        ref = F.dp_dsigma(s0, sigma1=s1, omega=om, Omega=Om, d=d, dps=30)
+        assert rel(got, ref) < 64 * EPS, (s0, s1, om, Om, d, got, ref)
+    # sqrt(x) beyond float64 (then uv ~ y), both beyond (uv = inf), next to ordinary values and
+    # omega > 1e100 in one array
+    s0 = np.array([5e-324, 5e-324, 0.5, 0.4])
+    s1 = np.array([0.3, 5e-324, 1e300, 0.3])
+    om = np.array([1.0, 1.0, 1e200, 0.7])
+    uv = uv_forcing(s0, s1, om, None, np.array(1.0))
+    assert uv.r[0] == uv.r[1] == uv.e[1] == math.inf
+    for i in (0, 2, 3):
+        with mpmath.workdps(40):
+            x, y = _xy(float(s0[i]), float(s1[i]), float(om[i]), None, 1.0)
+            assert rel(uv.e[i], x * y / (x + y)) < 8 * EPS, i
+            if i:
+                assert rel(uv.u[i], x / mpmath.sqrt(x + y)) < 8 * EPS, i
+    with pytest.raises(ValueError, match="resonance"):
+        uv_forcing(np.array(0.3), np.array(0.3), np.array(1.5), np.array(1.5), np.array(1.0))

@@ -34,8 +34,9 @@ _TINY = float(np.finfo(float).tiny)
 
 
 def delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
-    """``omega**2 - Omega**2`` with small relative error also close to resonance."""
-    with np.errstate(over="ignore", invalid="ignore"):
+    """``omega**2 - Omega**2`` with small relative error also close to resonance (whatever the
+    caller's numpy error state: over/underflow of the squares is expected)."""
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         if Omega is None:  # Omega**2 = 2 exactly: omega**2 = hi + lo exactly (Dekker), then - 2
             c = _SPLIT * omega
             hi = c - (c - omega)
@@ -149,34 +150,52 @@ class UV(NamedTuple):
 
 
 def uv_from_h(hx: np.ndarray, hy: np.ndarray) -> UV:
-    """x, y, r, u, v, uv from ``hx = sqrt(x)``, ``hy = sqrt(y)``."""
-    with np.errstate(over="ignore", invalid="ignore"):
+    """x, y, r, u, v, uv from ``hx = sqrt(x)``, ``hy = sqrt(y)`` (whatever the caller's numpy
+    error state: the squares may over/underflow)."""
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         r = np.hypot(hx, hy)
         u = hx * (hx / r)
         v = hy * (hy / r)
         m = hx * (hy / r)
         e = m * m
-    return UV(hx * hx, hy * hy, r, u, v, e)
+        return UV(hx * hx, hy * hy, r, u, v, e)
 
 
 def uv_forcing(sig0, sig1, omega, Omega, d) -> UV:
     """``x = d**2/(4 sigma0**2)``, ``y = d**2 Delta**2/(4 sigma1**2)`` (scales of eqs. 24-25).
 
-    Arguments broadcast against each other; ``x`` and ``y`` may keep smaller shapes.
+    Arguments broadcast against each other. ``sqrt(x) = d/(2 sigma0)`` and ``sqrt(y) = d
+    |Delta|/(2 sigma1)`` are products of mantissas and exponents (``|Delta| = |omega - Omega|
+    (omega + Omega)``, or ``omega**2 - 2`` and ``omega**2`` beyond 1e100 for ``Omega=None``), so
+    they are accurate whenever they are normal floats, even where ``Delta`` or another
+    intermediate would under/overflow; the rest as :func:`uv_from_h` (``uv`` also where ``r``
+    overflows).
     """
-    delta = np.abs(delta_float(omega, Omega))
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
-        hx = d / (2.0 * sig0)
-        hy = (d * delta) / (2.0 * sig1)
-        x = hx * hx
-        y = hy * hy
-        # e = uv = d**2 / (4 (sigma0**2 + (sigma1/Delta)**2)): few roundings (~2 eps)
-        t = sig1 / delta
-        e = (d * d) / (4.0 * (sig0 * sig0 + t * t))
-        r = np.sqrt(x + y)
-        u = x / r
-        v = y / r
-    return UV(x, y, r, u, v, e)
+    with np.errstate(all="ignore"):
+        if Omega is None:
+            small = omega <= 1e100
+            dl = np.where(small, np.abs(delta_float(np.where(small, omega, 1.0), None)), 1.0)
+            dfac = [dl, np.where(small, 1.0, omega), np.where(small, 1.0, omega)]
+            shift = -1
+        else:
+            delta_float(omega, Omega)  # the resonance check
+            dfac = [np.abs(omega - Omega), 0.5 * omega + 0.5 * Omega]
+            shift = 0
+        sig0, sig1, d, *dfac = np.broadcast_arrays(sig0, sig1, d, *dfac)
+        mx, ex = _frexp_div([d], [sig0], -1)
+        my, ey = _frexp_div([d, *dfac], [sig1], shift)
+        hx, hy = np.ldexp(mx, ex), np.ldexp(my, ey)
+        uv = uv_from_h(hx, hy)
+        if np.isfinite(uv.r).all():
+            return uv
+        # r = hypot(hx, hy) beyond float64: uv = s**2/(1 + (s/l)**2) from the smaller and the
+        # larger of hx, hy (inf only where uv itself is beyond float64)
+        s, l_ = np.minimum(hx, hy), np.maximum(hx, hy)
+        rho = s / l_
+        e = s / np.sqrt(1.0 + rho * rho)
+        e *= e
+        e = np.where(s == math.inf, math.inf, e)  # both beyond float64
+        return uv._replace(e=np.where(np.isfinite(uv.r), uv.e, e))
 
 
 def uv_chunk(sig0, sig1, delta, d, m: int) -> UV:
