@@ -301,3 +301,48 @@ def test_small_scale_structure_resolved_at_30_digits():
     hi = S.logsf("7.35", dps=30)
     assert rel(S.logsf("7.35", dps=20), hi) < 1e-19
     assert rel(S.logsf(7.35), hi) < 1e-14
+
+
+@pytest.mark.parametrize("c", [1e-160, 1e160, 2.0**-300, 1e250])
+def test_float64_routes_at_extreme_magnitudes(c):
+    """Scales and x far outside 2**+-200: the float64 routes square them, so they work on the
+    scale-free problem (scaled by a power of two). Before: scales (1, 2, 3) e-160 gave a cdf
+    off by 1.8e-4 and an infinite density; (1, 2, 3) e160 gave sf = 0 and log sf = -inf (true
+    0.848 and -84.4). References: mpmath at 25 digits, and the density's scaling
+    pdf_{cS}(c x) = pdf_S(x) / c against the unscaled float64 value."""
+    base = RayleighSum([1.0, 2.0, 3.0])
+    S = RayleighSum([c, 2 * c, 3 * c])
+    for u in (0.1, 5.0, 50.0):
+        x = u * c
+        for kind in ("sf", "cdf", "logsf", "logcdf"):
+            got = getattr(S, kind)(x)
+            ref = getattr(S, kind)(mpmath.mpf(x), dps=25)
+            assert rel(got, ref) < 1e-13, (kind, u)
+            assert rel(got, getattr(base, kind)(u)) < 1e-13, (kind, u)
+        with mpmath.workdps(30):
+            assert rel(S.pdf(x), S.pdf(mpmath.mpf(x), dps=25)) < 1e-13
+            assert rel(S.pdf(x) * c, base.pdf(u)) < 1e-13
+    res = S.probability(5 * c)
+    assert rel(res.value, base.sf(5.0)) < 1e-13 and res.error < 1e-13
+
+
+def test_forced_scales_at_tiny_and_huge_frequencies():
+    # |omega**2 - Omega**2| = |omega - Omega| (omega + Omega), divided one factor at a time:
+    # omega = 1e-160, Omega = 2e-160 made Delta subnormal (1.1e-5 relative error), and omega =
+    # 1e-200, Omega = 1e-199 made it 0 (ZeroDivisionError); the true scale 7e397 is +inf
+    got = F.rayleigh_scales(0.5, sigma1=1e-300, omega=1e-160, Omega=2e-160)
+    ref = F.rayleigh_scales(0.5, sigma1=1e-300, omega=1e-160, Omega=2e-160, dps=30)
+    assert all(rel(g, r) < 1e-15 for g, r in zip(got, ref, strict=True))
+    assert F.rayleigh_scales(0.5, omega=1e-200, Omega=1e-199)[1] == math.inf
+    with mpmath.workdps(30):
+        s = F.rayleigh_scales(0.5, omega=1e-200, Omega=1e-199, dps=30)[1]
+        assert rel(s, mpmath.sqrt(2) * mpmath.mpf(0.5) / (mpmath.mpf(1e-199) ** 2
+                                                          - mpmath.mpf(1e-200) ** 2)) < 1e-28
+    # a forced scale beyond float64, or scales spread beyond what float64 squares: a clear
+    # error, never NaN (1e-150 gave NaN before); the mpmath route answers
+    for om, Om in ((1e-200, 1e-199), (1e-150, 2e-150)):
+        with pytest.raises(ValueError, match="use dps="):
+            F.impact_probability(0.5, omega=om, Omega=[Om, 2.0])
+        assert F.impact_probability(0.5, omega=om, Omega=[Om, 2.0], dps=20) == 1
+    assert rel(F.impact_probability(0.5, omega=1e-50, Omega=[3e-50, 2.0]),
+               F.impact_probability(0.5, omega=1e-50, Omega=[3e-50, 2.0], dps=20)) < 1e-15

@@ -84,7 +84,11 @@ def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:
 
     def one(f: ForcingParams) -> Any:
         if dps is None:
-            S = RayleighSum(scales_of(f))
+            scales = scales_of(f)
+            if not all(math.isfinite(s) for s in scales):
+                raise ValueError("a forced component's Rayleigh scale sigma1 / |omega**2 - "
+                                 "Omega**2| is beyond float64 here: use dps=")
+            S = RayleighSum(scales)
             return getattr(S, kind)(float(f.d))
         # a relative error eps of a scale moves log p by ~2 E eps (p = exp(-E), E = d**2/(2
         # sum s**2)): the scales carry log10(E) more digits (RayleighSum takes them exactly)

@@ -88,7 +88,17 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
             except ValueError:
                 raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)") from None
-            out.append(math.sqrt(2.0) * (s0 if s1 is None else float(s1)) / delta)
+            scale = math.sqrt(2.0) * (s0 if s1 is None else float(s1))
+            if Om is not None:
+                # |omega**2 - Omega**2| = |omega - Omega| (omega + Omega), divided one factor at
+                # a time: the product under/overflows (or is subnormal, with lost digits) for
+                # tiny or huge frequencies whose scale is still a float64 (or +inf)
+                Omf = float(Om)
+                delta = abs(float(om) - Omf)
+                scale = scale / delta / (float(om) + Omf)
+            else:
+                scale = scale / delta
+            out.append(scale)
         return tuple(out)
     with mpmath.workdps(work_dps):
         s0 = mp_arg("sigma", fp.sigma)
@@ -775,7 +785,8 @@ class RayleighSum:
             xa = float_arg("x", x, positive=False)
             if xa.ndim:
                 raise TypeError("x must be a scalar here (use sf/cdf for arrays)")
-            val, err = _float_with_error(self._float_scales(), xa.reshape(1), kind)
+            sc, xn, _ = _float_normalized(self._float_scales(), xa.reshape(1))
+            val, err = _float_with_error(sc, xn, kind)
             return RayleighSumResult(float(val[0]), float(err[0]), method)
         with mpmath.workdps(dps + 15 + self._exp_digits(x)):
             xm = _mp_x(x)
@@ -847,9 +858,11 @@ class RayleighSum:
             return +val
 
     def _float_kind(self, x: np.ndarray, kind: str) -> np.ndarray:
-        sc = self._float_scales()
+        sc0 = self._float_scales()
+        sc, x, e = _float_normalized(sc0, x)
         if kind in ("sf", "cdf", "pdf"):
-            return _float_with_error(sc, x, kind)[0]
+            val = _float_with_error(sc, x, kind)[0]
+            return np.ldexp(val, -e) if kind == "pdf" and e else val
         if kind == "logsf":
             out = _float_logsf(sc, x)
             big = out > -math.log(2.0)
@@ -858,8 +871,8 @@ class RayleighSum:
             return out
         tiny = (x > 0) & (x <= _X_SMALL * min(sc))
         out = np.empty(x.shape)
-        if tiny.any():
-            out[tiny] = _float_small_logcdf(sc, x[tiny])
+        if tiny.any():   # ratios only: the unscaled values (x / 2**e may be subnormal)
+            out[tiny] = _float_small_logcdf(sc0, np.ldexp(x[tiny], e))
         rest = ~tiny
         v = _float_with_error(sc, x[rest], "cdf")[0]
         big = v > 0.5
@@ -869,6 +882,29 @@ class RayleighSum:
                 r[big] = np.log1p(-_float_with_error(sc, x[rest][big], "sf")[0])
         out[rest] = r
         return out
+
+
+#: the float64 routes square the scales and x: beyond ``2**+-200`` both are scaled by the power
+#: of two ``2**-e`` that brings the largest scale to [1/2, 1) (exact; the probabilities are
+#: scale-free, the density scales by ``2**-e``)
+_FLOAT_SCALE_RANGE = 2.0**200
+
+
+def _float_normalized(scales: list[float], x: np.ndarray) -> tuple[list[float], np.ndarray, int]:
+    """``(scales, x, e)`` scaled by ``2**-e`` when the largest scale is outside
+    ``[1/_FLOAT_SCALE_RANGE, _FLOAT_SCALE_RANGE]`` (else ``e = 0`` and the inputs as they are).
+    A scale that would then be below ``2**-500`` (its square below the normal float64 range)
+    is refused (``dps=`` handles it)."""
+    top = max(scales)
+    if 1 / _FLOAT_SCALE_RANGE <= top <= _FLOAT_SCALE_RANGE:
+        return scales, x, 0
+    e = math.frexp(top)[1]
+    out = [math.ldexp(s, -e) for s in scales]
+    if min(out) < 2.0**-500:
+        raise ValueError(f"the Rayleigh scales spread over more than float64 resolves here "
+                         f"({min(scales):.3g} to {top:.3g}): use dps=")
+    with np.errstate(under="ignore"):
+        return out, np.ldexp(x, -e), e
 
 
 #: lower tail: ``x <= _X_SMALL min(s)`` takes the leading power of ``P(S <= x)`` (relative
