@@ -247,7 +247,8 @@ def test_direct_methods_tails_and_arrays():
 
 def test_float_scales_spread_far_apart():
     """Scales 1e25 apart: the pair's closed form (no quadrature) up to x/min(s) = 1e150, the
-    bracket of (a) for three scales; beyond the quadrature range a clear error (use dps=)."""
+    bracket of (a) for three scales; beyond the quadrature range the Laplace regime, or short of
+    it a clear error (use dps=)."""
     two = RayleighSum([1.0, 1e-25])
     for x in (10.0, 1e3, 1e20, 1e31):
         with mpmath.workdps(40):
@@ -258,9 +259,13 @@ def test_float_scales_spread_far_apart():
             lo = log_pair_sf(x, 1.0, 0.5)
             hi = log_pair_sf(mpmath.mpf(x) - 40 * mpmath.mpf(1e-25), 1.0, 0.5)
             assert lo - abs(lo) * 1e-14 <= three.logsf(x) <= hi + abs(lo) * 1e-14, x
-    with pytest.raises(ValueError, match="use dps="):
-        three.logsf(1e31)
+    # x min(s) = 1e6 V: the Laplace regime (the third scale moves log P by O(10) of 4e61)
+    with mpmath.workdps(40):
+        assert rel(three.logsf(1e31), log_pair_sf(mpmath.mpf(1e31), 1.0, 0.5)) < 1e-15
     assert three.sf(1e31) == 0.0 and three.cdf(1e31) == 1.0
+    # beyond the quadrature range but short of the Laplace regime: a clear error
+    with pytest.raises(ValueError, match="use dps="):
+        RayleighSum([1.0, 0.5, 1e-30]).logsf(1e31)
 
 
 def test_float_lower_tail_log_cdf():
@@ -346,3 +351,19 @@ def test_forced_scales_at_tiny_and_huge_frequencies():
         assert F.impact_probability(0.5, omega=om, Omega=[Om, 2.0], dps=20) == 1
     assert rel(F.impact_probability(0.5, omega=1e-50, Omega=[3e-50, 2.0]),
                F.impact_probability(0.5, omega=1e-50, Omega=[3e-50, 2.0], dps=20)) < 1e-15
+
+
+@pytest.mark.parametrize("scales", [[1.0, 0.5, 0.3], [3.0, 2.0, 0.7, 1e-4], [2.0, 1e-3, 1e-3],
+                                    [5.0, 0.2, 0.1, 0.05]])
+def test_laplace_log_tail_every_term(scales):
+    """From x min(s) = 1e5 V on, float64 log sf is the Laplace expansion; its terms beyond
+    -x**2/(2V) are O(10) there against an ulp of ~1e-5, so each of them shows: compared with the
+    mpmath route (scaled quadrature, 20 digits) to 4 ulp at K = 1e5, 1e6 and 1e7."""
+    S = RayleighSum(scales)
+    V = math.fsum(s * s for s in scales)
+    for K in (1e5, 1e6, 1e7):
+        x = K * V / min(scales)
+        got = S.logsf(x)
+        ref = S.logsf(mpmath.mpf(x), dps=20)
+        with mpmath.workdps(30):
+            assert abs(got - ref) <= 4 * math.ulp(got), (K, float(got - ref))
