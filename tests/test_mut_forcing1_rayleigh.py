@@ -400,3 +400,53 @@ def test_bad_input():
     assert rel(res.value, ref((0.5, 0.3, 0.2), 1.0, "cdf")) < 1e-20
     res = rayleigh_sum_probability([0.5, 0.3, 0.2], 1.0)
     assert rel(res.value, ref((0.5, 0.3, 0.2), 1.0, "sf")) < 1e-13
+
+
+# ---------------------------------------------------------------- small print of the public API
+def test_moments_closed_forms_and_types():
+    # E R = s sqrt(pi/2), Var R = (2 - pi/2) s**2 for one Rayleigh variable; sums add
+    sc = [0.5, 0.3, 0.2]
+    S = RayleighSum(sc)
+    m, v = S.mean(), S.var()
+    assert type(m) is float and type(v) is float and type(S.std()) is float
+    assert m == pytest.approx(sum(sc) * math.sqrt(math.pi / 2), rel=1e-15)
+    assert v == pytest.approx((2 - math.pi / 2) * sum(s * s for s in sc), rel=1e-15)
+    assert S.std() == pytest.approx(math.sqrt(v), rel=1e-15)
+    with mpmath.workdps(50):
+        ref = mpmath.sqrt(mpmath.pi / 2) * (mpmath.mpf(0.5) + mpmath.mpf(0.3) + mpmath.mpf(0.2))
+        assert abs(S.mean(dps=40) - ref) < mpmath.mpf(10) ** -40
+        assert isinstance(S.std(dps=30), mpmath.mpf)
+    x = S.rvs(random_state=3)
+    assert type(x) is float and x > 0
+    assert S.rvs(size=4, random_state=3).shape == (4,)
+    with pytest.raises((TypeError, ValueError), match="random_state"):
+        S.rvs(random_state="seed")
+
+
+def test_small_print_of_the_functions():
+    # d defaults to 1; the tail choice and the scalar-only arguments are named in errors
+    assert rayleigh_sum_probability([0.5, 0.3, 0.2]) == rayleigh_sum_probability([0.5, 0.3, 0.2],
+                                                                                  1.0)
+    with pytest.raises(ValueError, match="tail"):
+        rayleigh_sum_probability([0.5, 0.3], 1.0, tail="both")
+    with pytest.raises(TypeError, match=r"sigma must be a scalar here, got list"):
+        rayleigh_scales([0.5, 0.6])
+    with pytest.raises(TypeError, match=r"^sigma1: a list needs a list of forcing components "
+                                        r"Omega$"):
+        rayleigh_scales(0.5, sigma1=[0.1, 0.2])
+    with pytest.raises(ValueError, match=r"Omega\[1\]: resonance Omega == omega \(infinite "
+                                         r"forced amplitude\)$"):
+        rayleigh_scales(0.5, omega=1.5, Omega=[2.0, 1.5])
+
+
+def test_float_routes_under_any_numpy_error_state():
+    # underflow, division by zero and overflow are expected inside (tiny x, huge x, subnormal
+    # ratios): every float64 entry point handles them itself, whatever the caller's error state
+    xs = np.array([5e-324, 1e-310, 1e-100, 1e-5, 0.7, 30.0, 1e5, 1e12])
+    for sc in ([1.0], [1.0, 0.5], [1.0, 0.5, 0.3], [1e-170, 2e-170, 3e-170]):
+        S = RayleighSum(sc)
+        x = xs * sc[0]
+        plain = {k: getattr(S, k)(x) for k in ("sf", "cdf", "pdf", "logsf", "logcdf")}
+        with np.errstate(all="raise"):
+            for k, v in plain.items():
+                np.testing.assert_array_equal(getattr(S, k)(x), v)

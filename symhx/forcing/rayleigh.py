@@ -508,7 +508,8 @@ def _regions(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.nda
     the region beyond the quadrature range (only for scales spread over > 1e21) or, for one or
     two scales (closed forms, no quadrature), beyond ``x/min(s) = 1e150``."""
     var = math.fsum(s * s for s in scales)
-    laplace = x * min(scales) >= _X_LAPLACE * var
+    with np.errstate(under="ignore", over="ignore"):   # a subnormal or huge x: no matter
+        laplace = x * min(scales) >= _X_LAPLACE * var
     lim = _X_QUAD * max(scales) if len(scales) > 2 else 1e150 * min(scales)
     out = (x > lim) & ~laplace
     return laplace, out
