@@ -345,6 +345,10 @@ def test_forced_scales_at_tiny_and_huge_frequencies():
                                                           - mpmath.mpf(1e-200) ** 2)) < 1e-28
     # a forced scale beyond float64, or scales spread beyond what float64 squares: a clear
     # error, never NaN (1e-150 gave NaN before); the mpmath route answers
+    with pytest.raises(ValueError, match=r"^a forced component's Rayleigh scale sigma1 / "
+                                         r"\|omega\*\*2 - Omega\*\*2\| is beyond float64 here: "
+                                         r"use dps=$"):
+        F.impact_probability(0.5, omega=1e-200, Omega=[1e-199, 2.0])
     for om, Om in ((1e-200, 1e-199), (1e-150, 2e-150)):
         with pytest.raises(ValueError, match="use dps="):
             F.impact_probability(0.5, omega=om, Omega=[Om, 2.0])
@@ -367,3 +371,13 @@ def test_laplace_log_tail_every_term(scales):
         ref = S.logsf(mpmath.mpf(x), dps=20)
         with mpmath.workdps(30):
             assert abs(got - ref) <= 4 * math.ulp(got), (K, float(got - ref))
+
+
+def test_multi_component_p_far_out_keeps_its_digits():
+    """p = exp(-E) with E ~ 2e17 (d = 1e9): a relative error eps of a scale moves p by 2 E eps,
+    so the scales carry log10(E) more digits; with only the 15 guard digits p at dps = 20 was
+    off by ~4e-18.  Reference: dps = 40 (there the guard digits alone would suffice)."""
+    a = F.impact_probability(1, Omega=[1.7, 2.2], d="1e9", dps=20)
+    b = F.impact_probability(1, Omega=[1.7, 2.2], d="1e9", dps=40)
+    with mpmath.workdps(50):
+        assert abs(a / b - 1) < mpmath.mpf(10) ** -20
