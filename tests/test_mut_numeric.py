@@ -149,6 +149,8 @@ def test_stirling_ok_refuses_where_the_series_cannot_converge():
         assert mpmath.mpf(10) ** -2000 < err < mpmath.mpf(10) ** -1500
     for dps in (2600, 5000):
         assert not stirling_ok(10**4, dps) and not stirling_ok(4 * dps, dps)
+    for dps in range(15, 5001, 7):  # yes implies x > 4 dps (far below the divergence)
+        assert not stirling_ok(4 * dps, dps) or 4 * dps >= 10**4
     # the first x where stirling_ok says yes at 2600 digits: the series does reach them
     dps = 2600
     lo, hi = 10**4, 10**6
