@@ -11,6 +11,7 @@ and restores it.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any
 
@@ -104,8 +105,12 @@ def log1m_series(u: mpmath.mpf) -> mpmath.mpf:
 
 
 def stirling_ok(x: int, dps: int) -> bool:
-    """Whether Stirling's series at ``x`` reaches ``dps`` digits quickly (x well above dps)."""
-    return x >= max(10**4, 4 * dps)
+    """Whether Stirling's series at ``x`` reaches ``dps`` digits quickly: ``x >= 10**4``, and
+    large enough that the 400 terms of :func:`stirling_series` reach ``dps + 20`` digits (the
+    term r = 400, ``B_800 / (800 * 799 * x**799)``, is about ``10**1334 / x**798`` relative to
+    the sum ``~1/(12 x)``; this second condition matters from ``dps = 1838`` on, and it implies
+    ``x > 4 dps``, where the series is far from its divergence at ``r ~ pi x``)."""
+    return x >= 10**4 and 798 * math.log10(x) >= dps + 1354
 
 
 def G_mp(N: int, K: int) -> mpmath.mpf:

@@ -83,3 +83,57 @@ def test_refusals_name_the_limits():
         convergence_study(**{**good, "ps": "0.01"})
     with pytest.raises(TypeError, match="extra must be a list"):
         convergence_study(**{**good, "extra": "eq41"})
+
+
+def test_defaults_are_N_100_and_dps_20():
+    # the documented defaults: the same rows as with N=100, dps=20 spelled out, and not dps=21
+    kw = dict(ms=[0], ps=["0.05"], extra=())
+    rows = convergence_study(**kw)
+    assert rows == convergence_study(100, dps=20, **kw)
+    assert rows != convergence_study(101, dps=20, **kw)
+    assert rows[0].p_c != convergence_study(100, dps=21, **kw)[0].p_c
+
+
+def test_limit_is_inclusive_and_shown_exactly():
+    rows = convergence_study(STUDY_N_LIMIT, ms=[0], ps=["0.05"], extra=(), dps=15)
+    assert [r.space for r in rows] == ["excess<=0"] and 0 < rows[0].p_c < mpmath.mpf("0.05")
+    good = dict(ms=(0,), ps=("0.01",), dps=15, extra=())
+    with pytest.raises(ValueError, match=r"N=~10\*\*15 is beyond"):
+        convergence_study(10**15, **good)
+
+
+def test_refusals_name_the_argument():
+    import array
+
+    good = dict(N=10, ms=(0,), ps=("0.01",), dps=15, extra=())
+    with pytest.raises(TypeError, match="ms must be a list, tuple or range"):
+        convergence_study(**{**good, "ms": array.array("i", [0])})  # tolist() but no ndim
+    for kw, msg in [({"weighting": "x"}, "^weighting must be one of"),
+                    ({"ms": [-1]}, "^each maximum excess m of ms must be >= 0"),
+                    ({"ms": [MAX_EXCESS + 1]},
+                     f"^each maximum excess m of ms must be <= {MAX_EXCESS}"),
+                    ({"ps": ["0.01", "-1"]}, "^each p of ps must be > 0"),
+                    ({"extra": ["x"]}, "^each extra space must be one of"),
+                    ({"ps": []}, r"^ps must hold at least one p value \(decimal strings\), "
+                                 "got none$")]:
+        with pytest.raises(ValueError, match=msg):
+            convergence_study(**{**good, **kw})
+
+
+def test_dps_60_reaches_the_critical_point_and_means():
+    # dps is passed on to the critical-point search and to the distributions (60 is above
+    # their default 50)
+    sympy = pytest.importorskip("sympy")
+    N, dps, base, w = 12, 60, "excess<=1", "length"
+    p_irr = sympy.sqrt(2) / 40
+    with mpmath.workdps(100):
+        p_fr = Fraction(mpmath.nstr(mpmath.sqrt(2) / 40, 90))
+    rows = convergence_study(N, ms=[1], ps=["0.05", p_irr], extra=(), dps=dps)
+    r, = rows
+    with mpmath.workdps(70):  # the reference roots have 62 digits
+        pc = min(_roots(N, base, w).values())
+        assert abs(r.p_c - pc) <= mpmath.mpf(10) ** (1 - dps) * pc
+        for p, fr in (("0.05", Fraction(1, 20)), (p_irr, p_fr)):
+            ref = _exact_mean(N, base, w, fr)
+            refm = mpmath.mpf(ref.numerator) / ref.denominator
+            assert abs(r.means[p] - refm) <= mpmath.mpf(10) ** (1 - dps) * refm, p
