@@ -61,7 +61,7 @@ from typing import Any
 
 import mpmath
 
-from symhx._numeric import digits_of, log1m_series, stirling_series
+from symhx._numeric import digits_of, log1m_series, stirling_ok, stirling_series
 from symhx.validation import check_choice, check_dps, check_int, check_N
 
 __all__ = [
@@ -208,11 +208,14 @@ class _Relaxation:
 
     def __init__(self, N: int) -> None:
         self.N = N
-        self.large = N >= 10**4
+
+    def _series(self, K: mpmath.mpf) -> bool:
+        # Stirling's series (400 terms) only where it reaches the working digits at N - K
+        return stirling_ok(int(self.N - K), mpmath.mp.dps)
 
     def G(self, K: mpmath.mpf) -> mpmath.mpf:
         N = self.N
-        if self.large:
+        if self._series(K):
             u = K / N
             return (N * log1m_series(u) + mpmath.log1p(-u) / 2
                     + stirling_series(mpmath.mpf(N)) - stirling_series(N - K))
@@ -221,7 +224,7 @@ class _Relaxation:
 
     def dG(self, K: mpmath.mpf) -> mpmath.mpf:
         N = self.N
-        if self.large:  # psi(N-K) - log N with psi's asymptotic series
+        if self._series(K):  # psi(N-K) - log N with psi's asymptotic series
             x = N - K
             return mpmath.log1p(-K / N) - 1 / (2 * x) + stirling_series(x, derivative=True)
         with mpmath.extradps(digits_of(N) + 10):

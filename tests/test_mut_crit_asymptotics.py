@@ -85,7 +85,6 @@ def _dG_ref(N, K, dps):
 @pytest.mark.parametrize("dps", [30, 120])
 def test_relaxation_against_loggamma(N, dps):
     rel = A._Relaxation(N)
-    assert rel.large == (N >= 10**4)
     Ks = [mpmath.mpf("0.5"), mpmath.mpf(1), mpmath.mpf(7) / 3]
     with mpmath.workdps(60):
         Ks.append(mpmath.sqrt(mpmath.mpf(N) * mpmath.log(N)) * mpmath.pi / 3)
@@ -107,6 +106,22 @@ def test_relaxation_against_loggamma(N, dps):
             # F cancels near the minimiser: compare at the scale of its terms
             scale = abs(K / kap) + abs(K * dGr) + abs(mpmath.log(kap)) + abs(Gr)
             assert abs(F - Fr) <= tol * scale, (N, K, "F")
+
+
+def test_relaxation_beyond_the_reach_of_stirling():
+    """N = 20000: the 400 Stirling terms reach ~2098 digits at N - K ~ 2e4, so at dps = 2200 G
+    and dG must come from loggamma/digamma (the series was used for every N >= 10**4: errors
+    ~1e-2098, and the relaxed q of asymptotic_critical_point(20000, dps=2500) was off by
+    ~1e-2101)."""
+    N, dps = 20000, 2200
+    rel = A._Relaxation(N)
+    for K in (mpmath.mpf(7) / 3, mpmath.mpf(400)):
+        with mpmath.workdps(dps):
+            G, dG = rel.G(K), rel.dG(K)
+        Gr, dGr = _G_ref(N, K, dps + 40), _dG_ref(N, K, dps + 40)
+        with mpmath.workdps(dps + 60):
+            tol = mpmath.mpf(10) ** (3 - dps)
+            assert abs(G - Gr) <= tol * abs(Gr) and abs(dG - dGr) <= tol * abs(dGr), K
 
 
 def test_lambert_v():
