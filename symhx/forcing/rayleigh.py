@@ -409,9 +409,8 @@ def _panels_float(x: np.ndarray, last: _FGroup, rest: list[_FGroup], cs: _Panels
     return np.sort(pts, axis=1)
 
 
-def _conv_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int, cs: _Panels
-                ) -> np.ndarray:
-    """``P(sum <= x)`` (kind 'cdf') on array x (no Gaussian factor to take out)."""
+def _conv_float(groups: list[_FGroup], x: np.ndarray, n: int, cs: _Panels) -> np.ndarray:
+    """``P(sum <= x)`` on array x (no Gaussian factor to take out)."""
     if len(groups) == 1:
         return groups[0].cdf(x)
     last, rest = groups[-1], groups[:-1]
@@ -421,7 +420,7 @@ def _conv_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int, cs: _Pa
     h = 0.5 * (b - a)
     t = (0.5 * (a + b))[..., None] + h[..., None] * xg  # (nx, panels, n)
     xr = np.broadcast_to(x[:, None, None], t.shape)
-    inner = _conv_float(rest, (xr - t).ravel(), kind, n, cs).reshape(t.shape)
+    inner = _conv_float(rest, (xr - t).ravel(), n, cs).reshape(t.shape)
     f = last.pdf(t.ravel()).reshape(t.shape) * inner
     return np.sum(h * (f @ wg), axis=1)
 
@@ -573,8 +572,8 @@ def _float_cdf(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.n
             return val, 4 * _EPS * np.abs(val) * (2 + np.abs(np.log(np.maximum(val, 1e-300))))
         ratio = 2.0 * float(np.max(x, initial=0.0)) / min(scales)
         cs = _saddle_c(_FLOAT_DIGITS, len(scales), ratio)
-        lo = _conv_float(groups, x, "cdf", _N_LO, cs)
-        hi = _conv_float(groups, x, "cdf", _N_HI, cs)
+        lo = _conv_float(groups, x, _N_LO, cs)
+        hi = _conv_float(groups, x, _N_HI, cs)
         return hi, np.abs(hi - lo) + 4 * _EPS * np.abs(hi) * (len(scales) + 2)
 
 
