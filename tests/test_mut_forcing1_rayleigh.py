@@ -450,3 +450,21 @@ def test_float_routes_under_any_numpy_error_state():
         with np.errstate(all="raise"):
             for k, v in plain.items():
                 np.testing.assert_array_equal(getattr(S, k)(x), v)
+
+
+def test_log_cdf_leading_power_takes_logs_of_ratios():
+    # log P(S <= x) = sum 2 log(x / s_i) - log((2n)!) far in: with x = 2**-1074 and scales
+    # ~1e-314 the ratios are ~1e-10 (normal); log x - log s_i would lose ~1e-13 per term to the
+    # rounding of log x ~ -744 (3e-15 relative here); the ratio is only avoided when it
+    # underflows
+    S = RayleighSum([1e-314, 2e-314, 3e-314])
+    got = S.logcdf(5e-324)
+    ref = S.logcdf(mpmath.mpf(5e-324), dps=30)
+    with mpmath.workdps(40):
+        assert abs(got / ref - 1) < 4e-16
+    # a ratio below 1e-300 (x / 1e10): log x - log s, still to a few ulp of each log
+    S2 = RayleighSum([1e10, 2e10, 3e10])
+    got = S2.logcdf(5e-300)
+    ref = S2.logcdf(mpmath.mpf(5e-300), dps=30)
+    with mpmath.workdps(40):
+        assert abs(got / ref - 1) < 1e-15
