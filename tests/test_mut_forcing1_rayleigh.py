@@ -468,3 +468,25 @@ def test_log_cdf_leading_power_takes_logs_of_ratios():
     ref = S2.logcdf(mpmath.mpf(5e-300), dps=30)
     with mpmath.workdps(40):
         assert abs(got / ref - 1) < 1e-15
+
+
+def test_one_scale_against_the_rayleigh_closed_form():
+    # P(R <= x) = 1 - exp(-x**2/(2 s**2)), density x/s**2 exp(-x**2/(2 s**2)), both 0 at x <= 0
+    S = RayleighSum(["0.7"])
+    with mpmath.workdps(50):
+        s = mpmath.mpf(7) / 10
+        for x in ("0.1", "1", "5"):
+            xm = mpmath.mpf(x)
+            cdf = -mpmath.expm1(-xm**2 / (2 * s**2))
+            pdf = xm / s**2 * mpmath.exp(-xm**2 / (2 * s**2))
+            for got, ref in ((S.cdf(x, dps=30), cdf), (S.sf(x, dps=30), 1 - cdf),
+                             (S.pdf(x, dps=30), pdf)):
+                assert abs(got / ref - 1) < mpmath.mpf(10) ** -29, x
+            sf_, xf = mpmath.mpf(0.7), mpmath.mpf(float(x))   # float64 takes the binary 0.7
+            cdf_f = -mpmath.expm1(-xf**2 / (2 * sf_**2))
+            pdf_f = xf / sf_**2 * mpmath.exp(-xf**2 / (2 * sf_**2))
+            assert abs(S.cdf(float(x)) / cdf_f - 1) < 1e-15
+            assert abs(S.pdf(float(x)) / pdf_f - 1) < 1e-15
+        for x in ("0", "-1"):
+            assert S.cdf(x, dps=30) == 0 and S.pdf(x, dps=30) == 0 and S.sf(x, dps=30) == 1
+            assert S.cdf(float(x)) == 0 and S.pdf(float(x)) == 0
