@@ -381,10 +381,15 @@ def test_impact_compression_decides_sticking():
 def test_impact_compression_rule_at_its_exact_boundaries():
     # A = -tolA or +tolA exactly, and J = 0 exactly (all with u' = v_stick): the inequalities
     # of the rule as written -- A < -tolA or (|A| <= tolA and J < 0)
-    def gap(A_sign, J_zero):
-        # F = (1, 2): a0 = 0 so that A = -4 a1 exactly; b0 = -8 b1 makes J = -b0 - 8 b1 = 0
-        b1 = 1 / 6 if J_zero else -0.25
-        b0 = -8 * b1 if J_zero else -1.0 - 2 * b1
+    def gap(A_sign, J_sign):
+        # F = (1, 2), V = b0 + 2 b1 < 0: a0 = 0 so that A = -4 a1 exactly; J = -b0 - 8 b1 is
+        # 0 for b0 = -8 b1, and +2.5 or -0.5 for b1 = -0.25 or +0.25 with V = -1
+        if J_sign == 0:
+            b1 = 1 / 6
+            b0 = -8 * b1
+        else:
+            b1 = -0.25 * J_sign
+            b0 = -1.0 - 2 * b1
         a1 = 0.0
         for _ in range(5):      # tolA depends on a1 (through M2) very weakly: a fixed point
             g = [-a1, 0.0, b0, a1, b1]
@@ -393,28 +398,18 @@ def test_impact_compression_rule_at_its_exact_boundaries():
         g = [-a1, 0.0, b0, a1, b1]
         D, V, A, J = _eng().derivs(g, 0.0)
         _, _, _, M2, _, _ = _eng().bounds(g)
-        assert D == 0 and A == A_sign * TOL * EPS * M2 and (J == 0) == J_zero and V < 0
+        assert D == 0 and A == A_sign * TOL * EPS * M2 and (J > 0) - (J < 0) == J_sign
+        assert V < 0
         return g, -0.5 * V
 
     def kinds(g, v_stick):
         return [k for _, k in _impact(_eng(v_stick=v_stick), g)[0]]
 
-    g, vs = gap(-1, False)        # A = -tolA, J > 0: not compressed
-    assert _eng().derivs(g, 0.0)[3] > 0 and kinds(g, vs) == [IMPACT]
-    g, vs = gap(+1, False)        # A = +tolA, J > 0
-    assert kinds(g, vs) == [IMPACT]
-    g, vs = gap(0, True)          # A = 0, J = 0: not compressed
-    assert kinds(g, vs) == [IMPACT]
+    assert kinds(*gap(-1, 1)) == [IMPACT]     # A = -tolA, J > 0: not compressed
+    assert kinds(*gap(+1, 1)) == [IMPACT]     # A = +tolA, J > 0
+    assert kinds(*gap(0, 0)) == [IMPACT]      # A = 0, J = 0: not compressed
     # A = +tolA with J < 0: compressed (|A| <= tolA counts as zero curvature)
-    b1, b0 = 0.25, -1.5
-    a1 = 0.0
-    for _ in range(5):
-        _, _, _, M2, _, _ = _eng().bounds([-a1, 0.0, b0, a1, b1])
-        a1 = -TOL * EPS * M2 / 4
-    g = [-a1, 0.0, b0, a1, b1]
-    D, V, A, J = _eng().derivs(g, 0.0)
-    assert D == 0 and A == TOL * EPS * _eng().bounds(g)[3] and J < 0 and V < 0
-    assert kinds(g, -0.5 * V) == [IMPACT, STICK]
+    assert kinds(*gap(+1, -1)) == [IMPACT, STICK]
 
 
 def test_impact_velocity_threshold_and_accumulation_time():
