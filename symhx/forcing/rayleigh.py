@@ -83,22 +83,18 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
         om = np.float64(fp.omega)
         out = [math.sqrt(2.0) * s0]
         for i, (Om, s1) in enumerate(zip(omegas, s1s, strict=True)):
-            try:
-                delta = abs(float(delta_float(om, None if Om is None else np.asarray(Om))))
-            except ValueError:
-                raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
-                                 "amplitude)") from None
             scale = math.sqrt(2.0) * (s0 if s1 is None else float(s1))
-            if Om is not None:
-                # |omega**2 - Omega**2| = |omega - Omega| (omega + Omega), divided one factor at
-                # a time: the product under/overflows (or is subnormal, with lost digits) for
-                # tiny or huge frequencies whose scale is still a float64 (or +inf)
-                Omf = float(Om)
-                delta = abs(float(om) - Omf)
-                scale = scale / delta / (float(om) + Omf)
-            else:
-                scale = scale / delta
-            out.append(scale)
+            if Om is None:   # Omega**2 = 2: omega**2 - 2 by delta_float (never 0 for a float)
+                out.append(scale / abs(float(delta_float(om, None))))
+                continue
+            Omf, omf = float(Om), float(om)
+            if Omf == omf:
+                raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
+                                 "amplitude)")
+            # |omega**2 - Omega**2| = |omega - Omega| (omega + Omega), divided one factor at a
+            # time: the product under/overflows (or is subnormal, with lost digits) for tiny or
+            # huge frequencies whose scale is still a float64 (or +inf)
+            out.append(scale / abs(omf - Omf) / (omf + Omf))
         return tuple(out)
     with mpmath.workdps(work_dps):
         s0 = mp_arg("sigma", fp.sigma)
