@@ -409,6 +409,18 @@ def test_endless_lower_claims_stop_after_N_passes(monkeypatch):
         crit.critical_point(5, space="eq41", dps=15)
 
 
+def _assert_excess0_closed_form(cp, N, k, dps):
+    """excess<=0 has W(k) = A_k p**k: c_k = (A_1/A_k)**(1/(k-1)) in closed form, inside the
+    certified bracket and equal to p at dps digits."""
+    (A1,) = _poly(N, "excess<=0", "length", 1).values()
+    (Ak,) = _poly(N, "excess<=0", "length", k).values()
+    with mpmath.workdps(60):
+        c = (mpmath.mpf(A1) / Ak) ** (mpmath.mpf(1) / (k - 1))
+        assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
+    with mpmath.workdps(dps):
+        assert cp.p == +c
+
+
 def test_k_after_is_the_tied_k_whose_h_grows_fastest(monkeypatch):
     """Among tied argmins k_after maximises (slope of h_k, k). ;distinct weighting (roots in
     closed form, _dh_mp only gives the slopes): real slopes k - 1 pick 3; reversed slopes pick 2;
@@ -429,13 +441,7 @@ def test_guard_digits_grow_with_the_digits_of_N():
     N = 10**6
     cp = critical_point(N, space="excess<=0", dps=15)
     (k,) = cp.argmins
-    (A1,) = _poly(N, "excess<=0", "length", 1).values()
-    (Ak,) = _poly(N, "excess<=0", "length", k).values()
-    with mpmath.workdps(60):
-        c = (mpmath.mpf(A1) / Ak) ** (mpmath.mpf(1) / (k - 1))
-        assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
-    with mpmath.workdps(15):
-        assert cp.p == +c
+    _assert_excess0_closed_form(cp, N, k, 15)
 
 
 @pytest.mark.parametrize("N,k", [(20000, 14000), (40000, 12500)])
@@ -460,13 +466,7 @@ def test_no_rational_search_beyond_its_work_limit(monkeypatch, N, k):
     monkeypatch.setattr(crit, "_try_rational", no_search)
     cp = crit.critical_point(N, space="excess<=0", dps=20)
     assert cp.argmins == (k,) and cp.p_exact is None
-    (A1,) = _poly(N, "excess<=0", "length", 1).values()
-    (Ak,) = _poly(N, "excess<=0", "length", k).values()
-    with mpmath.workdps(60):
-        c = (mpmath.mpf(A1) / Ak) ** (mpmath.mpf(1) / (k - 1))
-        assert cp.p_bounds[0] <= c <= cp.p_bounds[1]
-    with mpmath.workdps(20):
-        assert cp.p == +c
+    _assert_excess0_closed_form(cp, N, k, 20)
 
 
 def test_root_estimates_from_bracket_ends_where_h_is_one(monkeypatch):
