@@ -164,7 +164,12 @@ _CHUNK = 16384
 
 
 class _FGroup:
-    """float64 group of one or two Rayleigh scales (closed forms on arrays)."""
+    """float64 group of one or two Rayleigh scales (closed forms on arrays).
+
+    Its methods under- and overflow on purpose (tiny or huge ``t``): they are only called inside
+    the ``np.errstate(under=, over=, invalid="ignore")`` of :func:`_float_scaled` and
+    :func:`_float_cdf`, so a caller's error state never reaches them.
+    """
 
     def __init__(self, scales: Sequence[float]) -> None:
         self.scales = tuple(float(s) for s in scales)
@@ -172,31 +177,27 @@ class _FGroup:
 
     def _uv(self, t: np.ndarray) -> Any:
         a, b = self.scales
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            return uv_from_h(t / (math.sqrt(2.0) * a), t / (math.sqrt(2.0) * b))
+        return uv_from_h(t / (math.sqrt(2.0) * a), t / (math.sqrt(2.0) * b))
 
     def cdf(self, t: np.ndarray) -> np.ndarray:
         t = np.maximum(t, 0.0)
         if len(self.scales) == 1:
-            with np.errstate(under="ignore", over="ignore"):
-                return -np.expm1(-0.5 * (t / self.scales[0]) ** 2)
+            return -np.expm1(-0.5 * (t / self.scales[0]) ** 2)
         out = np.zeros_like(t)
         pos = t > 0
-        with np.errstate(under="ignore"):
-            out[pos] = pq_float(self._uv(t[pos]), "q")
+        out[pos] = pq_float(self._uv(t[pos]), "q")
         return out
 
     def pdf(self, t: np.ndarray) -> np.ndarray:
         out = np.zeros_like(t)
         pos = t > 0
         tp = t[pos]
-        with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-            if len(self.scales) == 1:
-                s = self.scales[0]
-                out[pos] = tp / (s * s) * np.exp(-0.5 * (tp / s) ** 2)
-                return out
-            uv = self._uv(tp)
-            val = 4.0 * uv.u * uv.v / uv.r * np.exp(-uv.e) * i2_float(uv.u, uv.v) / tp
+        if len(self.scales) == 1:
+            s = self.scales[0]
+            out[pos] = tp / (s * s) * np.exp(-0.5 * (tp / s) ** 2)
+            return out
+        uv = self._uv(tp)
+        val = 4.0 * uv.u * uv.v / uv.r * np.exp(-uv.e) * i2_float(uv.u, uv.v) / tp
         out[pos] = np.where(np.isfinite(val), val, 0.0)
         return out
 
@@ -205,15 +206,14 @@ class _FGroup:
         if len(self.scales) == 1:
             return np.ones_like(t)
         out = np.ones_like(t)
-        with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-            for i in range(0, t.shape[0], _CHUNK):  # in cache-sized chunks (nested arrays)
-                tc = t[i : i + _CHUNK]
-                pos = tc > 0
-                uv = self._uv(tc[pos])
-                u, v = uv.u, uv.v
-                b = v * np.exp(-u * u) + u * np.exp(-v * v)
-                b += SQRT_PI * u * v * (sc.erf(u) + sc.erf(v))
-                out[i : i + _CHUNK][pos] = b / uv.r
+        for i in range(0, t.shape[0], _CHUNK):  # in cache-sized chunks (nested arrays)
+            tc = t[i : i + _CHUNK]
+            pos = tc > 0
+            uv = self._uv(tc[pos])
+            u, v = uv.u, uv.v
+            b = v * np.exp(-u * u) + u * np.exp(-v * v)
+            b += SQRT_PI * u * v * (sc.erf(u) + sc.erf(v))
+            out[i : i + _CHUNK][pos] = b / uv.r
         return out
 
     def mpdf(self, t: np.ndarray) -> np.ndarray:
@@ -221,12 +221,11 @@ class _FGroup:
         out = np.zeros_like(t)
         pos = t > 0
         tp = t[pos]
-        with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-            if len(self.scales) == 1:
-                out[pos] = tp / (self.scales[0] ** 2)
-                return out
-            uv = self._uv(tp)
-            val = 4.0 * (uv.u / uv.r) * (uv.v / tp) * i2_float(uv.u, uv.v)
+        if len(self.scales) == 1:
+            out[pos] = tp / (self.scales[0] ** 2)
+            return out
+        uv = self._uv(tp)
+        val = 4.0 * (uv.u / uv.r) * (uv.v / tp) * i2_float(uv.u, uv.v)
         out[pos] = np.where(np.isfinite(val), val, 0.0)
         return out
 
@@ -460,9 +459,8 @@ def _conv_scaled_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int,
     return total
 
 
-def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int, cs: _Panels
-             ) -> mpmath.mpf:
-    """``P(sum <= x)`` (kind 'cdf') at one threshold."""
+def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, n: int, cs: _Panels) -> mpmath.mpf:
+    """``P(sum <= x)`` at one threshold."""
     if len(groups) == 1:
         return groups[0].cdf(x)
     if x <= 0:
@@ -478,7 +476,7 @@ def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int, cs: _Panel
         h = (b - a) / 2
         m = (a + b) / 2
         s = mpmath.fsum(
-            wi * last.pdf(m + h * xi) * _conv_mp(rest, x - (m + h * xi), kind, n, cs)
+            wi * last.pdf(m + h * xi) * _conv_mp(rest, x - (m + h * xi), n, cs)
             for xi, wi in zip(xg, wg, strict=True)
         )
         total += h * s
@@ -604,8 +602,15 @@ def _laplace_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
     var = math.fsum(s * s for s in scales)
     const = (math.fsum(math.log(s) for s in scales) - math.log(var) / 2
              + (n - 1) * math.log(2 * math.pi) / 2)
+    # x = inf is a threshold beyond float64 after the rescaling of _float_normalized: log P is
+    # -inf there (as it is where the square overflows), not inf - inf
+    out = np.full(x.shape, -np.inf)
+    fin = np.isfinite(x)
+    xf = x[fin]
     with np.errstate(over="ignore"):
-        return -(x / math.sqrt(2 * var)) ** 2 + (n - 1) * (np.log(x) - math.log(var)) + const
+        out[fin] = (-(xf / math.sqrt(2 * var)) ** 2 + (n - 1) * (np.log(xf) - math.log(var))
+                    + const)
+    return out
 
 
 def _mp_scaled_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
@@ -672,7 +677,7 @@ def _mp_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
         val = groups[0].cdf(x)
         return val, abs(val) * mpmath.mpf(10) ** (-dps - 10)
     cs = _saddle_c(dps, len(scales), float(2 * max(x, 0) / min(scales)))
-    return _converge(lambda n: _conv_mp(groups, x, kind, n, cs), dps)
+    return _converge(lambda n: _conv_mp(groups, x, n, cs), dps)
 
 
 # =========================================================================== the distribution
@@ -747,8 +752,7 @@ class RayleighSum:
         rng = (random_state if isinstance(random_state, np.random.Generator)
                else np.random.default_rng(check_seed(random_state, "random_state")))
         sc = self._float_scales()
-        out = sum(rng.rayleigh(scale=s, size=size) for s in sc)
-        return float(out) if size is None else out
+        return sum(rng.rayleigh(scale=s, size=size) for s in sc)   # a float for size=None
 
     # ---- probabilities
     def sf(self, x: Any, *, dps: int | None = None) -> Any:
@@ -796,8 +800,7 @@ class RayleighSum:
         """Extra digits for ``exp(-E)``, ``E ~ x**2/(2 sum s**2)``, to keep its relative
         accuracy (E ~ 1e6 costs 6 digits)."""
         with mpmath.workprec(53):
-            fr = to_rational(x, "x")
-            xm = mpmath.mpf(fr.numerator) / fr.denominator if fr is not None else mpmath.mpf(0)
+            xm = _mp_x(x)   # a sympy expression too (evaluated), not taken as 0
             var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
             e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
         if e > MAX_EXPONENT:
@@ -860,7 +863,10 @@ class RayleighSum:
         sc, x, e = _float_normalized(sc0, x)
         if kind in ("sf", "cdf", "pdf"):
             val = _float_with_error(sc, x, kind)[0]
-            return np.ldexp(val, -e) if kind == "pdf" and e else val
+            if kind == "pdf" and e:   # the density scales by 2**-e: 0 or inf beyond float64
+                with np.errstate(under="ignore", over="ignore"):
+                    return np.ldexp(val, -e)
+            return val
         if kind == "logsf":
             out = _float_logsf(sc, x)
             big = out > -math.log(2.0)
@@ -901,7 +907,7 @@ def _float_normalized(scales: list[float], x: np.ndarray) -> tuple[list[float], 
     if min(out) < 2.0**-500:
         raise ValueError(f"the Rayleigh scales spread over more than float64 resolves here "
                          f"({min(scales):.3g} to {top:.3g}): use dps=")
-    with np.errstate(under="ignore"):
+    with np.errstate(under="ignore", over="ignore"):   # x beyond the range: inf (far tail)
         return out, np.ldexp(x, -e), e
 
 
