@@ -108,7 +108,14 @@ def evaluate(fp: ForcingParams, dps: int | None, want: str) -> Any:
         return _multi(fp, dps, want)
     if dps is None:
         return single_float(fp, want)
-    return elementwise(fp, lambda one: single_mp(one, dps, want))
+    return elementwise(fp, lambda one: _at_dps(single_mp(one, dps, want), dps))
+
+
+def _at_dps(value: mpmath.mpf, dps: int) -> mpmath.mpf:
+    """``value`` (computed with guard digits) rounded to ``dps`` digits, as every mpmath result
+    of the package is returned (the guard digits are not correct digits)."""
+    with mpmath.workdps(dps):
+        return +value
 
 
 def _dispatch(sigma: Any, sigma1: Any, omega: Any, Omega: Any, d: Any, dps: Any, want: str

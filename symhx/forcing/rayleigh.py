@@ -793,7 +793,11 @@ class RayleighSum:
         with mpmath.workdps(dps + 15 + self._exp_digits(x)):
             xm = _mp_x(x)
             val, err = _mp_with_error([mpf_of(s) for s in self._exact], xm, kind, dps)
-        return RayleighSumResult(val, err, method)
+            with mpmath.workdps(dps):   # returned at dps digits (the guard digits are not
+                out = +val              # correct digits): the estimate includes that rounding
+            err = err + abs(out - val)
+        with mpmath.workdps(dps):
+            return RayleighSumResult(out, +err, method)
 
     # ---- internals
     def _exp_digits(self, x: Any) -> int:
