@@ -100,6 +100,12 @@ def _sympy_number(x: Any) -> bool:
     return (type(x).__module__ or "").startswith("sympy")
 
 
+def _sympy_is(x: Any, flag: str) -> bool:
+    """``x`` is a sympy object whose class flag (``is_Rational``, ``is_Float``, ``is_number``) is
+    set; objects without the flag (matrices, ...) are not."""
+    return _sympy_number(x) and getattr(x, flag, None) is True
+
+
 # --------------------------------------------------------------------------- strings
 _RATIO = re.compile(r"^\s*([+-]?\d+)\s*/\s*([+-]?\d+)\s*$")
 _POWER = re.compile(r"^\s*(\d+)\s*\*\*\s*(\d+)\s*$")
@@ -190,14 +196,14 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
             raise ValueError(f"{name} must be finite, got {x!r}")
         return _mpf_tuple_to_fraction(x._mpf_, name, mpmath.nstr(x, 5))
     if _sympy_number(x):
-        if getattr(x, "is_Rational", False):
+        if _sympy_is(x, "is_Rational"):
             return Fraction(int(x.p), int(x.q))
-        if getattr(x, "is_Float", False):  # a binary float: its exact value, like an mpf
+        if _sympy_is(x, "is_Float"):  # a binary float: its exact value, like an mpf
             return _mpf_tuple_to_fraction(x._mpf_, name, x)
-        if getattr(x, "is_number", False) and (x.is_infinite or type(x).__name__ == "NaN"):
+        if _sympy_is(x, "is_number") and (x.is_infinite or type(x).__name__ == "NaN"):
             # oo, -oo, zoo and nan: the value is the problem, as for a float inf or nan
             raise ValueError(f"{name} must be finite, got {x!r}")
-        if getattr(x, "is_number", False) and x.is_real and x.is_finite:
+        if _sympy_is(x, "is_number") and x.is_real and x.is_finite:
             return None
         raise TypeError(f"{name} must be a finite real number, got sympy object {x!r}")
     if isinstance(x, numbers.Integral):  # numpy ints
@@ -234,7 +240,7 @@ def is_exact_type(p: Any) -> bool:
         return False
     if isinstance(p, (int, Fraction, str, numbers.Integral)):
         return True
-    return _sympy_number(p) and bool(getattr(p, "is_Rational", False))
+    return _sympy_is(p, "is_Rational")
 
 
 def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
@@ -248,7 +254,11 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
         if fr <= 0:
             raise ValueError(f"{name} must be > 0, got {p!r}")
         return fr, p
-    val = p.evalf(30)
+    try:  # strict: an expression equal to 0 (pi - pi unevaluated) is not "0.e-163 > 0"
+        val = p.evalf(30, strict=True)
+    except ArithmeticError:  # sympy's PrecisionExhausted
+        raise ValueError(f"{name} must be > 0, got {p!r} (its sign is not decided at 30 digits: "
+                         f"simplify it)") from None
     if not val > 0:
         raise ValueError(f"{name} must be > 0, got {p!r}")
     return None, p
@@ -282,9 +292,9 @@ def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | N
         if fr.denominator != 1:
             raise ValueError(f"{name} must be an integer, got {x!r}")
         v = fr.numerator
-    elif isinstance(x, Fraction) or (_sympy_number(x) and getattr(x, "is_Rational", False)):
+    elif isinstance(x, Fraction) or _sympy_is(x, "is_Rational"):
         # a non-integral rational is a value of the right kind out of range: ValueError
-        fr = Fraction(x) if isinstance(x, Fraction) else Fraction(int(x.p), int(x.q))
+        fr = Fraction(x)  # sympy's Rational is a numbers.Rational
         if fr.denominator != 1:
             raise ValueError(f"{name} must be an integer, got {x!r}")
         v = fr.numerator

@@ -49,6 +49,16 @@ class _Repr:
         return "a" * self.n
 
 
+class _BadRepr:
+    def __repr__(self):
+        raise RuntimeError("no repr")
+
+
+def test_a_value_whose_repr_raises_is_still_shown():
+    raises_re(TypeError, r"p must be a real number, got _BadRepr "
+              r"<[\w.]*_BadRepr object at 0x[0-9a-f]+>", v.to_rational, _BadRepr())
+
+
 @pytest.mark.parametrize("n, shown", [(60, "a" * 60), (61, "a" * 57 + "..."),
                                       (100, "a" * 57 + "...")])
 def test_long_reprs_are_cut_at_60_characters(n, shown):
@@ -84,7 +94,7 @@ def test_decimal_exponent_cap_at_its_exact_boundary():
     assert v.to_rational("2**332196") == 2**332196
     for text in (f"1e{MAXD + 1}", f"100e{MAXD - 1}", f"1e-{MAXD + 1}", f"-1e{MAXD + 1}",
                  f"10**{MAXD + 1}", "2**332197", "3**1000000", "9**1000000000000",
-                 "2**1000000000", "10**1000000000000"):
+                 "3**1000000000", "2**1000000000", "10**1000000000000"):
         raises(ValueError, f"sigma={text!r}: decimal exponent beyond +-{MAXD} "
                f"(symhx.validation.MAX_DECIMAL_EXPONENT)", v.to_rational, text, "sigma")
 
@@ -214,7 +224,8 @@ def test_sympy_numbers():
                        (sympy.nan, "nan")):
         raises(ValueError, f"x must be finite, got {shown}", v.to_rational, bad, "x")
     for bad, shown in ((sympy.I, "I"), (1 + sympy.I, "1 + I"), (sympy.Symbol("t"), "t"),
-                       (sympy.Matrix([[1]]), "Matrix([[1]])"), (sympy.sqrt(-2), "sqrt(2)*I")):
+                       (sympy.Matrix([[1]]), "Matrix([[1]])"), (sympy.sqrt(-2), "sqrt(2)*I"),
+                       (sympy.Symbol("r", rational=True), "r")):
         raises(TypeError, f"x must be a finite real number, got sympy object {shown}",
                v.to_rational, bad, "x")
 
@@ -269,7 +280,8 @@ def test_is_exact_type():
               sympy.Rational(1, 3), sympy.Integer(2)):
         assert v.is_exact_type(x) is True, x
     for x in (True, False, np.True_, 0.5, np.float64(0.5), Decimal("0.5"), mpmath.mpf(1),
-              sympy.sqrt(2), sympy.Float(0.5), None, [1], 1j):
+              sympy.sqrt(2), sympy.Float(0.5), None, [1], 1j, sympy.Matrix([[1]]),
+              sympy.Symbol("r", rational=True)):
         assert v.is_exact_type(x) is False, x
 
 
@@ -291,6 +303,14 @@ def test_check_p():
         raises(ValueError, f"a must be > 0, got {shown}", v.check_p, bad, "a")
     raises(ValueError, "p must be > 0, got 0", v.check_p, 0)
     raises(TypeError, "p must be a real number, got bool True", v.check_p, True)
+    raises(TypeError, "a must be a real number, got bool True", v.check_p, True, "a")
+    zero = sympy.Mul(0, sympy.sqrt(2), evaluate=False)  # evaluates to an exact 0
+    raises(ValueError, "a must be > 0, got 0*sqrt(2)", v.check_p, zero, "a")
+    # equal to 0 but not simplified: no sign at any precision (evalf alone gives "0.e-163" > 0)
+    for zero in (sympy.Add(sympy.pi, -sympy.pi, evaluate=False),
+                 sympy.Add(sympy.sqrt(2), -sympy.sqrt(2), evaluate=False)):
+        raises(ValueError, f"a must be > 0, got {zero!r} (its sign is not decided at 30 digits: "
+               "simplify it)", v.check_p, zero, "a")
 
 
 def test_check_real_bounds_at_their_exact_values():
@@ -343,7 +363,9 @@ def test_check_int_refusals():
     for bad, shown in ((None, "NoneType None"), (mpmath.mpf(2), "mpf mpf('2.0')"),
                        (Decimal(2), "Decimal Decimal('2')"), (sympy.sqrt(2), "Pow sqrt(2)"),
                        (sympy.Float(2), "Float 2.00000000000000"), (1j, "complex 1j"),
-                       (np.array(2.0), "ndarray array(2.)"), ([2], "list [2]")):
+                       (np.array(2.0), "ndarray array(2.)"), ([2], "list [2]"),
+                       (sympy.Matrix([[1]]), "MutableDenseMatrix Matrix([[1]])"),
+                       (sympy.Symbol("r", rational=True), "Symbol r")):
         raises(TypeError, f"k must be an integer, got {shown}", v.check_int, bad, "k")
 
 
