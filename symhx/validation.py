@@ -97,7 +97,7 @@ def _show(x: Any) -> str:
 
 
 def _sympy_number(x: Any) -> bool:
-    return (type(x).__module__ or "").startswith("sympy")
+    return str(type(x).__module__).startswith("sympy")
 
 
 def _sympy_is(x: Any, flag: str) -> bool:
@@ -163,7 +163,12 @@ def _mpf_tuple_to_fraction(t: tuple, name: str, shown: Any) -> Fraction:
     if man and abs(exp + bc) > MAX_BINARY_EXPONENT:
         raise ValueError(f"{name}={shown} is beyond the exact-conversion range "
                          f"2**+-{MAX_BINARY_EXPONENT} (symhx.validation.MAX_BINARY_EXPONENT)")
-    fr = Fraction(man << exp) if exp >= 0 else Fraction(man, 1 << -exp)
+    return _binary_fraction(sign, man, exp)
+
+
+def _binary_fraction(sign: int, man: int, exp: int) -> Fraction:
+    """``(-1)**sign * man * 2**exp`` exactly (``Fraction(2)**exp`` is exact for any int exp)."""
+    fr = Fraction(man) * Fraction(2) ** exp
     return -fr if sign else fr
 
 
@@ -224,8 +229,7 @@ def mpf_to_fraction(x: mpmath.mpf) -> Fraction:
     precision).  No size cap: :func:`to_rational` caps user inputs; internal values (a cdf far in
     its tail can be ~10**-2000000) come here directly."""
     sign, man, exp, _ = x._mpf_
-    fr = Fraction(man << exp) if exp >= 0 else Fraction(man, 1 << -exp)
-    return -fr if sign else fr
+    return _binary_fraction(sign, man, exp)
 
 
 def as_fraction(p: Any, name: str = "p") -> Fraction | None:
@@ -254,12 +258,13 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
         if fr <= 0:
             raise ValueError(f"{name} must be > 0, got {p!r}")
         return fr, p
-    try:  # strict: an expression equal to 0 (pi - pi unevaluated) is not "0.e-163 > 0"
-        val = p.evalf(30, strict=True)
-    except ArithmeticError:  # sympy's PrecisionExhausted
-        raise ValueError(f"{name} must be > 0, got {p!r} (its sign is not decided at 30 digits: "
-                         f"simplify it)") from None
-    if not val > 0:
+    # sympy's own sign decision (evalf with significance tracking, exact for algebraic zeros):
+    # p.evalf(30) > 0 took an unevaluated pi - pi (evalf "0.e-163") for a positive number
+    positive = p.is_positive
+    if positive is None:
+        raise ValueError(f"{name} must be > 0, got {p!r} (sympy cannot decide its sign: "
+                         f"simplify it)")
+    if not positive:
         raise ValueError(f"{name} must be > 0, got {p!r}")
     return None, p
 
@@ -400,12 +405,12 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
                                  f"1.8e308), got {_show(val)}{at(idx)}") from None
             return math.inf if fr > 0 else -math.inf
 
-    if arr.dtype == bool or arr.dtype.kind not in "iuf":
+    if arr.dtype == bool or arr.dtype.kind not in ("i", "u", "f"):
         if arr.dtype.kind != "O":
             raise TypeError(f"{name} must hold real numbers, got an array of dtype {arr.dtype}")
-        arr = np.array([entry(idx, val) for idx, val in np.ndenumerate(arr)],
-                       dtype=float).reshape(arr.shape)
-    arr = arr.astype(float, copy=False)
+        arr = np.fromiter((entry(idx, val) for idx, val in np.ndenumerate(arr)),
+                          dtype=np.float64).reshape(arr.shape)
+    arr = np.asarray(arr, dtype=np.float64)  # no copy of a float64 array
     if arr.size == 0 and not allow_empty:
         raise ValueError(f"{name} is empty: give at least one value")
 
