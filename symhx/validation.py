@@ -13,9 +13,12 @@ Input conventions for real numbers (``p``, ``sigma``, ...)
 * ``int``, numpy integers, :class:`fractions.Fraction`, :class:`decimal.Decimal`, sympy
   ``Rational`` and *decimal strings* (``"0.02"``, ``"2e-2"``, ``"1/50"``) are **exact
   rationals**: ``"0.02"`` is exactly 1/50.
-* ``float``, numpy floats and ``mpmath.mpf`` are taken at their **exact binary value**: the float
-  ``0.02`` is ``0.0200000000000000004163...``, slightly above 1/50, so
-  ``symhx.modes(101, 0.02) == (51,)`` while ``symhx.modes(101, "0.02") == (50, 51)``.
+* ``float``, numpy floats (any width), ``mpmath.mpf`` and sympy ``Float`` are taken at their
+  **exact binary value**: the float ``0.02`` is ``0.0200000000000000004163...``, slightly above
+  1/50, so ``symhx.modes(101, 0.02) == (51,)`` while ``symhx.modes(101, "0.02") == (50, 51)``.
+* Exact values are capped so that a typo cannot ask for billions of digits: decimal exponents
+  beyond :data:`MAX_DECIMAL_EXPONENT` (strings, ``"b**e"`` and ``Decimal``) and binary exponents
+  beyond :data:`MAX_BINARY_EXPONENT` (``mpf``, sympy ``Float``) are a ValueError.
 * sympy irrationals (``sympy.sqrt(2)/50``) are accepted where documented; they are evaluated to
   the working precision.
 
