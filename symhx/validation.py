@@ -386,6 +386,7 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
         arr = np.asarray(x)
     except Exception as exc:  # ragged lists and the like
         raise TypeError(f"{name} must be a real number or an array of them ({exc})") from None
+
     def at(idx: Any) -> str:
         return f" at index {tuple(int(i) for i in idx)}" if arr.ndim else ""
 
