@@ -261,13 +261,16 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
         if fr <= 0:
             raise ValueError(f"{name} must be > 0, got {p!r}")
         return fr, p
-    # sympy's own sign decision (evalf with significance tracking, exact for algebraic zeros):
-    # p.evalf(30) > 0 took an unevaluated pi - pi (evalf "0.e-163") for a positive number
-    positive = p.is_positive
-    if positive is None:
-        raise ValueError(f"{name} must be > 0, got {p!r} (sympy cannot decide its sign: "
-                         f"simplify it)")
-    if not positive:
+    # the sign from the 15 digits that sympy's strict evalf guarantees (PrecisionExhausted when
+    # cancellation leaves none: an unevaluated pi - pi, which plain evalf shows as 0.e-163 > 0).
+    # Not p.is_positive: for unevaluated expressions its answer depends on the hash seed
+    # (Mul(0, sqrt(2), evaluate=False).is_positive is True under some seeds, sympy 1.14)
+    try:
+        val = p.evalf(strict=True)
+    except ArithmeticError:  # sympy's PrecisionExhausted
+        raise ValueError(f"{name} must be > 0, got {p!r} (its sign cannot be decided "
+                         f"numerically: simplify it)") from None
+    if not val > 0:
         raise ValueError(f"{name} must be > 0, got {p!r}")
     return None, p
 
