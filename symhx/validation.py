@@ -13,9 +13,12 @@ Input conventions for real numbers (``p``, ``sigma``, ...)
 * ``int``, numpy integers, :class:`fractions.Fraction`, :class:`decimal.Decimal`, sympy
   ``Rational`` and *decimal strings* (``"0.02"``, ``"2e-2"``, ``"1/50"``) are **exact
   rationals**: ``"0.02"`` is exactly 1/50.
-* ``float``, numpy floats and ``mpmath.mpf`` are taken at their **exact binary value**: the float
-  ``0.02`` is ``0.0200000000000000004163...``, slightly above 1/50, so
-  ``symhx.modes(101, 0.02) == (51,)`` while ``symhx.modes(101, "0.02") == (50, 51)``.
+* ``float``, numpy floats (any width), ``mpmath.mpf`` and sympy ``Float`` are taken at their
+  **exact binary value**: the float ``0.02`` is ``0.0200000000000000004163...``, slightly above
+  1/50, so ``symhx.modes(101, 0.02) == (51,)`` while ``symhx.modes(101, "0.02") == (50, 51)``.
+* Exact values are capped so that a typo cannot ask for billions of digits: decimal exponents
+  beyond :data:`MAX_DECIMAL_EXPONENT` (strings, ``"b**e"`` and ``Decimal``) and binary exponents
+  beyond :data:`MAX_BINARY_EXPONENT` (``mpf``, sympy ``Float``) are a ValueError.
 * sympy irrationals (``sympy.sqrt(2)/50``) are accepted where documented; they are evaluated to
   the working precision.
 
@@ -42,7 +45,7 @@ import numbers
 import operator
 import re
 from collections.abc import Iterable
-from decimal import Decimal, InvalidOperation
+from decimal import Decimal
 from fractions import Fraction
 from typing import Any, Literal, overload
 
@@ -97,7 +100,13 @@ def _show(x: Any) -> str:
 
 
 def _sympy_number(x: Any) -> bool:
-    return (type(x).__module__ or "").startswith("sympy")
+    return str(type(x).__module__).startswith("sympy")
+
+
+def _sympy_is(x: Any, flag: str) -> bool:
+    """``x`` is a sympy object whose class flag (``is_Rational``, ``is_Float``, ``is_number``) is
+    set; objects without the flag (matrices, ...) are not."""
+    return _sympy_number(x) and getattr(x, flag, None) is True
 
 
 # --------------------------------------------------------------------------- strings
@@ -106,33 +115,64 @@ _POWER = re.compile(r"^\s*(\d+)\s*\*\*\s*(\d+)\s*$")
 _DECIMAL = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*$")
 
 
-def _parse_string(text: str, name: str) -> Fraction:
-    """Exact rational value of ``"0.02"``, ``"2e-2"``, ``"1/50"`` or ``"10**100"``."""
+#: ``10**(MAX_DECIMAL_EXPONENT + 1)``: the smallest magnitude refused (its decimal exponent is
+#: beyond the cap), and its bit length
+_DECIMAL_LIMIT = 10 ** (MAX_DECIMAL_EXPONENT + 1)
+_LIMIT_BITS = _DECIMAL_LIMIT.bit_length()
+
+
+def _parse_string(text: str, name: str, integer: bool = False) -> Fraction:
+    """Exact rational value of ``"0.02"``, ``"2e-2"``, ``"1/50"`` or ``"10**100"``.
+
+    ``integer`` only changes the wording of the errors (the caller checks integrality)."""
     s = text.strip().replace("_", "")
     m = _RATIO.match(s)
     if m:
         num, den = int(m.group(1)), int(m.group(2))
         if den == 0:
-            raise ValueError(f"{name} must be a finite number, got {text!r} (division by zero)")
+            kind = "an integer" if integer else "a finite number"
+            raise ValueError(f"{name} must be {kind}, got {text!r} (division by zero)")
         return Fraction(num, den)
     m = _POWER.match(s)
     if m:
         base, exp = int(m.group(1)), int(m.group(2))
-        if exp * max(1.0, math.log10(max(base, 1))) > MAX_DECIMAL_EXPONENT:
-            raise ValueError(f"{name}={text!r} has more than {MAX_DECIMAL_EXPONENT} digits "
-                             f"(symhx.validation.MAX_DECIMAL_EXPONENT)")
+        # base**exp >= 2**(exp * (bit_length - 1)): refused before it is computed when that bound
+        # is already >= 2**_LIMIT_BITS > 10**(MAX_DECIMAL_EXPONENT + 1); otherwise exactly
+        if exp * (base.bit_length() - 1) >= _LIMIT_BITS or base**exp >= _DECIMAL_LIMIT:
+            raise ValueError(_exponent_error(name, text))
         return Fraction(base**exp)
     if _DECIMAL.match(s):
-        try:
-            dec = Decimal(s)
-        except InvalidOperation:  # pragma: no cover - the regex admits only valid decimals
-            raise ValueError(f"{name} must be a number, got {text!r}") from None
-        if dec and abs(dec.adjusted()) > MAX_DECIMAL_EXPONENT:
-            raise ValueError(f"{name}={text!r}: decimal exponent beyond +-{MAX_DECIMAL_EXPONENT} "
-                             f"(symhx.validation.MAX_DECIMAL_EXPONENT)")
-        return Fraction(dec)
-    raise ValueError(f"{name} must be a number such as 0.02, 2e-2, 1/50 or 10**100, "
-                     f"got {text!r}")
+        return _decimal_to_fraction(Decimal(s), name, text)
+    kind = ("an integer such as 7, 10**100 or '1e100'" if integer
+            else "a number such as 0.02, 2e-2, 1/50 or 10**100")
+    raise ValueError(f"{name} must be {kind}, got {text!r}")
+
+
+def _exponent_error(name: str, shown: Any) -> str:
+    return (f"{name}={shown!r}: decimal exponent beyond +-{MAX_DECIMAL_EXPONENT} "
+            f"(symhx.validation.MAX_DECIMAL_EXPONENT)")
+
+
+def _decimal_to_fraction(dec: Decimal, name: str, shown: Any) -> Fraction:
+    """The exact value of a finite Decimal whose decimal exponent is within the cap."""
+    if dec and abs(dec.adjusted()) > MAX_DECIMAL_EXPONENT:
+        raise ValueError(_exponent_error(name, shown))
+    return Fraction(dec)
+
+
+def _mpf_tuple_to_fraction(t: tuple, name: str, shown: Any) -> Fraction:
+    """The exact value of a finite mpf tuple ``(sign, man, exp, bc)`` within the binary cap."""
+    sign, man, exp, bc = t
+    if man and abs(exp + bc) > MAX_BINARY_EXPONENT:
+        raise ValueError(f"{name}={shown} is beyond the exact-conversion range "
+                         f"2**+-{MAX_BINARY_EXPONENT} (symhx.validation.MAX_BINARY_EXPONENT)")
+    return _binary_fraction(sign, man, exp)
+
+
+def _binary_fraction(sign: int, man: int, exp: int) -> Fraction:
+    """``(-1)**sign * man * 2**exp`` exactly (``Fraction(2)**exp`` is exact for any int exp)."""
+    fr = Fraction(man) * Fraction(2) ** exp
+    return -fr if sign else fr
 
 
 # --------------------------------------------------------------------------- exact numbers
@@ -158,25 +198,28 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
     if isinstance(x, Decimal):
         if not x.is_finite():
             raise ValueError(f"{name} must be finite, got {x!r}")
-        return Fraction(x)
+        return _decimal_to_fraction(x, name, x)
     if isinstance(x, mpmath.mpf):
         if not mpmath.isfinite(x):
             raise ValueError(f"{name} must be finite, got {x!r}")
-        _, man, exp, bc = x._mpf_
-        if man and abs(exp + bc) > MAX_BINARY_EXPONENT:
-            raise ValueError(f"{name}={mpmath.nstr(x, 5)} is beyond the exact-conversion range "
-                             f"2**+-{MAX_BINARY_EXPONENT} (symhx.validation.MAX_BINARY_EXPONENT)")
-        return mpf_to_fraction(x)
+        return _mpf_tuple_to_fraction(x._mpf_, name, mpmath.nstr(x, 5))
     if _sympy_number(x):
-        if getattr(x, "is_Rational", False):
+        if _sympy_is(x, "is_Rational"):
             return Fraction(int(x.p), int(x.q))
-        if getattr(x, "is_number", False) and x.is_real and x.is_finite:
+        if _sympy_is(x, "is_Float"):  # a binary float: its exact value, like an mpf
+            return _mpf_tuple_to_fraction(x._mpf_, name, x)
+        if _sympy_is(x, "is_number") and (x.is_infinite or type(x).__name__ == "NaN"):
+            # oo, -oo, zoo and nan: the value is the problem, as for a float inf or nan
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        if _sympy_is(x, "is_number") and x.is_real and x.is_finite:
             return None
         raise TypeError(f"{name} must be a finite real number, got sympy object {x!r}")
     if isinstance(x, numbers.Integral):  # numpy ints
         return Fraction(int(x))
-    if isinstance(x, np.floating):
-        return to_rational(float(x), name)
+    if isinstance(x, np.floating):  # float16 ... longdouble: the exact value, not float(x)
+        if not np.isfinite(x):
+            raise ValueError(f"{name} must be finite, got {x!r}")
+        return Fraction(*x.as_integer_ratio())
     if isinstance(x, np.ndarray) and x.ndim == 0:
         return to_rational(x[()], name)
     if isinstance(x, (numbers.Complex, mpmath.mpc)):
@@ -189,8 +232,7 @@ def mpf_to_fraction(x: mpmath.mpf) -> Fraction:
     precision).  No size cap: :func:`to_rational` caps user inputs; internal values (a cdf far in
     its tail can be ~10**-2000000) come here directly."""
     sign, man, exp, _ = x._mpf_
-    fr = Fraction(man << exp) if exp >= 0 else Fraction(man, 1 << -exp)
-    return -fr if sign else fr
+    return _binary_fraction(sign, man, exp)
 
 
 def as_fraction(p: Any, name: str = "p") -> Fraction | None:
@@ -205,7 +247,7 @@ def is_exact_type(p: Any) -> bool:
         return False
     if isinstance(p, (int, Fraction, str, numbers.Integral)):
         return True
-    return _sympy_number(p) and bool(getattr(p, "is_Rational", False))
+    return _sympy_is(p, "is_Rational")
 
 
 def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
@@ -219,7 +261,15 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
         if fr <= 0:
             raise ValueError(f"{name} must be > 0, got {p!r}")
         return fr, p
-    val = p.evalf(30)
+    # the sign from the 15 digits that sympy's strict evalf guarantees (PrecisionExhausted when
+    # cancellation leaves none: an unevaluated pi - pi, which plain evalf shows as 0.e-163 > 0).
+    # Not p.is_positive: for unevaluated expressions its answer depends on the hash seed
+    # (Mul(0, sqrt(2), evaluate=False).is_positive is True under some seeds, sympy 1.14)
+    try:
+        val = p.evalf(strict=True)
+    except ArithmeticError:  # sympy's PrecisionExhausted
+        raise ValueError(f"{name} must be > 0, got {p!r} (its sign cannot be decided "
+                         f"numerically: simplify it)") from None
     if not val > 0:
         raise ValueError(f"{name} must be > 0, got {p!r}")
     return None, p
@@ -243,20 +293,22 @@ def check_real(x: Any, name: str, *, low: float | None = None, high: float | Non
 
 # --------------------------------------------------------------------------- integers
 def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | None = None) -> int:
-    """An exact integer: ints, numpy ints, integral Fractions / sympy Integers and integer strings
+    """An exact integer: ints, numpy ints, integral Fractions / sympy Rationals and integer strings
     (``"101"``, ``"1e100"``, ``"10**100"``).  Floats are refused (above 2**53 they are not exact);
-    bools are refused."""
+    bools are refused.  A non-integral rational (``"2.5"``, ``Fraction(5, 2)``) is a ValueError."""
     if isinstance(x, (bool, np.bool_)):
         raise TypeError(f"{name} must be an integer, got {_show(x)}")
     if isinstance(x, str):
-        fr = _parse_string(x, name)
+        fr = _parse_string(x, name, integer=True)
         if fr.denominator != 1:
             raise ValueError(f"{name} must be an integer, got {x!r}")
         v = fr.numerator
-    elif isinstance(x, Fraction) or (_sympy_number(x) and getattr(x, "is_Integer", False)):
-        if isinstance(x, Fraction) and x.denominator != 1:
+    elif isinstance(x, Fraction) or _sympy_is(x, "is_Rational"):
+        # a non-integral rational is a value of the right kind out of range: ValueError
+        fr = Fraction(x)  # sympy's Rational is a numbers.Rational
+        if fr.denominator != 1:
             raise ValueError(f"{name} must be an integer, got {x!r}")
-        v = int(x)
+        v = fr.numerator
     else:
         try:
             v = operator.index(x)
@@ -326,8 +378,10 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
                 finite: bool = True, allow_empty: bool = False) -> np.ndarray:
     """A float64 array from numbers, lists or arrays; errors name the first bad index.
 
-    Bools and non-numeric entries raise TypeError; NaN, infinities (when ``finite``) and values
-    out of range raise ValueError.
+    Bools, strings and non-numeric entries raise TypeError; NaN, infinities (when ``finite``),
+    exact values beyond the float64 range (when ``finite``) and values out of range raise
+    ValueError.  Object arrays (Fractions, mpf, huge ints) are converted entry by entry at their
+    exact value (:func:`to_rational`), then rounded once to float64; sympy irrationals are refused.
     """
     if isinstance(x, (bool, np.bool_, str, bytes)):
         raise TypeError(f"{name} must be a real number or an array of them, got {_show(x)}")
@@ -335,23 +389,41 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
         arr = np.asarray(x)
     except Exception as exc:  # ragged lists and the like
         raise TypeError(f"{name} must be a real number or an array of them ({exc})") from None
-    if arr.dtype == bool or arr.dtype.kind not in "iuf":
-        if arr.dtype.kind == "O":
-            try:
-                arr = np.array([float(to_rational(v, name)) for v in arr.ravel()],  # type: ignore[arg-type,type-var]
-                               dtype=float).reshape(arr.shape)
-            except (TypeError, ValueError) as exc:
-                raise type(exc)(f"{exc}") from None
-        else:
+
+    def at(idx: Any) -> str:
+        return f" at index {tuple(int(i) for i in idx)}" if arr.ndim else ""
+
+    def entry(idx: Any, val: Any) -> float:
+        # one entry of an object array (Fractions, mpf, huge ints, ...): exact value, then float64
+        if isinstance(val, (str, bytes)):
+            raise TypeError(f"{name} must hold real numbers, got {_show(val)}{at(idx)}")
+        try:
+            fr = to_rational(val, name)
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"{exc}{at(idx)}") from None
+        if fr is None:
+            raise TypeError(f"{name} must be a rational or float number, got {_show(val)}"
+                            f"{at(idx)}")
+        try:
+            return float(fr)
+        except OverflowError:
+            if finite:
+                raise ValueError(f"{name} must be within the float64 range (magnitude below "
+                                 f"1.8e308), got {_show(val)}{at(idx)}") from None
+            return math.inf if fr > 0 else -math.inf
+
+    if arr.dtype == bool or arr.dtype.kind not in ("i", "u", "f"):
+        if arr.dtype.kind != "O":
             raise TypeError(f"{name} must hold real numbers, got an array of dtype {arr.dtype}")
-    arr = arr.astype(float, copy=False)
+        arr = np.fromiter((entry(idx, val) for idx, val in np.ndenumerate(arr)),
+                          dtype=np.float64).reshape(arr.shape)
+    arr = np.asarray(arr, dtype=np.float64)  # no copy of a float64 array
     if arr.size == 0 and not allow_empty:
         raise ValueError(f"{name} is empty: give at least one value")
 
     def first_bad(mask: np.ndarray) -> str:
         idx = np.argwhere(mask)[0]
-        where = f" at index {tuple(int(i) for i in idx)}" if arr.ndim else ""
-        return f"{float(arr[tuple(idx)])!r}{where}"
+        return f"{float(arr[tuple(idx)])!r}{at(idx)}"
 
     if finite and not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got {first_bad(~np.isfinite(arr))}")

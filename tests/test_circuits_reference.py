@@ -167,7 +167,8 @@ def test_errors_name_argument_and_value():
         list(partitions(-1))
     # decimal strings are exact integers (symhx.validation); anything else is refused
     assert necklace_count(2, "3") == necklace_count(2, 3)
-    with pytest.raises(ValueError, match=r"^L must be a number such as"):
+    with pytest.raises(ValueError, match=r"^L must be an integer such as 7, 10\*\*100 "
+                                         r"or '1e100', got 'three'$"):
         necklace_count(2, "three")
     for func in (circuits_of_length, necklace_count, enumerate_circuits):
         with pytest.raises(ValueError, match=r"^N must be >= 1, got 0$"):

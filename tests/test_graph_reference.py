@@ -51,5 +51,6 @@ def test_errors_name_argument_and_value(func, arg):
     with pytest.raises(TypeError, match=rf"^{arg} must be an int, got float "):
         func(2.5)
     assert func("3") == func(3)  # decimal strings are exact integers (symhx.validation)
-    with pytest.raises(ValueError, match=rf"^{arg} must be a number such as"):
+    with pytest.raises(ValueError, match=rf"^{arg} must be an integer such as 7, 10\*\*100 "
+                                         r"or '1e100', got 'three'$"):
         func("three")
