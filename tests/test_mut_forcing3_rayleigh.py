@@ -275,3 +275,22 @@ def test_mpmath_results_come_at_the_digits_asked_for():
             with mpmath.workdps(60):
                 ref = fn("0.5", d="1.3", dps=40, **kw)
                 assert abs(v / ref - 1) <= mpmath.mpf(10) ** -19
+
+
+def test_forced_scales_with_the_papers_omega_and_resonance_messages():
+    # Omega = None is the paper's Omega**2 = 2: s_1 = sqrt(2) sigma / |omega**2 - 2|, here with
+    # omega = 2 (|4 - 2| = 2) so that dividing and multiplying differ
+    from symhx.forcing.rayleigh import rayleigh_scales
+
+    got = rayleigh_scales(0.5, omega=2.0)
+    assert got[0] == pytest.approx(math.sqrt(2) * 0.5, rel=2e-16)
+    assert got[1] == pytest.approx(math.sqrt(2) * 0.5 / 2, rel=2e-16)
+    got = rayleigh_scales("0.5", omega="0.5", sigma1="0.25")   # |0.25 - 2| = 1.75
+    assert got[1] == pytest.approx(math.sqrt(2) * 0.25 / 1.75, rel=4e-16)
+    for dps in (None, 20):
+        with pytest.raises(ValueError, match=r"^Omega: resonance Omega == omega \(infinite "
+                                             r"forced amplitude\)$"):
+            rayleigh_scales(0.5, omega=1.5, Omega=1.5, dps=dps)
+        with pytest.raises(ValueError, match=r"^Omega\[1\]: resonance Omega == omega \(infinite "
+                                             r"forced amplitude\)$"):
+            rayleigh_scales(0.5, omega=1.5, Omega=[2, 1.5], dps=dps)
