@@ -294,3 +294,27 @@ def test_forced_scales_with_the_papers_omega_and_resonance_messages():
         with pytest.raises(ValueError, match=r"^Omega\[1\]: resonance Omega == omega \(infinite "
                                              r"forced amplitude\)$"):
             rayleigh_scales(0.5, omega=1.5, Omega=[2, 1.5], dps=dps)
+
+
+#: scale sets for the numpy error-state check: one to five scales, spread ones, and magnitudes
+#: where the float64 routes rescale by a power of two
+_ERRSTATE_SETS = [[1.0], [1.0, 0.5], [1.0, 0.5, 0.3], [1.0, 0.9, 0.5, 0.3, 0.2],
+                  [1e8, 0.4, 1e-8], [1e-12, 1.0, 1.0, 1e-6], [1e20, 1.0, 1.0],
+                  [1e10, 2e10, 3e10], [1e-170, 2e-170, 3e-170], [1e170, 2e170, 3e170],
+                  [1e-300], [1e300]]
+
+
+@pytest.mark.parametrize("scales", _ERRSTATE_SETS, ids=lambda s: f"{len(s)}x{s[0]:g}")
+def test_every_float_route_is_silent_under_a_raising_error_state(scales):
+    # tiny, subnormal, huge and beyond-the-range thresholds (relative to the largest scale and
+    # absolute): the same values whatever the caller's np.errstate
+    rel = np.array([0.0, 5e-324, 1e-200, 1e-9, 0.3, 1.0, 3.0, 30.0, 1e5, 1e12, 1e200])
+    S = RayleighSum(scales)
+    with np.errstate(over="ignore"):
+        scaled = rel * scales[0]
+    for x in (scaled[np.isfinite(scaled)], np.array([5e-324, 1e-300, 1e-100, 1.0, 1e100, 1e301])):
+        with np.errstate(all="ignore"):
+            plain = {k: getattr(S, k)(x) for k in ("sf", "cdf", "pdf", "logsf", "logcdf")}
+        with np.errstate(all="raise"):
+            for k, v in plain.items():
+                np.testing.assert_array_equal(getattr(S, k)(x), v, err_msg=k)

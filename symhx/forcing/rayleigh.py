@@ -166,9 +166,9 @@ _CHUNK = 16384
 class _FGroup:
     """float64 group of one or two Rayleigh scales (closed forms on arrays).
 
-    Its methods under- and overflow on purpose (tiny or huge ``t``): they are only called inside
-    the ``np.errstate(under=, over=, invalid="ignore")`` of :func:`_float_scaled` and
-    :func:`_float_cdf`, so a caller's error state never reaches them.
+    Its methods underflow on purpose (``exp(-u**2)`` far out): they are only called inside the
+    ``np.errstate(under="ignore")`` of :func:`_float_scaled` and :func:`_float_cdf`, so a
+    caller's error state never reaches them.
     """
 
     def __init__(self, scales: Sequence[float]) -> None:
@@ -515,7 +515,7 @@ def _float_scaled(scales: Sequence[float], x: np.ndarray, kind: str
     groups = [_FGroup(g) for g in make_groups(scales)]
     var = math.fsum(s * s for s in scales)
     xp = np.maximum(x, 0.0)
-    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+    with np.errstate(under="ignore"):   # exp(-u**2) of the groups, x**2 of a tiny x
         e = xp * xp / (2.0 * var)
         if len(groups) == 1:
             m = groups[0].msf(xp) if kind == "sf" else groups[0].mpdf(xp)
@@ -548,7 +548,7 @@ def _float_with_error(scales: Sequence[float], x: np.ndarray, kind: str
         if low.any():
             sf[low], err[low] = _float_cdf(scales, x[low])
         return sf, err
-    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+    with np.errstate(under="ignore"):   # exp(-E) far out
         m, err_m, e = _float_scaled(scales, x, kind)
         g = np.exp(-e)
         hi = m * g
@@ -559,7 +559,7 @@ def _float_with_error(scales: Sequence[float], x: np.ndarray, kind: str
 
 def _float_cdf(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``P(S <= x)`` and its error by the quadrature of the cdf (where it is below ~1/2)."""
-    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+    with np.errstate(under="ignore"):   # the Gaussian factors of the groups far out
         groups = [_FGroup(g) for g in make_groups(scales)]
         if len(groups) == 1:
             val = groups[0].cdf(x)
@@ -583,8 +583,7 @@ def _float_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
     q = ~laplace
     if q.any():
         m, _, e = _float_scaled(scales, x[q], "sf")
-        with np.errstate(divide="ignore"):
-            res[q] = np.log(m) - e
+        res[q] = np.log(m) - e   # m > 0: the scaled tail, a polynomial-like factor
     if laplace.any():
         res[laplace] = _laplace_logsf(scales, x[laplace])
     return res
@@ -714,8 +713,7 @@ class RayleighSum:
         for i, s in enumerate(arr):
             exact.append(rational_arg(f"scales[{i}]", s))
         self._exact: tuple[Fraction, ...] = tuple(exact)
-        with np.errstate(over="ignore", under="ignore"):
-            self.scales = np.array([_to_float(f) for f in exact])
+        self.scales = np.array([_to_float(f) for f in exact])
 
     def __repr__(self) -> str:
         return f"RayleighSum({[float(s) for s in self.scales]!r})"
@@ -867,8 +865,8 @@ class RayleighSum:
         sc, x, e = _float_normalized(sc0, x)
         if kind in ("sf", "cdf", "pdf"):
             val = _float_with_error(sc, x, kind)[0]
-            if kind == "pdf" and e:   # the density scales by 2**-e: 0 or inf beyond float64
-                with np.errstate(under="ignore", over="ignore"):
+            if kind == "pdf" and e:   # the density scales by 2**-e (it may underflow; it
+                with np.errstate(under="ignore"):   # is below 1/s_max, so it cannot overflow)
                     return np.ldexp(val, -e)
             return val
         if kind == "logsf":
