@@ -318,3 +318,17 @@ def test_every_float_route_is_silent_under_a_raising_error_state(scales):
         with np.errstate(all="raise"):
             for k, v in plain.items():
                 np.testing.assert_array_equal(getattr(S, k)(x), v, err_msg=k)
+
+
+@pytest.mark.parametrize("scales", [[3.0, 2.0], [3.0, 2.0, 1.0], [3.0, 2.0, 1.0, 0.5]])
+def test_subnormal_thresholds_take_the_limit_at_zero(scales):
+    # x = 5e-324: x / (sqrt(2) s) underflows to 0 for every scale, and the pair's closed forms
+    # were 0/0 there (the cdf of two or three scales was nan); the true values underflow
+    S = RayleighSum(scales)
+    x = np.array([5e-324, 1e-323, 1e-320])
+    with np.errstate(all="raise"):
+        assert np.array_equal(S.cdf(x), [0.0, 0.0, 0.0])
+        assert np.array_equal(S.sf(x), [1.0, 1.0, 1.0])
+        assert np.array_equal(S.pdf(x), [0.0, 0.0, 0.0])
+        assert np.array_equal(S.logsf(x), [0.0, 0.0, 0.0])
+        assert np.all(S.logcdf(x) < -1400 * len(scales))

@@ -159,6 +159,8 @@ def rayleigh_scales(
 
 
 # =========================================================================== groups
+#: the smallest normal float64
+_TINY = float(np.finfo(float).tiny)
 #: chunk length of the float64 group functions on the (large) nested node arrays
 _CHUNK = 16384
 
@@ -179,23 +181,32 @@ class _FGroup:
         a, b = self.scales
         return uv_from_h(t / (math.sqrt(2.0) * a), t / (math.sqrt(2.0) * b))
 
+    def _pos(self, t: np.ndarray) -> np.ndarray:
+        """Where the pair's closed forms apply: ``h = t / (sqrt(2) s)`` a normal float for both
+        scales. A subnormal ``h`` has lost its digits (``sf`` came out 1.001, or 2 where both
+        ``h`` underflow to 0/0); below that the exact values are their limits at ``t = 0`` in
+        float64 (cdf and density below ``h**2 / min(s) < 1e-460``, scaled tail 1)."""
+        return t / (math.sqrt(2.0) * max(self.scales)) >= _TINY
+
     def cdf(self, t: np.ndarray) -> np.ndarray:
         t = np.maximum(t, 0.0)
         if len(self.scales) == 1:
             return -np.expm1(-0.5 * (t / self.scales[0]) ** 2)
         out = np.zeros_like(t)
-        pos = t > 0
+        pos = self._pos(t)
         out[pos] = pq_float(self._uv(t[pos]), "q")
         return out
 
     def pdf(self, t: np.ndarray) -> np.ndarray:
         out = np.zeros_like(t)
-        pos = t > 0
-        tp = t[pos]
         if len(self.scales) == 1:
+            pos = t > 0
+            tp = t[pos]
             s = self.scales[0]
             out[pos] = tp / (s * s) * np.exp(-0.5 * (tp / s) ** 2)
             return out
+        pos = self._pos(t)
+        tp = t[pos]
         uv = self._uv(tp)
         val = 4.0 * uv.u * uv.v / uv.r * np.exp(-uv.e) * i2_float(uv.u, uv.v) / tp
         out[pos] = np.where(np.isfinite(val), val, 0.0)
@@ -208,7 +219,7 @@ class _FGroup:
         out = np.ones_like(t)
         for i in range(0, t.shape[0], _CHUNK):  # in cache-sized chunks (nested arrays)
             tc = t[i : i + _CHUNK]
-            pos = tc > 0
+            pos = self._pos(tc)
             uv = self._uv(tc[pos])
             u, v = uv.u, uv.v
             b = v * np.exp(-u * u) + u * np.exp(-v * v)
@@ -219,11 +230,12 @@ class _FGroup:
     def mpdf(self, t: np.ndarray) -> np.ndarray:
         """``pdf(t) exp(t**2/(2 var))``."""
         out = np.zeros_like(t)
-        pos = t > 0
-        tp = t[pos]
         if len(self.scales) == 1:
-            out[pos] = tp / (self.scales[0] ** 2)
+            pos = t > 0
+            out[pos] = t[pos] / (self.scales[0] ** 2)
             return out
+        pos = self._pos(t)
+        tp = t[pos]
         uv = self._uv(tp)
         val = 4.0 * (uv.u / uv.r) * (uv.v / tp) * i2_float(uv.u, uv.v)
         out[pos] = np.where(np.isfinite(val), val, 0.0)
