@@ -153,7 +153,7 @@ def test_probability_names_its_arguments():
         S.probability(np.array([1.0, 2.0]))
 
 
-@pytest.mark.parametrize("scales", [[0.7], [0.5, 0.3, 0.2]])
+@pytest.mark.parametrize("scales", [[0.7], [0.5, 0.3], [0.5, 0.3, 0.2]])
 def test_probability_at_and_below_zero_is_exact(scales):
     S = RayleighSum(scales)
     for x in (0.0, -1.0, "0", "-2"):
@@ -332,3 +332,20 @@ def test_subnormal_thresholds_take_the_limit_at_zero(scales):
         assert np.array_equal(S.pdf(x), [0.0, 0.0, 0.0])
         assert np.array_equal(S.logsf(x), [0.0, 0.0, 0.0])
         assert np.all(S.logcdf(x) < -1400 * len(scales))
+
+
+def test_float_route_refusals_name_the_value_and_the_way_out():
+    from fractions import Fraction
+
+    S = RayleighSum([1, 1e-30, 1e-30])   # quadrature range 1e30, Laplace regime from 1e35
+    with pytest.raises(ValueError, match=r"^x = 1e\+32: log sf of Rayleigh scales spread over "
+                                         r"more than 21 orders of magnitude is beyond the "
+                                         r"float64 range; use dps=$"):
+        S.logsf(np.array([1.0, 1e32]))
+    assert S.logsf(np.array([1e36]))[0] < -1e71   # the Laplace regime has its value
+    with pytest.raises(ValueError, match=r"^scales\[1\] = 1\.0e\+400 is outside the float64 range; "
+                                         r"use dps=$"):
+        RayleighSum([1, Fraction(10) ** 400]).sf(1.0)
+    with pytest.raises(ValueError, match=r"^scales\[2\] = 1\.0e-400 is outside the float64 range; "
+                                         r"use dps=$"):
+        RayleighSum([1, 2, "1e-400"]).mean()

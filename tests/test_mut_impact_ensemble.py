@@ -318,17 +318,17 @@ def test_progress_bar(monkeypatch):
     (dict(restitution=-0.1), ValueError, r"^restitution must be >= 0, got -0.1$"),
     (dict(restitution=1.5), ValueError, r"^restitution must be <= 1, got 1.5$"),
     (dict(omega=0), ValueError, r"^omega must be > 0, got 0$"),
-    (dict(omega="1e400"), ValueError, r"^omega = 10{400} is beyond the float64 range$"),
+    (dict(omega="1e400"), ValueError, r"^omega = 1\.0e\+400 is beyond the float64 range$"),
     (dict(d=-1), ValueError, r"^d must be > 0, got -1$"),
-    (dict(d="1e400"), ValueError, r"^d = 10{400} is beyond the float64 range$"),
+    (dict(d="1e400"), ValueError, r"^d = 1\.0e\+400 is beyond the float64 range$"),
     (dict(sigma0=-1), ValueError, r"^sigma0 must be >= 0, got -1$"),
-    (dict(sigma0="1e400"), ValueError, r"^sigma0 = 10{400} is beyond the float64 range$"),
+    (dict(sigma0="1e400"), ValueError, r"^sigma0 = 1\.0e\+400 is beyond the float64 range$"),
     (dict(sigma0=[0.1, -2]), ValueError, r"^sigma0\[1\] must be >= 0, got -2$"),
-    (dict(sigma0=[0.1, "1e400"]), ValueError, r"^sigma0\[1\] = 10{400} is beyond the"),
+    (dict(sigma0=[0.1, "1e400"]), ValueError, r"^sigma0\[1\] = 1\.0e\+400 is beyond the"),
     (dict(sigma0=[0.1]), ValueError, r"^sigma0 must be None, a number or one number per sigma "
                                      r"\(2\), got 1 values$"),
     (dict(checkpoint_every=-1), ValueError, r"^checkpoint_every must be >= 0, got -1$"),
-    (dict(checkpoint_every="1e400"), ValueError, r"^checkpoint_every = 10{400} is beyond"),
+    (dict(checkpoint_every="1e400"), ValueError, r"^checkpoint_every = 1\.0e\+400 is beyond"),
     (dict(t_transient=-1), ValueError, r"^t_transient must be >= 0, got -1$"),
     (dict(t_window=0), ValueError, r"^t_window must be > 0, got 0$"),
     (dict(t_transient=60000, t_window=60000), ValueError,
@@ -370,7 +370,7 @@ def test_bad_sigmas_and_runs_messages():
         ensemble([], 2, **KW)
     with pytest.raises(ValueError, match=r"^sigmas\[1\] must be >= 0, got -0.1$"):
         ensemble([0.1, -0.1], 2, **KW)
-    with pytest.raises(ValueError, match=r"^sigmas\[0\] = 10{400} is beyond the float64 range$"):
+    with pytest.raises(ValueError, match=r"^sigmas\[0\] = 1\.0e\+400 is beyond the float64 range$"):
         ensemble(["1e400"], 2, **KW)
     assert ensemble(np.array([0.0]), 1, **{**KW, "sigma0": 0.0}).sigmas.tolist() == [0.0]
     with pytest.raises(ValueError, match=r"^runs must be >= 1, got 0$"):
@@ -760,16 +760,16 @@ def test_free_flight_defaults_and_arguments():
     assert E.MAX_GAPS == 20_000
     for kw, pattern in (
         (dict(sigma=0), r"^sigma must be > 0, got 0$"),
-        (dict(sigma="1e400"), r"^sigma = 10{400} is beyond the float64 range$"),
+        (dict(sigma="1e400"), r"^sigma = 1\.0e\+400 is beyond the float64 range$"),
         (dict(gaps=0), r"^gaps must be >= 1, got 0$"),
         (dict(gaps=E.MAX_GAPS + 1), r"^gaps must be <= 20000 \(the work cap "
                                     r"symhx.impact.ensemble.MAX_GAPS\), got 20001$"),
         (dict(omega=0), r"^omega must be > 0, got 0$"),
-        (dict(omega="1e400"), r"^omega = 10{400} is beyond the float64 range$"),
+        (dict(omega="1e400"), r"^omega = 1\.0e\+400 is beyond the float64 range$"),
         (dict(d=0), r"^d must be > 0, got 0$"),
-        (dict(d="1e400"), r"^d = 10{400} is beyond the float64 range$"),
+        (dict(d="1e400"), r"^d = 1\.0e\+400 is beyond the float64 range$"),
         (dict(Omega=-1), r"^Omega must be >= 0, got -1$"),
-        (dict(Omega="1e400"), r"^Omega = 10{400} is beyond the float64 range$"),
+        (dict(Omega="1e400"), r"^Omega = 1\.0e\+400 is beyond the float64 range$"),
         (dict(Omega=1.0), r"resonance"),
         (dict(horizon=0), r"^horizon must be > 0, got 0$"),
         (dict(horizon=60000, omega=2.0), r"^horizon = 60000 is too long: .*omega = 2.0$"),

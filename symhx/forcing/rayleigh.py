@@ -589,7 +589,7 @@ def _float_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
     laplace, out = _regions(scales, x)
     if out.any():
         i = int(np.argmax(out))
-        raise ValueError(f"x = {x[i]!r}: log sf of Rayleigh scales spread over more than 21 "
+        raise ValueError(f"x = {float(x[i])!r}: log sf of Rayleigh scales spread over more than 21 "
                          "orders of magnitude is beyond the float64 range; use dps=")
     res = np.empty(x.shape)
     q = ~laplace
@@ -828,7 +828,10 @@ class RayleighSum:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
         if bad.any():
             i = int(np.argmax(bad))
-            raise ValueError(f"scales[{i}] = {self._exact[i]} is outside the float64 range; "
+            fr = self._exact[i]
+            with mpmath.workprec(53):
+                shown = mpmath.nstr(mpmath.mpf(fr.numerator) / fr.denominator, 5)
+            raise ValueError(f"scales[{i}] = {shown} is outside the float64 range; "
                              "use dps=")
         return [float(s) for s in self.scales]
 

@@ -36,9 +36,11 @@ import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass, field
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+import mpmath
 import numpy as np
 
 from symhx.impact.engine import IMPACT, STICK
@@ -54,7 +56,10 @@ def _float(x: Any, name: str) -> float:
     except OverflowError:
         f = math.inf
     if not math.isfinite(f):
-        raise ValueError(f"{name} = {x} is beyond the float64 range")
+        fr = Fraction(x)
+        with mpmath.workprec(53):   # 5 digits, not the hundreds of an exact huge value
+            shown = mpmath.nstr(mpmath.mpf(fr.numerator) / fr.denominator, 5)
+        raise ValueError(f"{name} = {shown} is beyond the float64 range")
     return f
 
 __all__ = [
