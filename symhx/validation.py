@@ -69,6 +69,7 @@ __all__ = [
     "check_seed",
     "is_exact_type",
     "mpf_to_fraction",
+    "short_value",
     "to_rational",
 ]
 
@@ -86,6 +87,17 @@ MAX_DECIMAL_EXPONENT = 100_000
 #: exponent that exact value has more than ~10**6 digits, so it is refused (the same guard as
 #: :data:`MAX_DECIMAL_EXPONENT`; ``mpf('1e-100000')`` is well inside).
 MAX_BINARY_EXPONENT = 3_400_000
+
+
+def short_value(fr: Fraction) -> str:
+    """An exact value in 5 significant digits for an error message (``1.0e+400``), not the
+    hundreds of digits of a huge or tiny Fraction.
+
+    >>> short_value(Fraction(10) ** 400)
+    '1.0e+400'
+    """
+    with mpmath.workprec(53):
+        return str(mpmath.nstr(mpmath.mpf(fr.numerator) / fr.denominator, 5))
 
 
 def _show(x: Any) -> str:

@@ -54,7 +54,14 @@ from symhx.forcing.kernels_float import (
     uv_from_h,
 )
 from symhx.forcing.kernels_mp import MAX_EXPONENT, mp_i2, mp_q_from_xy
-from symhx.validation import check_array, check_choice, check_dps, check_seed, to_rational
+from symhx.validation import (
+    check_array,
+    check_choice,
+    check_dps,
+    check_seed,
+    short_value,
+    to_rational,
+)
 
 __all__ = [
     "RayleighSum",
@@ -828,11 +835,8 @@ class RayleighSum:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
         if bad.any():
             i = int(np.argmax(bad))
-            fr = self._exact[i]
-            with mpmath.workprec(53):
-                shown = mpmath.nstr(mpmath.mpf(fr.numerator) / fr.denominator, 5)
-            raise ValueError(f"scales[{i}] = {shown} is outside the float64 range; "
-                             "use dps=")
+            raise ValueError(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
+                             "float64 range; use dps=")
         return [float(s) for s in self.scales]
 
     def _eval(self, x: Any, kind: str, dps: Any) -> Any:

@@ -40,13 +40,12 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-import mpmath
 import numpy as np
 
 from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.fast import count_impacts
 from symhx.impact.model import SQRT2, PipeRow, check_horizon, check_pipes
-from symhx.validation import check_int, check_real, check_seed
+from symhx.validation import check_int, check_real, check_seed, short_value
 
 
 def _float(x: Any, name: str) -> float:
@@ -56,10 +55,7 @@ def _float(x: Any, name: str) -> float:
     except OverflowError:
         f = math.inf
     if not math.isfinite(f):
-        fr = Fraction(x)
-        with mpmath.workprec(53):   # 5 digits, not the hundreds of an exact huge value
-            shown = mpmath.nstr(mpmath.mpf(fr.numerator) / fr.denominator, 5)
-        raise ValueError(f"{name} = {shown} is beyond the float64 range")
+        raise ValueError(f"{name} = {short_value(Fraction(x))} is beyond the float64 range")
     return f
 
 __all__ = [
