@@ -1,8 +1,8 @@
 """Section 4's independence assumption tested on the simulation (issue 15 (ii)).
 
-For each sigma, ``--runs`` rows (drawn as in ``symhx ensemble``: ``SeedSequence([seed, i, k])``,
-``i`` the index in ``--sigmas``) are simulated with full event histories; the sequence of impact
-sites in the window is tested against independence of successive sites with
+For each sigma, ``--runs`` rows (drawn as in ``symhx ensemble``, from
+:func:`symhx.impact.ensemble.run_seed`) are simulated with full event histories; the sequence of
+impact sites in the window is tested against independence of successive sites with
 :func:`symhx.impact.ensemble.transition_dependence` (mutual information of (last, next) against
 within-run shuffles; fractions of repeats and of neighbouring sites).
 
@@ -45,7 +45,7 @@ def main() -> int:
         t0 = time.time()
         seqs = site_transitions(s, args.runs, n=args.pipes, t_transient=args.t_transient,
                                 t_window=args.t_window, seed=args.seed,
-                                restitution=args.restitution, i_sigma=i)
+                                restitution=args.restitution)
         dep = transition_dependence(seqs, args.pipes + 1, shuffles=args.shuffles, seed=i)
         lens = [len(q) for q in seqs]
         dep.update(sigma=s, runs=args.runs, runs_with_pairs=int(sum(n > 1 for n in lens)),

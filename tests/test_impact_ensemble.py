@@ -42,12 +42,19 @@ def serial():
     return ensemble(SIGMAS, 12, chunk=5, **KW)
 
 
+def _seed(seed, sigma, k):
+    """The documented seed of run k at forcing sigma: SeedSequence([seed, 0, key, k]), key the
+    float64 bit pattern of sigma (computed here through numpy, not through the package)."""
+    key = int(np.array(float(sigma) + 0.0, dtype=np.float64).view(np.uint64))
+    return np.random.SeedSequence([seed, 0, key, k])
+
+
+
 # ----------------------------------------------------------------- counting (issue 16)
-def _hand_count(sigma, i, k, *, n, t_transient, t_window, seed, restitution=0.8):
+def _hand_count(sigma, k, *, n, t_transient, t_window, seed, restitution=0.8):
     """Independent count of one run: the Python float64 engine's full event history, impacts
     (and sticking) at t >= t_transient, pipes touching an impacted gap counted by hand."""
-    ss = np.random.SeedSequence([seed, i, k])
-    row = PipeRow.random(n, sigma, seed=ss, restitution=restitution)
+    row = PipeRow.random(n, sigma, seed=_seed(seed, sigma, k), restitution=restitution)
     h = simulate(row, t_transient + t_window, engine="python")
     sites_hit = {int(s) for s, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
                  if kind in (IMPACT, STICK) and float(t) >= t_transient}
@@ -60,11 +67,11 @@ def _hand_count(sigma, i, k, *, n, t_transient, t_window, seed, restitution=0.8)
 
 def test_counts_match_hand_count_from_the_python_engine():
     sigmas, runs = [0.13, 0.16, 0.3], 8
-    kw = dict(n=12, t_transient=25.0, t_window=15.0, seed=7)
+    kw = dict(n=12, t_transient=25.0, t_window=15.0, seed=8)   # a seed whose runs can tell
     res = ensemble(sigmas, runs, chunk=3, progress=False, **kw)
     saw_window_differs = saw_pipes_ne_sites = False
-    for i, (s, st) in enumerate(zip(sigmas, res.per_sigma, strict=True)):
-        hand = [_hand_count(s, i, k, **kw) for k in range(runs)]
+    for s, st in zip(sigmas, res.per_sigma, strict=True):
+        hand = [_hand_count(s, k, **kw) for k in range(runs)]
         kept = [(p, q) for p, q, _, _ in hand if q > 0]
         assert st.pipes.tolist() == [p for p, _ in kept]
         assert st.sites.tolist() == [q for _, q in kept]

@@ -27,6 +27,8 @@ from symhx.impact.ensemble import (
     free_flight_closure_fraction,
     pipes_and_sites,
     run_chunk,
+    run_seed,
+    sigma_key,
     site_transitions,
     thresholds,
     transition_dependence,
@@ -38,17 +40,28 @@ E = importlib.import_module("symhx.impact.ensemble")
 
 # a small ensemble with every model parameter away from its default
 MODEL = dict(restitution=0.5, omega=1.3, d=1.2, Omega=(0.7,))
-KW = dict(n=6, t_transient=6.0, t_window=5.0, seed=3, progress=False, **MODEL)
+KW = dict(n=6, t_transient=6.0, t_window=5.0, seed=7, progress=False, **MODEL)
 SIGMAS = [0.22, 0.4]
 SIGMA0 = [0.3, 0.25]
 RUNS = 5
 
 
-def _hand(sigma, i, k, *, n, t_transient, t_window, seed, sigma0, restitution, omega, d, Omega):
+def _seed(seed, sigma, k):
+    """The documented seed of run k at forcing sigma: SeedSequence([seed, 0, key, k]), key the
+    float64 bit pattern of sigma (computed here through numpy, not through the package)."""
+    key = int(np.array(float(sigma) + 0.0, dtype=np.float64).view(np.uint64))
+    return np.random.SeedSequence([seed, 0, key, k])
+
+
+def _boot_seed(seed, sigma):
+    key = int(np.array(float(sigma) + 0.0, dtype=np.float64).view(np.uint64))
+    return np.random.SeedSequence([seed, 1, key])
+
+
+def _hand(sigma, k, *, n, t_transient, t_window, seed, sigma0, restitution, omega, d, Omega):
     """One run counted by hand from the Python engine's full history."""
-    ss = np.random.SeedSequence([seed, i, k])
-    row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, omega=omega, d=d,
-                         Omega=Omega, sigma0=sigma0)
+    row = PipeRow.random(n, sigma, seed=_seed(seed, sigma, k), restitution=restitution,
+                         omega=omega, d=d, Omega=Omega, sigma0=sigma0)
     h = simulate(row, t_transient + t_window, engine="python")
     times = [float(t) for t in h.times]
     hits = [(int(s), t) for s, kind, t in zip(h.sites, h.kinds, times, strict=True)
@@ -65,7 +78,7 @@ def _hand(sigma, i, k, *, n, t_transient, t_window, seed, sigma0, restitution, o
 @pytest.fixture
 def hand():
     kw = {k: v for k, v in KW.items() if k != "progress"}
-    return [[_hand(s, i, k, sigma0=SIGMA0[i], **kw) for k in range(RUNS)]
+    return [[_hand(s, k, sigma0=SIGMA0[i], **kw) for k in range(RUNS)]
             for i, s in enumerate(SIGMAS)]
 
 
@@ -104,7 +117,7 @@ def test_ensemble_counts_equal_hand_counts(res, hand):
     assert saw_window and saw_pipes     # the data tells the window and pipes/sites apart
     assert sum(st.excluded for st in res.per_sigma) > 0
     assert res.params == {
-        "runs": RUNS, "n": 6, "t_transient": 6.0, "t_window": 5.0, "seed": 3,
+        "runs": RUNS, "n": 6, "t_transient": 6.0, "t_window": 5.0, "seed": 7,
         "restitution": 0.5, "omega": 1.3, "d": 1.2, "Omega": ["0.7"], "sigma0": SIGMA0,
         "chunk": 2, "engine": "float64 C" if E._c_available() else "float64 python"}
     assert res.seconds >= 0
@@ -113,7 +126,7 @@ def test_ensemble_counts_equal_hand_counts(res, hand):
 def test_run_chunk_equals_hand_counts(hand):
     kw = {k: v for k, v in KW.items() if k not in ("progress", "n", "t_transient", "t_window",
                                                       "seed")}
-    out = run_chunk(SIGMAS[1], 1, [3, 1, 4], 6, 6.0, 5.0, 3, sigma0=SIGMA0[1], **kw)
+    out = run_chunk(SIGMAS[1], [3, 1, 4], 6, 6.0, 5.0, KW["seed"], sigma0=SIGMA0[1], **kw)
     runs = [hand[1][k] for k in (3, 1, 4)]
     assert out["pipes"].tolist() == [r["pipes"] for r in runs]
     assert out["sites"].tolist() == [r["sites"] for r in runs]
@@ -170,14 +183,14 @@ def test_failures_recorded_with_reasons_and_capped(monkeypatch):
     assert [f[0] for f in st.failures] == list(range(1, 40, 2))
     assert st.excluded + len(st.sites) == 25 == st.stats["sites"]["count"] + st.excluded
     assert st.impacts >= 0 and np.all(st.site_hits <= 25)
-    out = run_chunk(0.3, 0, [0, 1], 3, 1.0, 1.0, 0, 0.8, 1.0, 1.0, (SQRT2,))
+    out = run_chunk(0.3, [0, 1], 3, 1.0, 1.0, 0, 0.8, 1.0, 1.0, (SQRT2,))
     assert out["pipes"].tolist()[1] == out["sites"].tolist()[1] == -1
     assert out["impacts"].tolist()[1] == -1
 
 
 def test_failed_draws_are_named_draw():
     # sigma0 = 0: the pipes start at j d + forced(0); some rows overlap and cannot be drawn
-    out = run_chunk(2.0, 0, list(range(6)), 6, 1.0, 1.0, 0, 0.8, 1.0, 1.0, (1.05,), 0.0)
+    out = run_chunk(2.0, list(range(6)), 6, 1.0, 1.0, 0, 0.8, 1.0, 1.0, (1.05,), 0.0)
     assert out["failures"]
     for run, reason in out["failures"]:
         assert reason.startswith("draw: could not draw non-overlapping")
@@ -430,9 +443,9 @@ def test_describe_histogram_degenerate():
 
 
 def test_combine_statistics_use_their_own_bootstrap_stream(res, hand):
-    # the bootstrap generator of sigma index i is SeedSequence([seed, 10**6, i]); pipes first
+    # the bootstrap generator of sigma is SeedSequence([seed, 1, key(sigma)]); pipes first
     for i, st in enumerate(res.per_sigma):
-        rng = np.random.default_rng(np.random.SeedSequence([KW["seed"], 10**6, i]))
+        rng = np.random.default_rng(_boot_seed(KW["seed"], st.sigma))
         kept = [r for r in hand[i] if r["sites"]]
         hp = np.bincount([r["pipes"] for r in kept], minlength=KW["n"] + 1)
         hs = np.bincount([r["sites"] for r in kept], minlength=KW["n"] + 2)
@@ -441,7 +454,7 @@ def test_combine_statistics_use_their_own_bootstrap_stream(res, hand):
 
 
 def test_combine_of_no_parts():
-    st = E._combine(0.5, 0, [], 4, 0, True)
+    st = E._combine(0.5, [], 4, 0, True)
     assert (st.runs, st.excluded, st.failed, st.events, st.impacts) == (0, 0, 0, 0, 0)
     assert st.site_hits.tolist() == [0] * 5 and st.pipes.tolist() == []
     assert st.stats["pipes"]["count"] == 0 and len(st.stats["sites"]["hist"]) == 6
@@ -614,21 +627,20 @@ def test_thresholds_of_a_real_ensemble_match_its_histograms():
 # ----------------------------------------------------------------- site sequences
 def test_site_transitions_equal_hand_sequences():
     kw = dict(n=5, t_transient=4.0, t_window=5.0, seed=6)
-    seqs = site_transitions(0.35, 3, restitution=0.5, sigma0=0.3, i_sigma=2, **kw)
+    seqs = site_transitions(0.35, 3, restitution=0.5, sigma0=0.3, **kw)
     assert len(seqs) == 3
     for k, s in enumerate(seqs):
-        ss = np.random.SeedSequence([6, 2, k])
-        row = PipeRow.random(5, 0.35, seed=ss, restitution=0.5, sigma0=0.3)
+        row = PipeRow.random(5, 0.35, seed=_seed(6, 0.35, k), restitution=0.5, sigma0=0.3)
         h = simulate(row, 9.0, engine="python")
         ref = [int(site) for site, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
                if kind in (IMPACT, STICK) and float(t) >= 4.0]
         assert s.tolist() == ref and s.dtype == np.int64
     assert sum(len(s) for s in seqs) > 0
-    # defaults: n = 100, t in [200, 300], seed 0, i_sigma 0: at rest nothing happens
+    # defaults: n = 100, t in [200, 300], seed 0: at rest nothing happens
     (quiet,) = site_transitions(0.0, 1, sigma0=0.0)
     assert quiet.tolist() == []
     d = site_transitions(0.3, 1, n=4, t_transient=2, t_window=3)[0]
-    row = PipeRow.random(4, 0.3, seed=np.random.SeedSequence([0, 0, 0]))
+    row = PipeRow.random(4, 0.3, seed=_seed(0, 0.3, 0))
     h = simulate(row, 5.0, engine="python")
     assert d.tolist() == [int(x) for x, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
                           if kind in (IMPACT, STICK) and t >= 2]
@@ -839,7 +851,7 @@ def test_documented_defaults():
         "keep_runs": True}
     assert defaults(site_transitions) == {
         "n": 100, "t_transient": 200.0, "t_window": 100.0, "seed": 0, "restitution": 0.8,
-        "sigma0": None, "i_sigma": 0}
+        "sigma0": None}
     assert defaults(thresholds) == {"level": 10, "min_kept": 20, "boot": 400, "seed": 0}
     assert defaults(free_flight_closure_fraction) == {
         "horizon": 400.0, "seed": 0, "omega": 1.0, "d": 1.0, "Omega": math.sqrt(2)}
@@ -849,8 +861,7 @@ def test_documented_defaults():
 
 def test_site_transitions_window_start_is_inclusive():
     # t_transient set to the exact time of an impact: that impact belongs to the window
-    ss = np.random.SeedSequence([6, 0, 0])
-    row = PipeRow.random(5, 0.35, seed=ss)
+    row = PipeRow.random(5, 0.35, seed=_seed(6, 0.35, 0))
     h = simulate(row, 9.0)
     k = next(i for i in range(len(h)) if h.kinds[i] == IMPACT and h.times[i] > 1.0)
     t_k = float(h.times[k])
@@ -975,7 +986,7 @@ def test_defaults_used_by_calls(monkeypatch):
     (seq,) = site_transitions(0.2, 1)
     row, t_end = calls[0]
     assert t_end == 300.0 and row.n == 100 and row.restitution == 0.8
-    ref = PipeRow.random(100, 0.2, seed=np.random.SeedSequence([0, 0, 0]))
+    ref = PipeRow.random(100, 0.2, seed=_seed(0, 0.2, 0))
     assert np.array_equal(row.x0, ref.x0) and np.array_equal(row.v0, ref.v0)
     assert seq.tolist() == [4, 6]
     monkeypatch.undo()
@@ -1131,16 +1142,16 @@ def test_partial_snapshots_with_chunks_out_of_order(tmp_path, monkeypatch):
 
 
 def test_bootstrap_stream_of_each_sigma():
-    # enough kept runs for the bootstrap to depend on its stream: SeedSequence([seed, 10**6, i])
-    kw = dict(n=5, t_transient=2.0, t_window=4.0, seed=8, progress=False)
-    res = ensemble([0.5, 0.7], 12, chunk=5, **kw)
+    # enough kept runs for the bootstrap to depend on its stream: SeedSequence([seed, 1, key])
+    kw = dict(n=5, t_transient=2.0, t_window=4.0, seed=9, progress=False)
+    res = ensemble([0.3, 0.5], 12, chunk=5, **kw)
     for i, st in enumerate(res.per_sigma):
         assert len(st.pipes) >= 6
-        rng = np.random.default_rng(np.random.SeedSequence([8, 10**6, i]))
+        rng = np.random.default_rng(_boot_seed(9, st.sigma))
         assert st.stats["pipes"] == describe_histogram(np.bincount(st.pipes, minlength=6), rng)
         assert st.stats["sites"] == describe_histogram(np.bincount(st.sites, minlength=7), rng)
         assert st.stats["pipes"]["mode_se"] is not None
-        other = np.random.default_rng(np.random.SeedSequence([8, 10**6, 1 - i]))
+        other = np.random.default_rng(_boot_seed(9, res.per_sigma[1 - i].sigma))
         assert st.stats["pipes"] != describe_histogram(np.bincount(st.pipes, minlength=6), other)
 
 
@@ -1158,3 +1169,53 @@ def test_free_flight_checks_the_given_omega_and_d():
     with pytest.raises(ValueError, match=r"^Omega\[0\] = 2.0 equals omega = 2.0 \(resonance\)"):
         free_flight_closure_fraction(0.3, 2, omega=2.0, Omega=2.0, horizon=5.0)
     assert 0 <= free_flight_closure_fraction(0.3, 2, d=3.0, horizon=5.0) <= 1
+
+
+# ----------------------------------------------------------------- seeds keyed by sigma
+def test_sigma_key_and_run_seed_are_the_documented_formula():
+    assert sigma_key(0.0) == sigma_key(-0.0) == 0
+    assert sigma_key(1.0) == 0x3FF0000000000000 and sigma_key(2.0) == 0x4000000000000000
+    assert sigma_key(np.nextafter(0.3, 1.0)) == sigma_key(0.3) + 1
+    assert sigma_key(np.float32(0.5)) == sigma_key(0.5) and sigma_key(1) == sigma_key(1.0)
+    for seed, sigma, k in ((0, 0.16, 0), (9, 0.3, 11), (2**70, 5e-324, 3)):
+        ref = _seed(seed, sigma, k)
+        got = run_seed(seed, sigma, k)
+        assert got.entropy == ref.entropy
+        assert np.array_equal(got.generate_state(4), ref.generate_state(4))
+
+
+def test_rows_of_a_sigma_do_not_depend_on_the_grid():
+    # the point of keying the seed by sigma: one column of a stored grid can be recomputed alone
+    kw = dict(n=5, t_transient=2.0, t_window=4.0, seed=9, progress=False)
+    both = ensemble([0.3, 0.5], 12, chunk=5, **kw)
+    alone = ensemble([0.5], 12, chunk=7, **kw)
+    other = ensemble([0.5, 0.2, 0.3], 12, chunk=4, **kw)
+    pairs = ((alone.per_sigma[0], both.per_sigma[1]), (other.per_sigma[0], both.per_sigma[1]),
+             (other.per_sigma[2], both.per_sigma[0]))
+    for st, ref in pairs:
+        assert st.sigma == ref.sigma and st.stats == ref.stats
+        assert (st.pipes.tolist(), st.sites.tolist(), st.site_hits.tolist()) == (
+            ref.pipes.tolist(), ref.sites.tolist(), ref.site_hits.tolist())
+        assert (st.events, st.impacts, st.excluded) == (ref.events, ref.impacts, ref.excluded)
+    assert both.per_sigma[0].pipes.tolist() != both.per_sigma[1].pipes.tolist()
+    # neighbouring floats are different forcings with different rows
+    a = PipeRow.random(5, 0.3, seed=run_seed(9, 0.3, 0))
+    b = PipeRow.random(5, 0.3, seed=run_seed(9, np.nextafter(0.3, 1.0), 0))
+    assert not np.array_equal(a.x0, b.x0)
+    # site_transitions draws the same rows as the ensemble at any sigma of its grid
+    seqs = site_transitions(0.5, 3, n=5, t_transient=2.0, t_window=4.0, seed=9)
+    kept = [len(set(q.tolist())) for q in seqs if len(q)]
+    assert kept == both.per_sigma[1].sites.tolist()[: len(kept)]
+
+
+def test_site_transitions_refuses_bad_input():
+    with pytest.raises(ValueError, match="sigma"):
+        site_transitions("abc", 1, n=3)
+    with pytest.raises(ValueError, match="sigma"):
+        site_transitions(-0.1, 1, n=3)
+    with pytest.raises(TypeError, match="seed must be an int >= 0"):
+        site_transitions(0.2, 1, n=3, seed=None)
+    with pytest.raises(ValueError, match="seed"):
+        site_transitions(0.2, 1, n=3, seed=-1)
+    with pytest.raises(ValueError, match="beyond the float64 range"):
+        site_transitions(10**400, 1, n=3)

@@ -20,8 +20,11 @@ The stored form is compact: per ``sigma`` the histograms of ``pipes`` and ``site
 counts and the failures (:meth:`EnsembleResult.as_dict`); every statistic (mean, standard error,
 mode, bootstrap percentile intervals) is computed from the histograms.
 
-Reproducibility: run ``k`` of ``sigmas[i]`` uses ``numpy.random.SeedSequence([seed, i, k])``, so
-the numbers do not depend on the executor, on the chunking or on the order of completion.  Any
+Reproducibility: run ``k`` at forcing ``sigma`` draws its row from :func:`run_seed`, that is
+``numpy.random.SeedSequence([seed, 0, key, k])`` with ``key`` the IEEE-754 bit pattern of
+``float(sigma)``.  The rows of one ``sigma`` therefore depend neither on the other values of the
+grid nor on its position in it (``ensemble([0.16], ...)`` repeats the ``sigma = 0.16`` rows of
+any grid), nor on the executor, the chunking or the order of completion.  Any
 ``concurrent.futures.Executor`` works (``ProcessPoolExecutor``, a ``dask.distributed`` client's
 ``client.get_executor()``); ``executor=None`` runs serially.
 """
@@ -31,6 +34,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import struct
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -70,6 +74,8 @@ __all__ = [
     "free_flight_closure_fraction",
     "pipes_and_sites",
     "run_chunk",
+    "run_seed",
+    "sigma_key",
     "site_transitions",
     "thresholds",
     "transition_dependence",
@@ -91,6 +97,29 @@ MAX_GAPS = 20_000
 
 
 # --------------------------------------------------------------------------- one run
+def sigma_key(sigma: float) -> int:
+    """The IEEE-754 bit pattern of ``float(sigma)`` as an integer ``0 <= key < 2**64``
+    (``-0.0`` counts as ``0.0``): the part of a run's seed that names its forcing.
+
+    >>> sigma_key(0.0), sigma_key(-0.0), hex(sigma_key(1.0))
+    (0, 0, '0x3ff0000000000000')
+    """
+    return int(struct.unpack("<Q", struct.pack("<d", float(sigma) + 0.0))[0])
+
+
+def run_seed(seed: int, sigma: float, run: int) -> np.random.SeedSequence:
+    """The seed of run ``run`` at forcing ``sigma`` in an ensemble seeded with ``seed``:
+    ``SeedSequence([seed, 0, sigma_key(sigma), run])``.
+
+    Used by :func:`ensemble`, :func:`run_chunk` and :func:`site_transitions`, so that one value
+    of ``sigma`` draws the same rows in any grid, on any executor.
+
+    >>> run_seed(3, 0.25, 7).entropy == [3, 0, sigma_key(0.25), 7]
+    True
+    """
+    return np.random.SeedSequence([int(seed), 0, sigma_key(sigma), int(run)])
+
+
 def window_counts(row: PipeRow, t_transient: float, t_window: float) -> np.ndarray:
     """Impacts per site ``0..n`` of ``row`` with ``t_transient <= t <= t_transient + t_window``
     (float64 engine, :func:`symhx.impact.fast.count_impacts`).
@@ -120,16 +149,16 @@ class _DrawError(RuntimeError):
     """A run whose random row could not be drawn (e.g. overlapping pipes with ``sigma0 = 0``)."""
 
 
-def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transient: float,
+def run_chunk(sigma: float, runs: Sequence[int], n: int, t_transient: float,
               t_window: float, seed: int, restitution: float, omega: float, d: float,
               Omega: tuple, sigma0: float | None = None) -> dict[str, Any]:
-    """Worker: simulate the given runs of one ``sigma``.
+    """Worker: simulate the given runs of one ``sigma`` (rows drawn from :func:`run_seed`).
 
     Returns a dict of per-run arrays ``pipes``, ``sites``, ``impacts`` (impacts in the window;
     ``-1`` for a failed run), the sum ``site_hits`` over the runs of the hit indicator of each
     site, the total number of ``events`` and the ``failures`` as ``(run, reason)`` pairs.
 
-    >>> out = run_chunk(0.05, 0, [0, 1], 10, 10.0, 10.0, 1, 0.8, 1.0, 1.0, (SQRT2,))
+    >>> out = run_chunk(0.05, [0, 1], 10, 10.0, 10.0, 1, 0.8, 1.0, 1.0, (SQRT2,))
     >>> out["pipes"].tolist(), out["sites"].tolist(), out["failures"]
     ([0, 0], [0, 0], [])
     """
@@ -141,7 +170,7 @@ def run_chunk(sigma: float, i_sigma: int, runs: Sequence[int], n: int, t_transie
     events = 0
     failures: list[tuple[int, str]] = []
     for k, run in enumerate(runs):
-        ss = np.random.SeedSequence([int(seed), int(i_sigma), int(run)])
+        ss = run_seed(seed, sigma, run)
         try:
             try:
                 row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, omega=omega,
@@ -455,7 +484,7 @@ def ensemble(
             while k in done[i]:
                 k += 1
             parts = [done[i][c] for c in range(k)]
-            per.append(_combine(s, i, parts, n, seed_i, keep_runs))
+            per.append(_combine(s, parts, n, seed_i, keep_runs))
         p = dict(params)
         if not final:
             p["partial"] = True
@@ -471,7 +500,7 @@ def ensemble(
 
     def submit_args(task: tuple[int, int]) -> tuple:
         i, c = task
-        return (sig[i], i, list(range(c * chunk, min((c + 1) * chunk, runs))), *args_common,
+        return (sig[i], list(range(c * chunk, min((c + 1) * chunk, runs))), *args_common,
                 s0s[i])
 
     try:
@@ -490,7 +519,7 @@ def ensemble(
     return res
 
 
-def _combine(sigma: float, i: int, parts: list[dict[str, Any]], n: int, seed: int,
+def _combine(sigma: float, parts: list[dict[str, Any]], n: int, seed: int,
              keep_runs: bool) -> SigmaStats:
     """Merge the chunks ``0..K-1`` of one sigma into its :class:`SigmaStats`."""
     def cat(key: str) -> np.ndarray:
@@ -509,8 +538,8 @@ def _combine(sigma: float, i: int, parts: list[dict[str, Any]], n: int, seed: in
                     events=int(sum(p["events"] for p in parts)), failed=len(failures),
                     failures=failures[:20], site_hits=np.asarray(hits, dtype=np.int64),
                     impacts=int(impacts[ok].sum()))
-    # the bootstrap stream depends only on (seed, sigma index): identical for any executor
-    rng = np.random.default_rng(np.random.SeedSequence([seed, 10**6, i]))
+    # the bootstrap stream depends only on (seed, sigma): identical for any executor and grid
+    rng = np.random.default_rng(np.random.SeedSequence([seed, 1, sigma_key(sigma)]))
     st.stats = {
         "pipes": describe_histogram(np.bincount(pipes[keep], minlength=n + 1)[: n + 1], rng),
         "sites": describe_histogram(np.bincount(sites[keep], minlength=n + 2)[: n + 2], rng),
@@ -590,12 +619,11 @@ def site_transitions(
     seed: int = 0,
     restitution: float = 0.8,
     sigma0: float | None = None,
-    i_sigma: int = 0,
 ) -> list[np.ndarray]:
     """Sequences of impact sites in the window (section 4's independence assumption).
 
-    Runs ``k = 0..runs-1`` draw the same rows as :func:`ensemble` (``SeedSequence([seed,
-    i_sigma, k])``) and are simulated with :func:`symhx.impact.simulate` (float64); for each run
+    Runs ``k = 0..runs-1`` draw the same rows as :func:`ensemble` (:func:`run_seed`) and are
+    simulated with :func:`symhx.impact.simulate` (float64); for each run
     the sites of the impacts (kinds ``impact`` and ``stick``, as counted by the ensemble) with
     ``t >= t_transient``, in time order.  Failed
     runs give an empty sequence.
@@ -606,13 +634,17 @@ def site_transitions(
     """
     from symhx.impact.simulate import simulate
 
+    sig = _float(check_real(sigma, "sigma", low=0), "sigma")
     runs = check_int(runs, "runs", minimum=1)
+    seed_i = check_seed(seed)
+    if seed_i is None:
+        raise TypeError("seed must be an int >= 0 (the rows of ensemble() need one), got None")
     t_tr = float(check_real(t_transient, "t_transient", low=0))
     t_w = float(check_real(t_window, "t_window", low=0, low_open=True))
     out = []
     for k in range(runs):
-        ss = np.random.SeedSequence([int(seed), int(i_sigma), k])
-        row = PipeRow.random(n, sigma, seed=ss, restitution=restitution, sigma0=sigma0)
+        row = PipeRow.random(n, sig, seed=run_seed(seed_i, sig, k), restitution=restitution,
+                             sigma0=sigma0)
         try:
             h = simulate(row, t_tr + t_w)
         except RuntimeError:
