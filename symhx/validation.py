@@ -12,7 +12,8 @@ Input conventions for real numbers (``p``, ``sigma``, ...)
 ------------------------------------------------------------
 * ``int``, numpy integers, :class:`fractions.Fraction`, :class:`decimal.Decimal`, sympy
   ``Rational`` and *decimal strings* (``"0.02"``, ``"2e-2"``, ``"1/50"``) are **exact
-  rationals**: ``"0.02"`` is exactly 1/50.
+  rationals**: ``"0.02"`` is exactly 1/50.  Strings follow Python's literals: an underscore may
+  only separate two digits (``"1_000"``, not ``"1__0"`` or ``"_1"``).
 * ``float``, numpy floats (any width), ``mpmath.mpf`` and sympy ``Float`` are taken at their
   **exact binary value**: the float ``0.02`` is ``0.0200000000000000004163...``, slightly above
   1/50, so ``symhx.modes(101, 0.02) == (51,)`` while ``symhx.modes(101, "0.02") == (50, 51)``.
@@ -133,11 +134,20 @@ _DECIMAL_LIMIT = 10 ** (MAX_DECIMAL_EXPONENT + 1)
 _LIMIT_BITS = _DECIMAL_LIMIT.bit_length()
 
 
+#: an underscore that does not sit between two digits ("_1", "1_", "1__0", "1._5", "1e_5")
+_BAD_UNDERSCORE = re.compile(r"(?<![0-9])_|_(?![0-9])")
+
+
 def _parse_string(text: str, name: str, integer: bool = False) -> Fraction:
     """Exact rational value of ``"0.02"``, ``"2e-2"``, ``"1/50"`` or ``"10**100"``.
 
     ``integer`` only changes the wording of the errors (the caller checks integrality)."""
-    s = text.strip().replace("_", "")
+    s = text.strip()
+    if _BAD_UNDERSCORE.search(s):   # Python's rule: one underscore, between two digits
+        kind = "an integer" if integer else "a number"
+        raise ValueError(f"{name} must be {kind}; an underscore may only separate two digits, "
+                         f"got {text!r}")
+    s = s.replace("_", "")
     m = _RATIO.match(s)
     if m:
         num, den = int(m.group(1)), int(m.group(2))
@@ -253,11 +263,15 @@ def as_fraction(p: Any, name: str = "p") -> Fraction | None:
 
 
 def is_exact_type(p: Any) -> bool:
-    """Inputs whose results are returned exactly: ints, Fractions, sympy Rationals and decimal
-    strings (floats and mpf are rational too, but results for them are mpf at ``dps``)."""
+    """Inputs whose results are returned exactly: ints, Fractions, sympy Rationals, Decimals and
+    decimal strings (floats and mpf are rational too, but results for them are mpf at ``dps``).
+
+    >>> is_exact_type("0.3"), is_exact_type(Decimal("0.3")), is_exact_type(0.3)
+    (True, True, False)
+    """
     if isinstance(p, (bool, np.bool_)):
         return False
-    if isinstance(p, (int, Fraction, str, numbers.Integral)):
+    if isinstance(p, (int, Fraction, str, Decimal, numbers.Integral)):
         return True
     return _sympy_is(p, "is_Rational")
 

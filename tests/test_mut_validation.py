@@ -81,6 +81,36 @@ def test_strings_are_exact(text, exact):
     assert type(got) is Fraction and got == exact
 
 
+@pytest.mark.parametrize("text", ["1_000", "1__0", "_1", "1_", "1._5", "1_.5", "1e_5", "1_e5",
+                                  "0.000_1", "1_0e1_0", "-_1", "1e-_3", "12_3.4_5e6_7"])
+def test_underscores_follow_pythons_rule(text):
+    # the reference is Python's own parser: an underscore only between two digits
+    try:
+        ref = Fraction(text)
+    except ValueError:
+        raises(ValueError, f"p must be a number; an underscore may only separate two digits, "
+               f"got {text!r}", v.to_rational, text)
+    else:
+        assert v.to_rational(text) == ref
+    if "." not in text and "e" not in text:
+        try:
+            iref = int(text)
+        except ValueError:
+            raises(ValueError, f"n must be an integer; an underscore may only separate two "
+                   f"digits, got {text!r}", v.check_int, text, "n")
+        else:
+            assert v.check_int(text, "n") == iref
+    for form in (f"{text}/3", f"3**{text}"):     # the same rule inside ratios and powers
+        if "." in text or "e" in text or "-" in text:
+            continue
+        ok = "__" not in text and not text.startswith("_") and not text.endswith("_")
+        if ok:
+            v.to_rational(form)
+        else:
+            with pytest.raises(ValueError, match="an underscore may only separate two digits"):
+                v.to_rational(form)
+
+
 def test_decimal_exponent_cap_at_its_exact_boundary():
     # accepted: decimal exponent MAXD (the number has MAXD + 1 digits), also as a power
     assert v.to_rational(f"1e{MAXD}") == 10**MAXD
@@ -279,9 +309,9 @@ def test_default_name_and_alias():
 
 def test_is_exact_type():
     for x in (3, -3, Fraction(1, 3), "0.02", "junk", np.int64(2), np.uint8(1),
-              sympy.Rational(1, 3), sympy.Integer(2)):
+              sympy.Rational(1, 3), sympy.Integer(2), Decimal("0.5"), Decimal("-1e-9")):
         assert v.is_exact_type(x) is True, x
-    for x in (True, False, np.True_, 0.5, np.float64(0.5), Decimal("0.5"), mpmath.mpf(1),
+    for x in (True, False, np.True_, 0.5, np.float64(0.5), mpmath.mpf(1),
               sympy.sqrt(2), sympy.Float(0.5), None, [1], 1j, sympy.Matrix([[1]]),
               sympy.Symbol("r", rational=True)):
         assert v.is_exact_type(x) is False, x
