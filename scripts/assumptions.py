@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from symhx.impact.ensemble import site_transitions, transition_dependence
+from symhx.impact.ensemble import sigma_key, site_transitions, transition_dependence
 
 OUT = Path(__file__).resolve().parent.parent / "symhx" / "data" / "ensemble_assumptions.json"
 
@@ -41,12 +41,14 @@ def main() -> int:
     ap.add_argument("--out", type=Path, default=OUT, help="output JSON")
     args = ap.parse_args()
     result = {"params": {k: v for k, v in vars(args).items() if k != "out"}, "per_sigma": []}
-    for i, s in enumerate(args.sigmas):
+    for s in args.sigmas:
         t0 = time.time()
         seqs = site_transitions(s, args.runs, n=args.pipes, t_transient=args.t_transient,
                                 t_window=args.t_window, seed=args.seed,
                                 restitution=args.restitution)
-        dep = transition_dependence(seqs, args.pipes + 1, shuffles=args.shuffles, seed=i)
+        # the null's shuffles are seeded by sigma too: one row of the table is recomputed alone
+        dep = transition_dependence(seqs, args.pipes + 1, shuffles=args.shuffles,
+                                    seed=sigma_key(s))
         lens = [len(q) for q in seqs]
         dep.update(sigma=s, runs=args.runs, runs_with_pairs=int(sum(n > 1 for n in lens)),
                    median_impacts=float(np.median(lens)))
