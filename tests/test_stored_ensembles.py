@@ -24,10 +24,10 @@ def _load(name):
 
 def _recompute(params, sigma, sigma0):
     p = params
-    omega = tuple(SQRT2 if w == repr(SQRT2) else float(w) for w in p["Omega"])
+    Omega = tuple(SQRT2 if w == repr(SQRT2) else float(w) for w in p["Omega"])
     return ensemble([sigma], p["runs"], n=p["n"], t_transient=p["t_transient"],
                     t_window=p["t_window"], seed=p["seed"], restitution=p["restitution"],
-                    omega=p["omega"], d=p["d"], Omega=omega, sigma0=sigma0, progress=False,
+                    omega=p["omega"], d=p["d"], Omega=Omega, sigma0=sigma0, progress=False,
                     keep_runs=False).per_sigma[0]
 
 
