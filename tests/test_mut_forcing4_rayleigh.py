@@ -16,6 +16,7 @@ import math
 from fractions import Fraction
 
 import mpmath
+import numpy as np
 import pytest
 
 from symhx.forcing import RayleighSum, rayleigh_scales
@@ -162,6 +163,8 @@ def test_errors_name_x():
         S.sf(math.nan)
     with pytest.raises(ValueError, match=r"^x must be finite, got nan at index \(1,\)"):
         S.sf([1.0, math.nan])
+    with pytest.raises(ValueError, match=r"^x must be finite, got nan at index \(1,\)"):
+        S.sf(np.array([1.0, math.nan]))   # a float64 array: the same words as a list
     with pytest.raises(ValueError, match=r"^x must be a number"):
         S.cdf("abc")
 

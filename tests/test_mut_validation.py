@@ -592,3 +592,18 @@ def test_check_array_first_bad_index():
     raises(ValueError, "s must be > 0, got 0.0 at index (0,)", v.check_array, [0.0], "s",
            positive=True, nonnegative=True)
     assert v.check_array([-1.0], "s").tolist() == [-1.0]
+
+
+# ------------------------------------------------------------------ short_value
+@pytest.mark.parametrize("fr", [Fraction(1, 3), Fraction(10**400, 3), Fraction(-7, 2**1100),
+                                Fraction(12345678), Fraction(1, 10**500), Fraction(2, 7)])
+def test_short_value_is_five_significant_digits_of_the_exact_value(fr):
+    """Read back by Python's exact Fraction parser: within half a unit of the 5th digit, and no
+    more than 5 significant digits written (error messages stay short for huge values)."""
+    from symhx.validation import short_value
+
+    s = short_value(fr)
+    back = Fraction(s)
+    assert abs(back / fr - 1) <= Fraction(5, 10**5)
+    mantissa = s.lstrip("-").split("e")[0].replace(".", "").lstrip("0")
+    assert 1 <= len(mantissa.rstrip("0")) <= 5
