@@ -197,3 +197,28 @@ def test_mp_group_functions_at_and_below_zero(scales, t):
         g = ray._MGroup([mpmath.mpf(s) for s in scales])
         tm = mpmath.mpf(t)
         assert g.cdf(tm) == 0 and g.pdf(tm) == 0 and g.mpdf(tm) == 0 and g.msf(tm) == 1
+
+
+# ------------------------------------------------------------------ float64 routes
+def test_float_lower_tail_with_scales_spread_over_six_decades():
+    """Scales 1e-6 .. 3 at a threshold between the two smallest (x = 2.7e-4): the panels at
+    multiples of every scale near both ends of [0, x] resolve the small scales; float64 density
+    and cdf against mpmath at 17 digits."""
+    S = RayleighSum([3.0, 1e-6, 2.0, 1e-3, 0.5])
+    x = 0.0002731601224582885
+    for kind in ("pdf", "cdf"):
+        ref = S._eval(x, kind, 17)
+        assert abs(S._eval(x, kind, None) / ref - 1) < 1e-13, kind
+
+
+def test_float_array_mixing_the_laplace_region_with_ordinary_thresholds():
+    """An array holding a threshold in the Laplace region (x min(s) >= 1e5 V) and an ordinary
+    one: each entry as if evaluated alone, and against mpmath."""
+    S = RayleighSum([1.0, 1.0, 1.0])
+    x = np.array([64.0, 1e6, 2.0])
+    for kind in ("sf", "cdf", "pdf", "logsf", "logcdf"):
+        got = S._eval(x, kind, None)
+        alone = [S._eval(float(v), kind, None) for v in x]
+        assert list(got) == alone, kind
+    ref = S.logcdf(64, dps=20)
+    assert abs(S.logcdf(x)[0] / float(ref) - 1) < 1e-13
