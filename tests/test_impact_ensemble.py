@@ -12,6 +12,7 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
 import numpy as np
 import pytest
+from _seeds import run_seed_ref
 
 from symhx.forcing import impact_probability
 from symhx.impact import IMPACT, STICK, PipeRow, simulate
@@ -42,19 +43,12 @@ def serial():
     return ensemble(SIGMAS, 12, chunk=5, **KW)
 
 
-def _seed(seed, sigma, k):
-    """The documented seed of run k at forcing sigma: SeedSequence([seed, 0, key, k]), key the
-    float64 bit pattern of sigma (computed here through numpy, not through the package)."""
-    key = int(np.array(float(sigma) + 0.0, dtype=np.float64).view(np.uint64))
-    return np.random.SeedSequence([seed, 0, key, k])
-
-
 
 # ----------------------------------------------------------------- counting (issue 16)
 def _hand_count(sigma, k, *, n, t_transient, t_window, seed, restitution=0.8):
     """Independent count of one run: the Python float64 engine's full event history, impacts
     (and sticking) at t >= t_transient, pipes touching an impacted gap counted by hand."""
-    row = PipeRow.random(n, sigma, seed=_seed(seed, sigma, k), restitution=restitution)
+    row = PipeRow.random(n, sigma, seed=run_seed_ref(seed, sigma, k), restitution=restitution)
     h = simulate(row, t_transient + t_window, engine="python")
     sites_hit = {int(s) for s, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
                  if kind in (IMPACT, STICK) and float(t) >= t_transient}

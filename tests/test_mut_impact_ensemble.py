@@ -17,6 +17,7 @@ from concurrent.futures import Executor, Future, ThreadPoolExecutor
 
 import numpy as np
 import pytest
+from _seeds import boot_seed_ref, run_seed_ref
 
 from symhx.impact import IMPACT, STICK, PipeRow, simulate
 from symhx.impact.ensemble import (
@@ -46,21 +47,9 @@ SIGMA0 = [0.3, 0.25]
 RUNS = 5
 
 
-def _seed(seed, sigma, k):
-    """The documented seed of run k at forcing sigma: SeedSequence([seed, 0, key, k]), key the
-    float64 bit pattern of sigma (computed here through numpy, not through the package)."""
-    key = int(np.array(float(sigma) + 0.0, dtype=np.float64).view(np.uint64))
-    return np.random.SeedSequence([seed, 0, key, k])
-
-
-def _boot_seed(seed, sigma):
-    key = int(np.array(float(sigma) + 0.0, dtype=np.float64).view(np.uint64))
-    return np.random.SeedSequence([seed, 1, key])
-
-
 def _hand(sigma, k, *, n, t_transient, t_window, seed, sigma0, restitution, omega, d, Omega):
     """One run counted by hand from the Python engine's full history."""
-    row = PipeRow.random(n, sigma, seed=_seed(seed, sigma, k), restitution=restitution,
+    row = PipeRow.random(n, sigma, seed=run_seed_ref(seed, sigma, k), restitution=restitution,
                          omega=omega, d=d, Omega=Omega, sigma0=sigma0)
     h = simulate(row, t_transient + t_window, engine="python")
     times = [float(t) for t in h.times]
@@ -445,7 +434,7 @@ def test_describe_histogram_degenerate():
 def test_combine_statistics_use_their_own_bootstrap_stream(res, hand):
     # the bootstrap generator of sigma is SeedSequence([seed, 1, key(sigma)]); pipes first
     for i, st in enumerate(res.per_sigma):
-        rng = np.random.default_rng(_boot_seed(KW["seed"], st.sigma))
+        rng = np.random.default_rng(boot_seed_ref(KW["seed"], st.sigma))
         kept = [r for r in hand[i] if r["sites"]]
         hp = np.bincount([r["pipes"] for r in kept], minlength=KW["n"] + 1)
         hs = np.bincount([r["sites"] for r in kept], minlength=KW["n"] + 2)
@@ -630,7 +619,7 @@ def test_site_transitions_equal_hand_sequences():
     seqs = site_transitions(0.35, 3, restitution=0.5, sigma0=0.3, **kw)
     assert len(seqs) == 3
     for k, s in enumerate(seqs):
-        row = PipeRow.random(5, 0.35, seed=_seed(6, 0.35, k), restitution=0.5, sigma0=0.3)
+        row = PipeRow.random(5, 0.35, seed=run_seed_ref(6, 0.35, k), restitution=0.5, sigma0=0.3)
         h = simulate(row, 9.0, engine="python")
         ref = [int(site) for site, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
                if kind in (IMPACT, STICK) and float(t) >= 4.0]
@@ -640,7 +629,7 @@ def test_site_transitions_equal_hand_sequences():
     (quiet,) = site_transitions(0.0, 1, sigma0=0.0)
     assert quiet.tolist() == []
     d = site_transitions(0.3, 1, n=4, t_transient=2, t_window=3)[0]
-    row = PipeRow.random(4, 0.3, seed=_seed(0, 0.3, 0))
+    row = PipeRow.random(4, 0.3, seed=run_seed_ref(0, 0.3, 0))
     h = simulate(row, 5.0, engine="python")
     assert d.tolist() == [int(x) for x, kind, t in zip(h.sites, h.kinds, h.times, strict=True)
                           if kind in (IMPACT, STICK) and t >= 2]
@@ -861,7 +850,7 @@ def test_documented_defaults():
 
 def test_site_transitions_window_start_is_inclusive():
     # t_transient set to the exact time of an impact: that impact belongs to the window
-    row = PipeRow.random(5, 0.35, seed=_seed(6, 0.35, 0))
+    row = PipeRow.random(5, 0.35, seed=run_seed_ref(6, 0.35, 0))
     h = simulate(row, 9.0)
     k = next(i for i in range(len(h)) if h.kinds[i] == IMPACT and h.times[i] > 1.0)
     t_k = float(h.times[k])
@@ -986,7 +975,7 @@ def test_defaults_used_by_calls(monkeypatch):
     (seq,) = site_transitions(0.2, 1)
     row, t_end = calls[0]
     assert t_end == 300.0 and row.n == 100 and row.restitution == 0.8
-    ref = PipeRow.random(100, 0.2, seed=_seed(0, 0.2, 0))
+    ref = PipeRow.random(100, 0.2, seed=run_seed_ref(0, 0.2, 0))
     assert np.array_equal(row.x0, ref.x0) and np.array_equal(row.v0, ref.v0)
     assert seq.tolist() == [4, 6]
     monkeypatch.undo()
@@ -1147,11 +1136,11 @@ def test_bootstrap_stream_of_each_sigma():
     res = ensemble([0.3, 0.5], 12, chunk=5, **kw)
     for i, st in enumerate(res.per_sigma):
         assert len(st.pipes) >= 6
-        rng = np.random.default_rng(_boot_seed(9, st.sigma))
+        rng = np.random.default_rng(boot_seed_ref(9, st.sigma))
         assert st.stats["pipes"] == describe_histogram(np.bincount(st.pipes, minlength=6), rng)
         assert st.stats["sites"] == describe_histogram(np.bincount(st.sites, minlength=7), rng)
         assert st.stats["pipes"]["mode_se"] is not None
-        other = np.random.default_rng(_boot_seed(9, res.per_sigma[1 - i].sigma))
+        other = np.random.default_rng(boot_seed_ref(9, res.per_sigma[1 - i].sigma))
         assert st.stats["pipes"] != describe_histogram(np.bincount(st.pipes, minlength=6), other)
 
 
@@ -1178,7 +1167,7 @@ def test_sigma_key_and_run_seed_are_the_documented_formula():
     assert sigma_key(np.nextafter(0.3, 1.0)) == sigma_key(0.3) + 1
     assert sigma_key(np.float32(0.5)) == sigma_key(0.5) and sigma_key(1) == sigma_key(1.0)
     for seed, sigma, k in ((0, 0.16, 0), (9, 0.3, 11), (2**70, 5e-324, 3)):
-        ref = _seed(seed, sigma, k)
+        ref = run_seed_ref(seed, sigma, k)
         got = run_seed(seed, sigma, k)
         assert got.entropy == ref.entropy
         assert np.array_equal(got.generate_state(4), ref.generate_state(4))
