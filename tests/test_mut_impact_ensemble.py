@@ -1208,3 +1208,15 @@ def test_site_transitions_refuses_bad_input():
         site_transitions(0.2, 1, n=3, seed=-1)
     with pytest.raises(ValueError, match="beyond the float64 range"):
         site_transitions(10**400, 1, n=3)
+
+
+def test_site_transitions_refusals_are_worded_whole():
+    """The errors name the argument in full sentences (matched whole, so a renamed argument in a
+    message is noticed)."""
+    with pytest.raises(ValueError, match=r"^sigma must be >= 0, got -1$"):
+        site_transitions(-1, 1, n=3)
+    with pytest.raises(ValueError, match=r"^sigma = 1\.0e\+400 is beyond the float64 range"):
+        site_transitions("1e400", 1, n=3)
+    with pytest.raises(TypeError, match=r"^seed must be an int >= 0 \(the rows of ensemble\(\) "
+                                        r"need one\), got None$"):
+        site_transitions(0.3, 1, n=3, seed=None)
