@@ -46,7 +46,11 @@ from hypothesis import strategies as st
 import symhx
 import symhx.impact
 
-pytestmark = pytest.mark.fuzz
+pytestmark = [
+    pytest.mark.fuzz,
+    # the deprecated alias is fuzzed like every public name; its warning is tested elsewhere
+    pytest.mark.filterwarnings("ignore:symhx.variance is deprecated:DeprecationWarning"),
+]
 
 TIME_LIMIT = 2.0  # seconds per call (SIGALRM in the child; the parent kills it 1 s later)
 KILL_GRACE = 1.0
