@@ -1,0 +1,109 @@
+"""The work limits and refusals of ``symhx.circuits`` matched whole, each limit inclusive
+(found by a mutation run after the limits were added: a renamed argument, a moved bound or a
+wrong digit count in a message went unnoticed). References: the documented message form
+``what=value is beyond the documented work limit LIMIT (symhx.circuits.CONSTANT)``, the decimal
+length of ``str(value)``, and sympy's totient for the necklace count at a boundary."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+import symhx.circuits as c
+
+INT_WORDS = r"must be an integer such as 7, 10\*\*100 or '1e100', got "
+
+
+def _limit(what: str, value: str, limit: int, constant: str) -> str:
+    return (rf"^{re.escape(what)}={re.escape(value)} is beyond the documented work limit {limit} "
+            rf"\(symhx\.circuits\.{constant}\); raise that constant to allow it$")
+
+
+def test_circuit_length_limit():
+    with pytest.raises(ValueError, match=_limit("circuit length sum(visits)",
+                                                str(c.MAX_CIRCUIT_LENGTH + 1),
+                                                c.MAX_CIRCUIT_LENGTH, "MAX_CIRCUIT_LENGTH")):
+        c.circuit_count(3, (c.MAX_CIRCUIT_LENGTH, 1))
+
+
+def test_pattern_length_limit_is_inclusive():
+    with pytest.raises(ValueError, match=_limit("L", str(c.MAX_PATTERN_LENGTH + 1),
+                                                c.MAX_PATTERN_LENGTH, "MAX_PATTERN_LENGTH")):
+        c.circuits_of_length(3, c.MAX_PATTERN_LENGTH + 1)
+    with pytest.raises(ValueError, match=rf"^L {INT_WORDS}'x'$"):
+        c.circuits_of_length(3, "x")
+    with pytest.raises(ValueError, match=r"^L must be >= 1, got 0$"):
+        c.circuits_of_length(3, 0)
+    # at the limit: N = 1 has the single pattern (L,) of the loop
+    assert c.circuits_of_length(1, c.MAX_PATTERN_LENGTH) == {(c.MAX_PATTERN_LENGTH,): 1}
+
+
+def test_enumeration_limits():
+    with pytest.raises(ValueError, match=_limit("N**L ", " 10**30 words", c.MAX_ENUMERATION,
+                                                "MAX_ENUMERATION")):
+        c.enumerate_circuits(10, 30)
+    with pytest.raises(ValueError, match=r"^L=~10\*\*20 is beyond the documented limit 500 "):
+        c.enumerate_circuits(2, 10**20)
+    with pytest.raises(ValueError, match=r"^L=501 is beyond the documented limit 500 "):
+        c.enumerate_circuits(1, 501)
+    big = 10**15   # shown as ~10**15 from 10**15 on, as the number below it
+    with pytest.raises(ValueError, match=r"^L=~10\*\*15 is beyond"):
+        c.enumerate_circuits(2, big)
+    with pytest.raises(ValueError, match=r"^L=999999999999999 is beyond"):
+        c.enumerate_circuits(2, big - 1)
+    # N**L == MAX_ENUMERATION exactly is allowed
+    assert 10**8 == c.MAX_ENUMERATION
+    assert next(iter(c.enumerate_circuits(10, 8))) is not None
+
+
+def test_count_bits_limit_is_inclusive():
+    with pytest.raises(ValueError, match=_limit("L * bit_length(N)", "41000000",
+                                                c.MAX_COUNT_BITS, "MAX_COUNT_BITS")):
+        c.necklace_count(2**40, 10**6)
+    L = c.MAX_COUNT_BITS // 2   # N = 2 has bit_length 2: exactly at the limit
+    from sympy import totient
+
+    got = c.necklace_count(2, L)
+    ref = sum(int(totient(d)) * 2 ** (L // d) for d in range(1, L + 1) if L % d == 0) // L
+    assert got == ref
+
+
+def test_total_simple_circuits_limit_shows_huge_N_shortly():
+    with pytest.raises(ValueError, match=_limit("N", str(c.MAX_TOTAL_N + 1), c.MAX_TOTAL_N,
+                                                "MAX_TOTAL_N")):
+        c.total_simple_circuits(c.MAX_TOTAL_N + 1)
+    with pytest.raises(ValueError, match=_limit("N", "<an integer of 71 digits>", c.MAX_TOTAL_N,
+                                                "MAX_TOTAL_N")):
+        c.total_simple_circuits(10**70)
+    big = 2**200 - 1   # 200 bits: written out; 2**200 (201 bits): shortened
+    with pytest.raises(ValueError, match=_limit("N", str(big), c.MAX_TOTAL_N, "MAX_TOTAL_N")):
+        c.total_simple_circuits(big)
+    with pytest.raises(ValueError, match=_limit("N", f"<an integer of {len(str(2**200))} digits>",
+                                                c.MAX_TOTAL_N, "MAX_TOTAL_N")):
+        c.total_simple_circuits(2**200)
+
+
+@pytest.mark.parametrize("N", [1, 2, 5, 12])
+def test_total_simple_circuits_is_the_sum_of_phi(N):
+    from math import factorial
+
+    assert c.total_simple_circuits(N) == sum(factorial(N) // (k * factorial(N - k))
+                                             for k in range(1, N + 1))
+
+
+def test_partition_bounds_are_named():
+    for name in ("max_part", "max_parts"):
+        with pytest.raises(ValueError, match=rf"^{name} {INT_WORDS}'x'$"):
+            list(c.partitions(5, **{name: "x"}))
+        with pytest.raises(ValueError, match=rf"^{name} must be >= 0, got -1$"):
+            list(c.partitions(5, **{name: -1}))
+    # 0 is allowed: no parts at all (only the empty partition of 0)
+    assert list(c.partitions(5, max_part=0)) == []
+    assert list(c.partitions(5, max_parts=0)) == []
+
+
+def test_visits_refusal_names_the_type():
+    with pytest.raises(TypeError, match=r"^visits must be an iterable of positive integers, "
+                                        r"got int 5$"):
+        c.normalise_visits(5)
