@@ -7,8 +7,10 @@ length of ``str(value)``, and sympy's totient for the necklace count at a bounda
 from __future__ import annotations
 
 import re
+from math import factorial
 
 import pytest
+from sympy import totient
 
 import symhx.circuits as c
 
@@ -62,8 +64,6 @@ def test_count_bits_limit_is_inclusive():
                                                 c.MAX_COUNT_BITS, "MAX_COUNT_BITS")):
         c.necklace_count(2**40, 10**6)
     L = c.MAX_COUNT_BITS // 2   # N = 2 has bit_length 2: exactly at the limit
-    from sympy import totient
-
     got = c.necklace_count(2, L)
     ref = sum(int(totient(d)) * 2 ** (L // d) for d in range(1, L + 1) if L % d == 0) // L
     assert got == ref
@@ -86,8 +86,6 @@ def test_total_simple_circuits_limit_shows_huge_N_shortly():
 
 @pytest.mark.parametrize("N", [1, 2, 5, 12])
 def test_total_simple_circuits_is_the_sum_of_phi(N):
-    from math import factorial
-
     assert c.total_simple_circuits(N) == sum(factorial(N) // (k * factorial(N - k))
                                              for k in range(1, N + 1))
 

@@ -600,9 +600,7 @@ def test_check_array_first_bad_index():
 def test_short_value_is_five_significant_digits_of_the_exact_value(fr):
     """Read back by Python's exact Fraction parser: within half a unit of the 5th digit, and no
     more than 5 significant digits written (error messages stay short for huge values)."""
-    from symhx.validation import short_value
-
-    s = short_value(fr)
+    s = v.short_value(fr)
     back = Fraction(s)
     assert abs(back / fr - 1) <= Fraction(5, 10**5)
     mantissa = s.lstrip("-").split("e")[0].replace(".", "").lstrip("0")
