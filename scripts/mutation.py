@@ -307,8 +307,12 @@ def main(argv: list[str] | None = None) -> int:
         for dest in (workdir / "tests", workdir / "mutants" / "tests"):
             shutil.copytree(ROOT / "tests", dest, dirs_exist_ok=True)
         # mutmut copies the files it does not mutate (the C engine's source and build) into
-        # mutants/ only once: refresh them, or a rebuilt extension is tested against its old copy
-        for src in (*(ROOT / "symhx").rglob("*.so"), *(ROOT / "symhx").rglob("*.c")):
+        # mutants/ only once: refresh them, or a rebuilt extension is tested against its old copy;
+        # the same for the modules that are not mutated in this run: without this a rerun tests
+        # the current tests against the other modules as they were at the first run
+        mutated = {ROOT / m for m in modules}
+        for src in (*(ROOT / "symhx").rglob("*.so"), *(ROOT / "symhx").rglob("*.c"),
+                    *(p for p in (ROOT / "symhx").rglob("*.py") if p not in mutated)):
             dst = workdir / "mutants" / src.relative_to(ROOT)
             if dst.parent.is_dir():
                 shutil.copy2(src, dst)
