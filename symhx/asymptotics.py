@@ -260,7 +260,9 @@ class AsymptoticCriticalPoint:
     k : mpf or int
         Approximate ``k_jump`` (real for the formula orders, an int for ``"best"``).
     k_int : int
-        ``k`` rounded to the nearest integer (``k`` itself for ``"best"``).
+        The integer nearest to ``k`` before ``k`` is rounded to ``dps`` digits (``k`` has about
+        ``log10(N)/2`` integer digits, more than ``dps`` for large N); ``k`` itself for
+        ``"best"``.
     dps : int
     decay : str
         How the relative error of ``q`` decays with N.
@@ -287,8 +289,8 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     Parameters
     ----------
     N : int
-        Number of vertices, ``N >= 21`` (any size: tested to 10**1000; ``"relaxed"`` and
-        ``"best"`` work at ``dps + log10(N)`` digits, so their cost grows with the digits of N).
+        Number of vertices, ``N >= 21`` (any size: tested to 10**1000; the work is done at
+        ``dps + 15 + log10(N)`` digits, so the cost grows with the digits of N).
     order : str
         One of ``"leading"``, ``"next"``, ``"lambert"``, ``"corrected"``, ``"relaxed"``,
         ``"best"`` (see the module docstring for the formulas and their errors).
@@ -310,8 +312,9 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     N = _check_N(N)
     order = check_choice(order, "order", ORDERS)
     dps = _dps(dps)
-    # the relaxation resolves k ~ sqrt(N ln N) to well below one unit: it needs log10(N) digits
-    wdps = dps + 15 + (digits_of(N) if order in ("relaxed", "best") else 0)
+    # k ~ sqrt(N ln N) has about log10(N)/2 integer digits: k_int (its nearest integer) and the
+    # relaxation (which resolves k to well below one unit) need them all, hence log10(N) digits
+    wdps = dps + 15 + digits_of(N)
     with mpmath.workdps(wdps):
         Nm = mpmath.mpf(N)
         L = mpmath.log(Nm)
@@ -359,9 +362,9 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
                 k = kbest
                 q = mpmath.expm1(rel.h(mpmath.mpf(kbest)))
         p = (1 + q) / Nm
+        k_int = k if isinstance(k, int) else int(mpmath.nint(k))  # before k is cut to dps
     with mpmath.workdps(dps):
         k_out = k if isinstance(k, int) else +k
-        k_int = k if isinstance(k, int) else int(mpmath.nint(k))
         return AsymptoticCriticalPoint(N=N, order=order, p=+p, q=+q, k=k_out, k_int=k_int,
                                        dps=dps, decay=DECAY[order])
 
