@@ -303,6 +303,15 @@ def circuits_of_length(N: int, L: int) -> dict[tuple[int, ...], int]:
 
 
 # --------------------------------------------------------------------------- brute force
+def _short_length(L: int) -> int | str:
+    """``L`` for a message: as is below 10**15, else ``~10**k`` with ``k = floor(log10 L)``
+    (found without str(), which refuses ints of more than 4300 digits)."""
+    if L < 10**15:
+        return L
+    k = int((L.bit_length() - 1) * 0.30102999566398)  # floor(log10 L) or one less
+    return f"~10**{k + 1 if 10 ** (k + 1) <= L else k}"
+
+
 def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
     """Every circuit of length ``L`` on vertices ``0..N-1``, as its least rotation.
 
@@ -314,16 +323,16 @@ def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
     """
     N = _int(N, "N", 1)
     L = _int(L, "L", 1)
-    # exact integer test (L may be huge)
+    # exact integer tests (L may be huge)
     if L > MAX_ENUMERATION_LENGTH:
-        shown_l = L if L < 10**15 else f"~10**{len(str(L)) - 1}"
-        raise ValueError(f"L={shown_l} is beyond the documented limit {MAX_ENUMERATION_LENGTH} "
-                         f"(symhx.circuits.MAX_ENUMERATION_LENGTH: the enumeration nests L "
-                         f"generators)")
-    if N**L > MAX_ENUMERATION:
-        shown = L if L < 10**15 else f"~10**{len(str(L)) - 1}"
-        raise ValueError(f"N**L = {N}**{shown} words is beyond the documented work limit "
-                         f"{MAX_ENUMERATION} (symhx.circuits.MAX_ENUMERATION); raise that "
+        raise ValueError(f"L={_short_length(L)} is beyond the documented limit "
+                         f"{MAX_ENUMERATION_LENGTH} (symhx.circuits.MAX_ENUMERATION_LENGTH: the "
+                         f"enumeration nests L generators)")
+    # N**L >= 2**L: a long L is refused before N**L is formed (MAX_ENUMERATION_LENGTH may
+    # have been raised by the user)
+    if N > 1 and (L > MAX_ENUMERATION.bit_length() or N**L > MAX_ENUMERATION):
+        raise ValueError(f"N**L = {N}**{_short_length(L)} words is beyond the documented work "
+                         f"limit {MAX_ENUMERATION} (symhx.circuits.MAX_ENUMERATION); raise that "
                          f"constant to allow it")
     return _enumerate(N, L)
 

@@ -105,3 +105,43 @@ def test_visits_refusal_names_the_type():
     with pytest.raises(TypeError, match=r"^visits must be an iterable of positive integers, "
                                         r"got int 5$"):
         c.normalise_visits(5)
+
+
+def test_enumeration_refuses_a_huge_L_without_forming_N_to_the_L(monkeypatch):
+    """With MAX_ENUMERATION_LENGTH raised by the user, a huge L reaches the N**L test: it is
+    refused from 2**L > MAX_ENUMERATION before N**L is formed (2**(10**5000) would never
+    finish), and the message shows L as ~10**k (str() refuses ints over 4300 digits)."""
+    monkeypatch.setattr(c, "MAX_ENUMERATION_LENGTH", 10**6000)
+    for N, L, shown in ((2, 10**5000, r"~10\*\*5000"), (3, 10**5000 - 1, r"~10\*\*4999"),
+                        (2, 10**15, r"~10\*\*15"), (7, 10**15 - 1, "999999999999999"),
+                        (2, 28, "28")):
+        with pytest.raises(ValueError, match=rf"^N\*\*L = {N}\*\*{shown} words is beyond the "
+                                             r"documented work limit 100000000 \(symhx\.circuits"
+                                             r"\.MAX_ENUMERATION\); raise that constant to "
+                                             r"allow it$"):
+            c.enumerate_circuits(N, L)
+    assert 2**26 <= c.MAX_ENUMERATION < 2**27  # L = 26 is allowed for N = 2, 27 is not
+    assert next(iter(c.enumerate_circuits(2, 26))) == (0,) * 26
+    with pytest.raises(ValueError, match=r"^N\*\*L = 2\*\*27 words"):
+        c.enumerate_circuits(2, 27)
+
+
+def test_total_and_circuit_length_limits_are_inclusive(monkeypatch):
+    """The limits are the largest accepted values (checked with the constants lowered, as the
+    module documents for raising them): N = MAX_TOTAL_N and a length of MAX_CIRCUIT_LENGTH are
+    computed (against the sum of N!/(k (N-k)!) and Burnside's formula), one more is refused."""
+    monkeypatch.setattr(c, "MAX_TOTAL_N", 12)
+    assert c.total_simple_circuits(12) == sum(
+        factorial(12) // (k * factorial(12 - k)) for k in range(1, 13))
+    with pytest.raises(ValueError, match=r"^N=13 is beyond the documented work limit 12 "):
+        c.total_simple_circuits(13)
+    monkeypatch.setattr(c, "MAX_CIRCUIT_LENGTH", 9)
+    # one vertex visited 9 times: the circuits are the N loops repeated
+    assert c.circuit_count(5, (9,)) == 5
+    # visits (3, 3, 3) on 3 vertices: necklaces of length 9 with content (3,3,3) = 188
+    assert c.circuit_count(3, (3, 3, 3)) == sum(
+        int(totient(d)) * factorial(9 // d) // factorial(3 // d) ** 3
+        for d in (1, 3)) // 9
+    with pytest.raises(ValueError, match=r"^circuit length sum\(visits\)=10 is beyond the "
+                                         r"documented work limit 9 "):
+        c.circuit_count(5, (5, 5))
