@@ -145,3 +145,13 @@ def test_total_and_circuit_length_limits_are_inclusive(monkeypatch):
     with pytest.raises(ValueError, match=r"^circuit length sum\(visits\)=10 is beyond the "
                                          r"documented work limit 9 "):
         c.circuit_count(5, (5, 5))
+
+
+def test_short_length_is_floor_log10_without_str():
+    """The ``~10**k`` form of a length in the refusals: k = floor(log10 L), found from the bit
+    length and one exact power of ten, checked against len(str(L)) - 1 at every power of two and
+    of ten (and one below) from 10**15 to 2**400."""
+    Ls = [10**k + d for k in range(15, 121) for d in (-1, 0, 1)]
+    Ls += [2**b + d for b in range(50, 401) for d in (-1, 0)]
+    for L in Ls:
+        assert c._short_length(L) == (L if L < 10**15 else f"~10**{len(str(L)) - 1}"), L
