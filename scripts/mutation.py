@@ -309,12 +309,13 @@ def main(argv: list[str] | None = None) -> int:
         # mutmut copies the files it does not mutate (the C engine's source and build) into
         # mutants/ only once: refresh them, or a rebuilt extension is tested against its old copy;
         # the same for the modules that are not mutated in this run: without this a rerun tests
-        # the current tests against the other modules as they were at the first run
+        # the current tests against the other modules as they were at the first run (a module
+        # that an earlier run in this folder mutated keeps its trampolined copy: it has a .meta)
         mutated = {ROOT / m for m in modules}
         for src in (*(ROOT / "symhx").rglob("*.so"), *(ROOT / "symhx").rglob("*.c"),
                     *(p for p in (ROOT / "symhx").rglob("*.py") if p not in mutated)):
             dst = workdir / "mutants" / src.relative_to(ROOT)
-            if dst.parent.is_dir():
+            if dst.parent.is_dir() and not dst.with_name(dst.name + ".meta").exists():
                 shutil.copy2(src, dst)
         # new tests are only run for a mutant once mutmut has re-collected which tests
         # execute which function
