@@ -103,6 +103,7 @@ MP_SUM_N_LIMIT = 10**100
 MP_QUANTILE_N_LIMIT = 10**6
 
 _LN10 = math.log(10)
+_LN2 = math.log(2)
 
 
 def _n_show(N: int) -> str:
@@ -151,7 +152,8 @@ class Distribution:
       ``pmf``, ``cdf``, ``sf``, ``mean``, ``var`` are exact ``Fraction``; values that are not
       rational (logs, ``std``, ``entropy``) are ``mpmath.mpf`` correct to ``dps`` digits;
     * float / mpf ``p`` and an int ``dps``: ``mpmath.mpf`` correct to ``dps`` significant digits
-      (tails too: ``sf(k)`` is summed from the terms above ``k``, never ``1 - cdf``);
+      (tails too: ``sf(k)`` is summed from the terms above ``k``, never ``1 - cdf``, and a
+      ``logcdf`` / ``logsf`` near 0 is ``log1p`` of the other tail, so it keeps its digits);
     * ``dps=None``: float64 (numpy), vectorised over ``k`` (relative error about
       ``1e-16 N log N``: the log-weights come from ``gammaln``; ``N <= FLOAT_N_LIMIT``).
 
@@ -261,10 +263,20 @@ class Distribution:
         return mpmath.workdps(self._wdps)
 
     def _log_fraction(self, x: Fraction) -> mpmath.mpf:
+        """``log x`` of an exact positive fraction to ``dps`` significant digits: ``log1p`` of
+        the exact ``x - 1`` near 1 (where log x is tiny: log(num) - log(den) would cancel), else
+        the difference of the logs with digits for their size."""
         if x == 0:
             return mpmath.ninf
-        with mpmath.workdps((self.dps or 15) + 10):
-            v = mpmath.log(x.numerator) - mpmath.log(x.denominator)
+        dps = self.dps or 15
+        d = x - 1
+        if abs(d) < Fraction(1, 2):
+            with mpmath.workdps(dps + 10):
+                v = mpmath.log1p(mpmath.mpf(d.numerator) / d.denominator)
+        else:  # |log x| > 0.29: log(num) ~ bits * 0.69 cancels about digits(bits) digits
+            bits = max(x.numerator.bit_length(), x.denominator.bit_length())
+            with mpmath.workdps(dps + 10 + digits_of(bits)):
+                v = mpmath.log(x.numerator) - mpmath.log(x.denominator)
         return self._round(v)
 
     def _map_k(self, k: Any, one: Callable[[int], Any], table: Callable[[np.ndarray], Any]
@@ -308,9 +320,14 @@ class Distribution:
 
         lw = self._float_logw()
         lp = lw - logsumexp(lw)
-        logcdf = np.minimum(np.logaddexp.accumulate(lp), 0.0)
+        cum = np.minimum(np.logaddexp.accumulate(lp), 0.0)
         logsf_incl = np.minimum(np.logaddexp.accumulate(lp[::-1])[::-1], 0.0)
-        logsf = np.append(logsf_incl[1:], -np.inf)
+        tail = np.append(logsf_incl[1:], -np.inf)
+        # near log = 0 an accumulated log is only absolutely accurate: there, log1p of the
+        # other tail (accumulated from its own small end) keeps the relative accuracy
+        with np.errstate(divide="ignore"):
+            logcdf = np.where(cum > -_LN2, np.log1p(-np.exp(tail)), cum)
+            logsf = np.where(tail > -_LN2, np.log1p(-np.exp(cum)), tail)
         return {"logpmf": lp, "pmf": np.exp(lp), "logcdf": logcdf, "cdf": np.exp(logcdf),
                 "logsf": logsf, "sf": np.exp(logsf), "lognorm": np.array(logsumexp(lw))}
 
@@ -375,6 +392,10 @@ class Distribution:
             return mpmath.mpf(0)
         s = self._mp_sum(k + 1, self.N) if upper else self._mp_sum(1, k)
         with self._wp():
+            if s > 0.5:  # log s is small: log1p of the other tail, summed directly, keeps
+                # its relative accuracy (log of s itself would only be absolutely accurate)
+                rest = self._mp_sum(1, k) if upper else self._mp_sum(k + 1, self.N)
+                return self._round(mpmath.log1p(-rest))
             return self._round(mpmath.log(s))
 
     def cdf(self, k: Any) -> Any:
