@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 
 import mpmath
 import numpy as np
@@ -18,7 +18,7 @@ import symhx
 from symhx.spaces import parse_space
 
 
-@lru_cache(maxsize=None)
+@cache
 def _cdf(N: int, p: Fraction, space: str) -> tuple[Fraction, ...]:
     """Exact P(X <= k), k = 1..N, from W(k) = p**k N!/(k (N-k)!) Q*(k) (common denominator)."""
     sp = None if space == "simple" else parse_space(space)
@@ -70,3 +70,26 @@ def test_log_tails_are_tiny_not_positive():
     d = symhx.distribution_of(1000, 0.00314159, space="simple", dps=15)
     v = d.logsf(1)
     assert -1e-199 < v < -1e-201
+
+
+def test_exact_logs_of_huge_fractions_away_from_one():
+    """Exact path at dps = 20, |log P| of order 1 for fractions with 241024-bit numerators and
+    denominators: log(num) - log(den) cancels about 5 digits, which the working precision must
+    add on top of its guard digits. Against the mpmath path at 60 digits (another algorithm:
+    sums of mpf terms)."""
+    N, p = 20000, Fraction(1, 3)
+    ex = symhx.distribution_of(N, p, dps=20)
+    with mpmath.workdps(200):
+        third = mpmath.mpf(1) / 3  # 1/3 to 200 digits: moves the logs by ~1e-195
+    ref = symhx.distribution_of(N, third, dps=60)
+    assert ex.exact and not ref.exact
+    m = ex.mode()
+    far = 0
+    for k in range(m - 6, m + 3):
+        for got, want in ((ex.logcdf(k), ref.logcdf(k)), (ex.logsf(k), ref.logsf(k))):
+            far += want < -0.7  # the difference route (P <= 1/2)
+            with mpmath.workdps(60):
+                # 3 units of the 70-bit result: a correctly rounded value is within half a unit
+                # (with 5 digits too few in the working precision it was 8.5 units off)
+                assert abs(got - want) <= 3 * mpmath.mpf(2) ** -69 * abs(want), (k, got, want)
+    assert far >= 8
