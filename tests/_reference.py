@@ -38,3 +38,23 @@ def critical_by_scan(N: int, dps: int) -> tuple[list[int], mpmath.mpf]:
         tol = mpmath.mpf(10) ** -(dps + 5)
         argmins = [k for v, k in vals if abs(v - best) <= tol * max(1, abs(best))]
         return argmins, mpmath.exp(best) / N
+
+
+def eq27_xy(sigma, sigma1, omega, Omega, d) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """``x = d**2/(4 sigma**2)``, ``y = (d (omega**2 - Omega**2))**2/(4 sigma1**2)`` of one
+    component (``sigma1 = None``: sigma; ``Omega = None``: sqrt 2), at the current precision."""
+    s0, om, dd = mpmath.mpf(sigma), mpmath.mpf(omega), mpmath.mpf(d)
+    s1 = s0 if sigma1 is None else mpmath.mpf(sigma1)
+    om2 = 2 if Omega is None else mpmath.mpf(Omega) ** 2
+    return dd * dd / (4 * s0 * s0), (dd * (om * om - om2)) ** 2 / (4 * s1 * s1)
+
+
+def eq27_p(sigma, sigma1, omega, Omega, d) -> mpmath.mpf:
+    """``p = P(R0 + R1 > d)`` of one component from the closed form of eq. (27), written out
+    (``r = sqrt(x + y)``, ``u = x/r``, ``v = y/r``), at the current mpmath precision."""
+    x, y = eq27_xy(sigma, sigma1, omega, Omega, d)
+    r = mpmath.sqrt(x + y)
+    u, v = x / r, y / r
+    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+    return mpmath.exp(-u * v) * b / r

@@ -15,6 +15,7 @@ from fractions import Fraction
 
 import mpmath
 import pytest
+from _reference import eq27_p, eq27_xy
 
 from symhx.forcing.kernels_mp import (
     estimate_float,
@@ -31,24 +32,11 @@ WANTS = ("p", "q", "logp", "logq")
 def _ref(s0, s1, om, Om, d, want, dps):
     """Independent reference at ``dps + 30`` digits plus every digit that cancels."""
     with mpmath.workprec(80):
-        s0m, om_, dm = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
-        s1m = s0m if s1 is None else mpmath.mpf(s1)
-        om2 = 2 if Om is None else mpmath.mpf(Om) ** 2
-        x = dm * dm / (4 * s0m * s0m)
-        y = (dm * (om_ * om_ - om2)) ** 2 / (4 * s1m * s1m)
+        x, y = eq27_xy(s0, s1, om, Om, d)
         lost = int(max(0, -mpmath.log10(min(x, y))) + max(0, -mpmath.log10(max(x, y))))
         lost += int(mpmath.log10(1 + x * y / (x + y)))
     with mpmath.workdps(dps + 30 + lost):
-        s0m, om_, dm = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
-        s1m = s0m if s1 is None else mpmath.mpf(s1)
-        om2 = 2 if Om is None else mpmath.mpf(Om) ** 2
-        x = dm * dm / (4 * s0m * s0m)
-        y = (dm * (om_ * om_ - om2)) ** 2 / (4 * s1m * s1m)
-        r = mpmath.sqrt(x + y)
-        u, v = x / r, y / r
-        b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-        b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
-        p = mpmath.exp(-u * v) * b / r
+        p = eq27_p(s0, s1, om, Om, d)
         return {"p": p, "q": 1 - p, "logp": mpmath.log(p), "logq": mpmath.log(1 - p)}[want]
 
 

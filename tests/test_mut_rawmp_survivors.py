@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import mpmath
 import pytest
+from _reference import eq27_p
 
 import symhx
 
@@ -16,16 +17,7 @@ import symhx
 def _ref(sigma, sigma1, omega, Omega, d, want, extra):
     """``p`` or ``1 - p`` of one component from the exact inputs at ``extra`` digits."""
     with mpmath.workdps(extra):
-        s0, om, dd = mpmath.mpf(sigma), mpmath.mpf(omega), mpmath.mpf(d)
-        s1 = s0 if sigma1 is None else mpmath.mpf(sigma1)
-        om2 = 2 if Omega is None else mpmath.mpf(Omega) ** 2
-        x = dd * dd / (4 * s0 * s0)
-        y = (dd * (om * om - om2)) ** 2 / (4 * s1 * s1)
-        r = mpmath.sqrt(x + y)
-        u, v = x / r, y / r
-        b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-        b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
-        p = mpmath.exp(-u * v) * b / r
+        p = eq27_p(sigma, sigma1, omega, Omega, d)
         return p if want == "p" else 1 - p
 
 
