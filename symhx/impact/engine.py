@@ -63,15 +63,17 @@ Every cluster ends (bounds on the number of events)
 * At one instant: after :func:`cascade_bound` ``= 20 (n + 1) + 100`` events every further impact
   of that instant is plastic (merges two bodies: at most ``n + 1`` more, and a release leaves both
   sides with the same velocity, so it creates no approaching pair); a touch (graze) repeated at
-  one site merges the pair once, and a second repetition resumes the search after
-  :meth:`Engine.touch_step`.  Twice the bound raises :class:`SimulationError` (never reached on
+  one site within one :meth:`Engine.touch_step` (the same instant, or a restart that found the
+  touch again a rounding step later) merges the pair once, and a further repetition resumes the
+  search a touch step later.  Twice the bound raises :class:`SimulationError` (never reached on
   the 1050-row sweep of the tests).
 * Between instants, one site: after an impact the pair separates at ``|u'| > v_stick`` (slower
   ones stick), and ``|Delta''| <= M2`` (the site's bound), so the same gap cannot close again
-  within ``2 v_stick / M2`` unless a neighbour's event changes it; a graze restart advances by at
-  least the touch step ``(6 tolD / M3)**(1/3)``; a search that crawls ``_CRAWL`` steps just
-  above zero is taken as a touch.  Hence an undisturbed site has at most
-  ``1 + T max(M2 / (2 v_stick), 1 / touch_step)`` events in a time ``T``; events forced by
+  within ``2 v_stick / M2`` unless a neighbour's event changes it; by the rule above a site has
+  at most five events (touch, touch again, merge, release, touch) per touch step
+  ``(6 tolD / M3)**(1/3)``; a search that crawls ``_CRAWL`` steps just above zero is taken as
+  a touch.  Hence an undisturbed site has at most
+  ``1 + T max(M2 / (2 v_stick), 5 / touch_step)`` events in a time ``T``; events forced by
   neighbours are counted at the neighbours (a chain of them at one instant is the first case).
   This is an argument, not a machine-checked proof, for the interplay of several sites.
 """
@@ -803,13 +805,21 @@ class Engine:
                 self._reschedule(lo, hi, t, schedule)
                 continue
             if code == _GRAZE:
-                D, V, A, _ = self.derivs(self.gap_poly(i), t)
+                g = self.gap_poly(i)
+                D, V, A, _ = self.derivs(g, t)
                 self._record(t, i, GRAZE, V, V, D)
-                if last_merge == (t, i):   # merged and released at this instant already:
-                    g = self.gap_poly(i)   # step past the touch by the rounding time scale
-                    schedule(i, t + self.touch_step(g, t), graze_restart=True)
+                # "the same touch": the same site within one touch step (the rounding time
+                # scale, where nothing can be told from the touch itself; a curvature just above
+                # rounding restarts the search ~1e-13 later, at a different instant)
+                touch = self.touch_step(g, t)
+                if last_merge is not None and last_merge[1] == i and \
+                        last_merge[0] <= t < last_merge[0] + touch:
+                    # merged and released there already: step past the touch
+                    schedule(i, t + touch, graze_restart=True)
                     continue
-                if last_graze == (t, i):   # the same touch again: value, slope and curvature
+                if last_graze is not None and last_graze[1] == i and \
+                        last_graze[0] <= t < last_graze[0] + touch:
+                    # the same touch again: value, slope and curvature
                     last_merge = (t, i)
                     lo, _ = self.body(i)   # are all rounding; the pair moves together
                     _, hi = self.body(i + 1)
