@@ -581,12 +581,12 @@ static void run(Eng *E) {
             const double *b = E->bc + (size_t)i * 6;   /* bounds of the cached gap_poly */
             double tolD = TOLF * EPS * (fabs(b[0]) + b[1] + b[2] * fabs(t));
             double h = b[4] > 0 ? pow(6 * tolD / b[4], 1.0 / 3.0) : E->chunk;   /* = engine.touch_step */
-            /* "the same touch": the same site within one touch step (engine.py) */
-            if (i == lm_i && lm_t <= t && t < lm_t + h) {   /* merged and released: step past */
+            /* "the same touch": the same site within one touch step (engine.py; t is never earlier) */
+            if (i == lm_i && t < lm_t + h) {   /* merged and released: step past */
                 schedule(E, i, t + h, 1, 1);
                 continue;
             }
-            if (i == lg_i && lg_t <= t && t < lg_t + h) {   /* the same touch again: together */
+            if (i == lg_i && t < lg_t + h) {   /* the same touch again: together */
                 lm_t = t; lm_i = i;
                 int tmp;
                 body(E, i, &lo, &tmp);

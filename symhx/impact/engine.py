@@ -812,13 +812,12 @@ class Engine:
                 # scale, where nothing can be told from the touch itself; a curvature just above
                 # rounding restarts the search ~1e-13 later, at a different instant)
                 touch = self.touch_step(g, t)
-                if last_merge is not None and last_merge[1] == i and \
-                        last_merge[0] <= t < last_merge[0] + touch:
+                # (events come in time order, so t >= the time of either record)
+                if last_merge is not None and last_merge[1] == i and t < last_merge[0] + touch:
                     # merged and released there already: step past the touch
                     schedule(i, t + touch, graze_restart=True)
                     continue
-                if last_graze is not None and last_graze[1] == i and \
-                        last_graze[0] <= t < last_graze[0] + touch:
+                if last_graze is not None and last_graze[1] == i and t < last_graze[0] + touch:
                     # the same touch again: value, slope and curvature
                     last_merge = (t, i)
                     lo, _ = self.body(i)   # are all rounding; the pair moves together
