@@ -13,6 +13,7 @@ from functools import cache
 import mpmath
 import numpy as np
 import pytest
+from _reference import phi_exact
 
 import symhx
 from symhx.spaces import parse_space
@@ -22,7 +23,7 @@ from symhx.spaces import parse_space
 def _cdf(N: int, p: Fraction, space: str) -> tuple[Fraction, ...]:
     """Exact P(X <= k), k = 1..N, from W(k) = p**k N!/(k (N-k)!) Q*(k) (common denominator)."""
     sp = None if space == "simple" else parse_space(space)
-    w = [p**k * Fraction(math.perm(N, k), k) * (1 if sp is None else sp.Qstar(k, p))
+    w = [phi_exact(N, p, k) * (1 if sp is None else sp.Qstar(k, p))
          for k in range(1, N + 1)]
     den = math.lcm(*(x.denominator for x in w))
     nums = [x.numerator * (den // x.denominator) for x in w]

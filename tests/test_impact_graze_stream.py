@@ -46,10 +46,11 @@ def test_slow_release_does_not_stream_grazes(e):
     _, _, _, M2, _, _ = eng.bounds(g)
     bound = 1 + T * max(M2 / (2 * eng.v_stick), 5 / eng.touch_step(g, float(t[0])))
     assert len(t) <= bound
-    # and far fewer in fact: every graze is at least a touch step after the last-but-three
+    # and far fewer in fact: a touch cycle (touch, touch again, merge, release, touch) has
+    # three grazes, and the next cycle starts a touch step later (the step grows with |t|)
     gz = np.sort(t[k == GRAZE])
     if len(gz) > 3:
-        assert np.diff(gz[::3]).min() > 0
+        assert np.diff(gz[::3]).min() >= eng.touch_step(g, float(t[0]))
     assert len(t) < 1000, len(t)
 
 
