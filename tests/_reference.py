@@ -50,9 +50,14 @@ def eq27_xy(sigma, sigma1, omega, Omega, d) -> tuple[mpmath.mpf, mpmath.mpf]:
 
 
 def eq27_p(sigma, sigma1, omega, Omega, d) -> mpmath.mpf:
-    """``p = P(R0 + R1 > d)`` of one component from the closed form of eq. (27), written out
-    (``r = sqrt(x + y)``, ``u = x/r``, ``v = y/r``), at the current mpmath precision."""
-    x, y = eq27_xy(sigma, sigma1, omega, Omega, d)
+    """``p = P(R0 + R1 > d)`` of one component from the closed form of eq. (27), at the current
+    mpmath precision."""
+    return eq27_p_xy(*eq27_xy(sigma, sigma1, omega, Omega, d))
+
+
+def eq27_p_xy(x, y) -> mpmath.mpf:
+    """The closed form of eq. (27) from ``x`` and ``y``, written out (``r = sqrt(x + y)``,
+    ``u = x/r``, ``v = y/r``), at the current mpmath precision."""
     r = mpmath.sqrt(x + y)
     u, v = x / r, y / r
     b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)

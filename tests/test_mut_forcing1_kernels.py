@@ -24,6 +24,7 @@ import tempfile
 import mpmath
 import numpy as np
 import pytest
+from _reference import eq27_p_xy, eq27_xy
 
 from symhx import forcing as F
 from symhx.forcing.arguments import ForcingParams
@@ -45,22 +46,8 @@ WANTS = ("p", "q", "logp", "logq")
 
 
 # ------------------------------------------------------------------------------ the reference
-def _xy(s0, s1, om, Om, d):
-    """Exact-input x = d^2/(4 s0^2), y = d^2 (om^2 - Om^2)^2/(4 s1^2) at the current precision
-    (``Om=None``: Om^2 = 2 exactly)."""
-    s0, om, d = mpmath.mpf(s0), mpmath.mpf(om), mpmath.mpf(d)
-    s1 = s0 if s1 is None else mpmath.mpf(s1)
-    om2 = mpmath.mpf(2) if Om is None else mpmath.mpf(Om) ** 2
-    delta = om * om - om2
-    return d * d / (4 * s0 * s0), (d * delta) ** 2 / (4 * s1 * s1)
-
-
-def _closed_p(x, y):
-    r = mpmath.sqrt(x + y)
-    u, v = x / r, y / r
-    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
-    return mpmath.exp(-u * v) * b / r
+# x, y of one component (exact inputs, Om=None: Om^2 = 2) and the closed form p(x, y) of eq. (27)
+_xy, _closed_p = eq27_xy, eq27_p_xy
 
 
 def _work_dps(s0, s1, om, Om, d):
