@@ -11,7 +11,7 @@ from fractions import Fraction
 import flint
 import mpmath
 import pytest
-from _reference import brute_modes, critical_by_scan, log_c_direct
+from tests._reference import brute_modes, critical_by_scan, log_c_direct
 from hypothesis import given, settings
 from hypothesis import strategies as st
 

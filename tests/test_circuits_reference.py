@@ -7,7 +7,7 @@ from collections import Counter
 
 import mpmath
 import pytest
-from _brute import (
+from tests._brute import (
     integer_partitions,
     necklace_formula,
     necklaces,

@@ -5,7 +5,7 @@ from itertools import pairwise
 
 import mpmath
 import pytest
-from _reference import brute_modes, critical_by_scan, log_c_direct
+from tests._reference import brute_modes, critical_by_scan, log_c_direct
 from hypothesis import given
 from hypothesis import strategies as st
 

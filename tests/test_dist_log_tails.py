@@ -13,7 +13,7 @@ from functools import cache
 import mpmath
 import numpy as np
 import pytest
-from _reference import phi_exact
+from tests._reference import phi_exact
 
 import symhx
 from symhx.spaces import parse_space

@@ -4,7 +4,7 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from _reference import brute_modes, phi_exact, pmf_table
+from tests._reference import brute_modes, phi_exact, pmf_table
 from hypothesis import given
 from hypothesis import strategies as st
 

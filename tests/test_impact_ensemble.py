@@ -12,7 +12,7 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
 import numpy as np
 import pytest
-from _seeds import run_seed_ref
+from tests._seeds import run_seed_ref
 
 from symhx.forcing import impact_probability
 from symhx.impact import IMPACT, STICK, PipeRow, simulate

@@ -8,7 +8,7 @@ import warnings
 from fractions import Fraction
 
 import pytest
-from _reference import pmf_table
+from tests._reference import pmf_table
 
 import symhx
 from symhx.distribution import SimpleDistribution

@@ -10,7 +10,7 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from _reference import brute_modes, log_c_direct
+from tests._reference import brute_modes, log_c_direct
 from flint import arb
 
 from symhx import critical as C

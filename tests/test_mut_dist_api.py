@@ -15,10 +15,10 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from _reference import pmf_table
+from tests._reference import pmf_table
 from hypothesis import example, given
 from hypothesis import strategies as st
-from test_frozen_harness import space_weights
+from tests.test_frozen_harness import space_weights
 
 import symhx
 from symhx import api

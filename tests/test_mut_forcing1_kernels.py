@@ -24,7 +24,7 @@ import tempfile
 import mpmath
 import numpy as np
 import pytest
-from _reference import eq27_p_xy, eq27_xy
+from tests._reference import eq27_p_xy, eq27_xy
 
 from symhx import forcing as F
 from symhx.forcing.arguments import ForcingParams

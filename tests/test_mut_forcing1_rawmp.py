@@ -15,7 +15,7 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from _reference import eq27_p, eq27_xy
+from tests._reference import eq27_p, eq27_xy
 
 from symhx.forcing.kernels_mp import (
     estimate_float,

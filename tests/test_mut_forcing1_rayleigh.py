@@ -24,7 +24,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from test_forcing_rayleigh import gl_sum, pair_tail
+from tests.test_forcing_rayleigh import gl_sum, pair_tail
 
 from symhx import forcing as F
 from symhx.forcing import RayleighSum

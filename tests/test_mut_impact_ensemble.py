@@ -17,7 +17,7 @@ from concurrent.futures import Executor, Future, ThreadPoolExecutor
 
 import numpy as np
 import pytest
-from _seeds import boot_seed_ref, run_seed_ref
+from tests._seeds import boot_seed_ref, run_seed_ref
 
 from symhx.impact import IMPACT, STICK, PipeRow, simulate
 from symhx.impact.ensemble import (

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import mpmath
 import pytest
-from _reference import eq27_p
+from tests._reference import eq27_p
 
 import symhx
 

@@ -14,7 +14,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from test_mut_spaces_critical import WP, _poly, _roots, _Wx
+from tests.test_mut_spaces_critical import WP, _poly, _roots, _Wx
 
 import symhx.spaces._critical as crit
 from symhx.spaces import critical_point, parse_space, root_estimates

@@ -19,7 +19,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from _brute import necklaces
+from tests._brute import necklaces
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 

@@ -12,7 +12,7 @@ from fractions import Fraction
 
 import mpmath
 import numpy as np
-from _reference import phi_exact
+from tests._reference import phi_exact
 
 import symhx.spaces._dist as dist
 from symhx.circuits import circuit_count

@@ -8,7 +8,7 @@ from collections import Counter
 from fractions import Fraction
 
 import pytest
-from _brute import necklaces, pattern_count_by_choice
+from tests._brute import necklaces, pattern_count_by_choice
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
