@@ -11,7 +11,6 @@ from fractions import Fraction
 import flint
 import mpmath
 import pytest
-from tests._reference import brute_modes, critical_by_scan, log_c_direct
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -28,6 +27,8 @@ from symhx.critical import (
     discriminant_root,
     mode_path,
 )
+from tests.reference.critical import critical_by_scan, log_c_direct
+from tests.reference.distribution import brute_modes
 
 
 def _pc_reference(N: int, k: int, dps: int) -> mpmath.mpf:

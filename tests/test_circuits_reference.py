@@ -7,13 +7,6 @@ from collections import Counter
 
 import mpmath
 import pytest
-from tests._brute import (
-    integer_partitions,
-    necklace_formula,
-    necklaces,
-    pattern_count_by_choice,
-    pattern_counts,
-)
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -28,6 +21,13 @@ from symhx.circuits import (
     partitions,
     phi,
     total_simple_circuits,
+)
+from tests.reference.combinatorics import (
+    integer_partitions,
+    necklace_formula,
+    necklaces,
+    pattern_count_by_choice,
+    pattern_counts,
 )
 
 SMALL = [(N, L) for N in range(1, 6) for L in range(1, 7) if N**L <= 16000]

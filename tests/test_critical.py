@@ -5,13 +5,14 @@ from itertools import pairwise
 
 import mpmath
 import pytest
-from tests._reference import brute_modes, critical_by_scan, log_c_direct
 from hypothesis import given
 from hypothesis import strategies as st
 
 import symhx
 from symhx._numeric import G_direct, G_mp
 from symhx.critical import discriminant_root_q, log_c
+from tests.reference.critical import critical_by_scan, log_c_direct
+from tests.reference.distribution import brute_modes
 
 
 def rel(a, b):

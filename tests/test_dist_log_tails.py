@@ -13,10 +13,10 @@ from functools import cache
 import mpmath
 import numpy as np
 import pytest
-from tests._reference import phi_exact
 
 import symhx
 from symhx.spaces import parse_space
+from tests.reference.distribution import phi_exact
 
 
 @cache

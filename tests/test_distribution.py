@@ -4,12 +4,12 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from tests._reference import brute_modes, phi_exact, pmf_table
 from hypothesis import given
 from hypothesis import strategies as st
 
 import symhx
 from symhx.distribution import SimpleDistribution
+from tests.reference.distribution import brute_modes, phi_exact, pmf_table
 
 fractions_p = st.fractions(min_value=Fraction(1, 10**4), max_value=1).filter(lambda x: x > 0)
 

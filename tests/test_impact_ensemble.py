@@ -12,7 +12,6 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
 import numpy as np
 import pytest
-from tests._seeds import run_seed_ref
 
 from symhx.forcing import impact_probability
 from symhx.impact import IMPACT, STICK, PipeRow, simulate
@@ -25,6 +24,7 @@ from symhx.impact.ensemble import (
     transition_dependence,
     window_counts,
 )
+from tests.reference.seeds import run_seed_ref
 
 # the package re-exports a function named ensemble: get the module itself
 E = importlib.import_module("symhx.impact.ensemble")

@@ -8,11 +8,11 @@ import warnings
 from fractions import Fraction
 
 import pytest
-from tests._reference import pmf_table
 
 import symhx
 from symhx.distribution import SimpleDistribution
 from symhx.spaces import SpaceDistribution
+from tests.reference.distribution import pmf_table
 
 
 @pytest.mark.parametrize("space", ["simple", symhx.spaces.parse_space("simple")])

@@ -10,7 +10,6 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from tests._reference import brute_modes, log_c_direct
 from flint import arb
 
 from symhx import critical as C
@@ -25,6 +24,8 @@ from symhx.critical import (
     log_c,
     mode_path,
 )
+from tests.reference.critical import log_c_direct
+from tests.reference.distribution import brute_modes
 
 
 # ---------------------------------------------------------------- exact references for c_k

@@ -15,15 +15,15 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from tests._reference import pmf_table
 from hypothesis import example, given
 from hypothesis import strategies as st
-from tests.test_frozen_harness import space_weights
 
 import symhx
 from symhx import api
 from symhx.circuits import circuit_count
 from symhx.spaces import parse_space, shape_excess
+from tests.reference.distribution import pmf_table
+from tests.test_frozen_harness import space_weights
 
 
 def simple_table(N: int, p: Fraction) -> list[Fraction]:

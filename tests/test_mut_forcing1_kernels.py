@@ -24,7 +24,6 @@ import tempfile
 import mpmath
 import numpy as np
 import pytest
-from tests._reference import eq27_p_xy, eq27_xy
 
 from symhx import forcing as F
 from symhx.forcing.arguments import ForcingParams
@@ -38,6 +37,7 @@ from symhx.forcing.kernels_float import (
     uv_forcing,
     uv_from_h,
 )
+from tests.reference.forcing import eq27_p_xy, eq27_xy
 
 EPS = float(np.finfo(float).eps)
 TINY = float(np.finfo(float).tiny)

@@ -15,7 +15,6 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from tests._reference import eq27_p, eq27_xy
 
 from symhx.forcing.kernels_mp import (
     estimate_float,
@@ -25,6 +24,7 @@ from symhx.forcing.kernels_mp import (
     precision_plan,
 )
 from symhx.forcing.rawmp import single_mp_fast
+from tests.reference.forcing import eq27_p, eq27_xy
 
 WANTS = ("p", "q", "logp", "logq")
 

@@ -24,11 +24,11 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from tests.test_forcing_rayleigh import gl_sum, pair_tail
 
 from symhx import forcing as F
 from symhx.forcing import RayleighSum
 from symhx.forcing.rayleigh import rayleigh_scales, rayleigh_sum_probability, scales_of
+from tests.test_forcing_rayleigh import gl_sum, pair_tail
 
 EPS = float(np.finfo(float).eps)
 REF_DPS = 24

@@ -15,10 +15,10 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from tests.test_mut_forcing2_paths import DPS, _mp, _p_sq, ref, ref_dp, ref_three_gl, rel, squares
 
 import symhx
 from symhx import forcing as F
+from tests.test_mut_forcing2_paths import DPS, _mp, _p_sq, ref, ref_dp, ref_three_gl, rel, squares
 
 
 def tol(dps=DPS):

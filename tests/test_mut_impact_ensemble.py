@@ -17,7 +17,6 @@ from concurrent.futures import Executor, Future, ThreadPoolExecutor
 
 import numpy as np
 import pytest
-from tests._seeds import boot_seed_ref, run_seed_ref
 
 from symhx.impact import IMPACT, STICK, PipeRow, simulate
 from symhx.impact.ensemble import (
@@ -36,6 +35,7 @@ from symhx.impact.ensemble import (
     window_counts,
 )
 from symhx.impact.model import SQRT2, SimulationError
+from tests.reference.seeds import boot_seed_ref, run_seed_ref
 
 E = importlib.import_module("symhx.impact.ensemble")
 

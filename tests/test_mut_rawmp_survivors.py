@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import mpmath
 import pytest
-from tests._reference import eq27_p
 
 import symhx
+from tests.reference.forcing import eq27_p
 
 
 def _ref(sigma, sigma1, omega, Omega, d, want, extra):

@@ -14,11 +14,11 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from tests.test_mut_spaces_critical import WP, _poly, _roots, _Wx
 
 import symhx.spaces._critical as crit
 from symhx.spaces import critical_point, parse_space, root_estimates
 from symhx.validation import mpf_to_fraction
+from tests.test_mut_spaces_critical import WP, _poly, _roots, _Wx
 
 
 def _root1(N: int, base: str, k: int, digits: int = WP) -> mpmath.mpf:

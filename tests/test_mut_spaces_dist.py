@@ -19,7 +19,6 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from tests._brute import necklaces
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -39,6 +38,7 @@ from symhx.spaces import (
 )
 from symhx.spaces._classes import visits_of
 from symhx.validation import mpf_to_fraction
+from tests.reference.combinatorics import necklaces
 
 SPACES = ["eq41", "eq41-printed", "excess<=1", "excess<=2", "excess<=3"]
 

@@ -12,13 +12,13 @@ from fractions import Fraction
 
 import mpmath
 import numpy as np
-from tests._reference import phi_exact
 
 import symhx.spaces._dist as dist
 from symhx.circuits import circuit_count
 from symhx.spaces import EQ41_SHAPES, class_decomposition, distribution, parse_space
 from symhx.spaces._classes import visits_of
 from symhx.validation import mpf_to_fraction
+from tests.reference.distribution import phi_exact
 
 
 def _exact_log_u(sp, K: int) -> np.ndarray:

@@ -8,10 +8,10 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
-from tests.test_mut_spaces_critical import _poly, _roots, _Wx
 
 from symhx.spaces import MAX_EXCESS, convergence_study
 from symhx.spaces.study import DEFAULT_PS, STUDY_N_LIMIT, ConvergenceRow
+from tests.test_mut_spaces_critical import _poly, _roots, _Wx
 
 
 def _exact_mean(N: int, base: str, w: str, p: Fraction) -> Fraction:

@@ -8,7 +8,6 @@ from collections import Counter
 from fractions import Fraction
 
 import pytest
-from tests._brute import necklaces, pattern_count_by_choice
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -25,6 +24,7 @@ from symhx.spaces._classes import (
     shapes_up_to,
     visits_of,
 )
+from tests.reference.combinatorics import necklaces, pattern_count_by_choice
 
 BOUNDARY_N = [2, 3, 5, 10, 100, 10**3, 10**8, 10**20]
 SHAPES = [(), (2,), (3,), (2, 2), (4,), (3, 2), (2, 2, 2), (5,), (3, 3), (4, 2)]
