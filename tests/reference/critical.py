@@ -68,7 +68,8 @@ def is_first_argmin(N: int, k: int) -> bool:
     """Whether ``k`` is the first integer argmin of ``c_j`` over ``2 <= j <= N``: exhaustively
     in exact integers for ``N <= EXACT_ARGMIN_N``, else ``c_{k-1} > c_k < c_{k+1}`` from the
     loggamma definition at digits that resolve the ``~1/k**2`` relative gaps (with the proved
-    unimodality of ``c_k`` a strict local minimum is the argmin)."""
+    unimodality of ``c_k`` a strict local minimum is the argmin; beyond ``EXACT_ARGMIN_N`` the
+    argmin is far from both ends, ``k ~ sqrt(N ln N)``, and an exact tie is not expected)."""
     if N <= EXACT_ARGMIN_N:
         return k == exact_argmins(N)[0]
     if not 2 < k < N:
