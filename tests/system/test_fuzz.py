@@ -16,6 +16,14 @@ The table :data:`API` gives, for every name in ``symhx.__all__`` and ``symhx.imp
 valid call and the *role* of each argument; :data:`NOT_CALLABLE` lists the names that are result
 classes or constants, each with the reason.  ``test_every_public_name_is_covered`` fails when a new
 public name is added without an entry.
+
+Hostile values come one at a time (every argument against every value), several at once
+(hypothesis draws, the same examples on every run: see tests/conftest.py), and as *interactions*
+(issue 28): two extreme but allowed arguments at once, such as a negligible Rayleigh scale next to
+a normal one, a huge ``N`` with ``p`` above ``p_c``, an irrational ``p`` near a tie of the modes
+or a huge ``N`` with a tiny ``dps``, whose answers must also satisfy the identities of their
+quantity (``cdf + sf = 1``, the modes of an exact reference, the digits asked for).  An
+interaction that fails on a bug filed in issue 28 is ``xfail(strict=False)`` with its number.
 """
 
 from __future__ import annotations
