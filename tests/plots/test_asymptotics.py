@@ -2,15 +2,10 @@
 
 from __future__ import annotations
 
-import pytest
+import matplotlib.pyplot as plt
 
-matplotlib = pytest.importorskip("matplotlib")
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-
-from symhx.asymptotics import error_table  # noqa: E402
-from symhx.plots.asymptotics import plot_asymptotic_errors  # noqa: E402
+from symhx.asymptotics import error_table
+from symhx.plots.asymptotics import plot_asymptotic_errors
 
 
 def test_asymptotic_errors_on_log_log_axes_one_line_per_order():

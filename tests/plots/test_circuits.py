@@ -8,18 +8,7 @@ from fractions import Fraction
 
 import pytest
 
-matplotlib = pytest.importorskip("matplotlib")
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-
-import symhx.plots as plots  # noqa: E402
-
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+import symhx.plots as plots
 
 
 @pytest.mark.parametrize("N", [1, 5, 100])

@@ -5,22 +5,9 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-import pytest
-
-matplotlib = pytest.importorskip("matplotlib")
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-
-import symhx  # noqa: E402
-import symhx.plots as plots  # noqa: E402
-from tests.reference.distribution import pmf_table  # noqa: E402
-
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+import symhx
+import symhx.plots as plots
+from tests.reference.distribution import pmf_table
 
 
 def test_figure4_panels_a_to_d_hold_the_pmf():

@@ -4,22 +4,11 @@ they draw (patches tagged by gid, texts, title)."""
 from __future__ import annotations
 
 import pytest
+from matplotlib.figure import Figure
 
-matplotlib = pytest.importorskip("matplotlib")
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-import symhx  # noqa: E402
-import symhx.plots as plots  # noqa: E402
-from tests.harness.errors import assert_refuses  # noqa: E402
-
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+import symhx
+import symhx.plots as plots
+from tests.harness.errors import assert_refuses
 
 
 def _gids(fig):

@@ -8,24 +8,13 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-matplotlib = pytest.importorskip("matplotlib")
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-
-import symhx  # noqa: E402
-from symhx.plots.higher_order import (  # noqa: E402
+import symhx
+from symhx.plots.higher_order import (
     plot_class_decomposition,
     plot_mean_vs_p_spaces,
     plot_simple_vs_higher,
 )
-from tests.reference.distribution import pmf_table  # noqa: E402
-
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+from tests.reference.distribution import pmf_table
 
 
 def test_figures_draw_one_line_per_class_space_or_simulation():

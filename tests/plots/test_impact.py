@@ -9,20 +9,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-matplotlib = pytest.importorskip("matplotlib")
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-
-import symhx  # noqa: E402
-from symhx.plots.impact import plot_theory_vs_simulation  # noqa: E402
-from tests.reference.distribution import pmf_table  # noqa: E402
-
-
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+import symhx
+from symhx.plots.impact import plot_theory_vs_simulation
+from tests.reference.distribution import pmf_table
 
 
 @pytest.fixture(scope="module", params=[3, 6])
