@@ -62,7 +62,7 @@ MAX_TOTAL_N = 50_000
 MAX_CIRCUIT_LENGTH = 100_000
 #: largest length of :func:`circuits_of_length` (it lists every partition: p(50) = 204226)
 MAX_PATTERN_LENGTH = 50
-#: largest size in bits of a result of :func:`necklace_count` (~N**L)
+#: largest size in bits of a result of :func:`phi` (~k log2 N) and :func:`necklace_count` (~N**L)
 MAX_COUNT_BITS = 10_000_000
 #: largest number of words ``N**L`` that :func:`enumerate_circuits` may walk
 MAX_ENUMERATION = 10**8
@@ -103,6 +103,12 @@ def phi(N: int, k: int) -> int:
     int
         The exact count. For huge ``N`` and ``k`` use :func:`log_phi`.
 
+    Raises
+    ------
+    ValueError
+        For ``N < 1``, and when the count would have more than about
+        :data:`MAX_COUNT_BITS` bits (``k * bit_length(N)``, checked before any work).
+
     >>> [phi(5, k) for k in range(1, 6)]
     [5, 10, 20, 30, 24]
     """
@@ -110,6 +116,8 @@ def phi(N: int, k: int) -> int:
     k = check_int(k, "k")
     if k < 1 or k > N:
         return 0
+    if k * N.bit_length() > MAX_COUNT_BITS:  # the count has about k log2(N) bits
+        raise _refuse("k * bit_length(N)", k * N.bit_length(), MAX_COUNT_BITS, "MAX_COUNT_BITS")
     return math.perm(N, k) // k
 
 

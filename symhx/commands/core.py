@@ -306,7 +306,7 @@ def cmd_paper(args: argparse.Namespace) -> int:
     terminal (silent otherwise); each section's summary and its time (once) on stdout."""
     from tqdm import tqdm
 
-    from symhx.cli import command_modules
+    from symhx.commands import command_modules
 
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)

@@ -15,12 +15,12 @@ MODULES = sorted(
 )
 
 
-def test_modules_found():
+def test_module_walk_finds_the_core_modules():
     assert "symhx.critical" in MODULES and "symhx.distribution" in MODULES
 
 
 @pytest.mark.parametrize("name", ["symhx", *MODULES])
-def test_docstring_examples(name):
+def test_docstring_examples_pass(name):
     module = importlib.import_module(name)
     flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
     result = doctest.testmod(module, optionflags=flags, report=True)

@@ -1,5 +1,6 @@
 """The main job, ``symhx paper``, end to end (the README's first command)."""
 
+import csv
 import json
 
 from symhx.cli import main
@@ -24,8 +25,6 @@ def test_symhx_paper_writes_every_section(tmp_path, capsys):
     assert len(heads) == len(summary) + 1, heads
     assert not any("section:" in line for line in out.splitlines())
     # CSVs hold 17-digit floats (the full precision is in the JSON next to them)
-    import csv
-
     mine = ["critical_table.csv", "mode_path_N101.csv", "asymptotic_errors.csv",
             *[p.name for p in tmp_path.glob("fig11_*.csv")]]
     for name in mine:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "check_book.py"
+SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "check_book.py"
 spec = importlib.util.spec_from_file_location("check_book", SCRIPT)
 check_book = importlib.util.module_from_spec(spec)
 sys.modules.setdefault("check_book", check_book)
@@ -49,13 +49,13 @@ def test_scan_html_finds_resources_and_text():
     assert check_book._css_remote_urls("".join(scan.inline_css)) == ["https://example.org/bg.png"]
 
 
-def test_css_comments_are_ignored():
+def test_css_comments_are_not_read_as_urls():
     css = "/* see https://example.org/x.png */ a { background: url('img/local.png') }"
     assert check_book._css_remote_urls(css) == []
     assert check_book._css_remote_urls("@import 'https://x.org/a.css';") == ["https://x.org/a.css"]
 
 
-def test_raw_tex_patterns():
+def test_raw_tex_patterns_flag_leftover_tex_only():
     def hits(text):
         return [name for pattern, name in check_book.RAW_TEX if pattern.search(text)]
 
@@ -166,7 +166,7 @@ def test_layout_pass_catches_what_a_reader_sees(tmp_path):
     assert clean == []
 
 
-def test_raw_tex_and_pseudo_latex_patterns():
+def test_raw_tex_patterns_flag_tex_commands_and_pseudo_latex():
     def hits(text):
         return [name for pattern, name in check_book.RAW_TEX if pattern.search(text)]
 
