@@ -46,3 +46,21 @@ def test_phi_outside_one_to_N_is_zero_for_any_size():
     assert symhx.phi(10**30, 10**30 + 1) == 0
     assert symhx.phi(5, 2**63) == 0
     assert symhx.phi(10**30, -(2**63)) == 0
+
+
+def test_circuit_count_refuses_a_count_beyond_the_size_limit_at_once():
+    # 20000 distinct vertices out of 10**1000: N!/(N - r)! alone has ~6.6e7 bits (it took 253 s)
+    t0 = time.perf_counter()
+    assert_refuses(symhx.circuit_count, 10**1000, (1,) * 20000,
+                   arg=("len(visits)", "bit_length(N)"), allowed=("MAX_COUNT_BITS", "10000000"))
+    assert time.perf_counter() - t0 < 0.5
+
+
+def test_circuit_count_limit_is_exact_on_both_sides(monkeypatch):
+    # r * bit_length(N) == limit is computed, one more distinct vertex is refused; the count of
+    # all-distinct patterns is phi (eq. 5), written out as a falling factorial over k
+    monkeypatch.setattr(symhx.circuits, "MAX_COUNT_BITS", 7 * (1000).bit_length())
+    assert symhx.circuit_count(1000, (1,) * 7) == math.prod(range(994, 1001)) // 7
+    assert symhx.circuit_count(1000, (3, 2, 1, 1, 1, 1, 1)) > 0
+    assert_refuses(symhx.circuit_count, 1000, (1,) * 8, arg="len(visits)", value="80",
+                   allowed=("MAX_COUNT_BITS", "70"))
