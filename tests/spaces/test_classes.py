@@ -1,5 +1,14 @@
-"""Independent references for symhx.spaces._classes: explicit circuits classified by shape,
-the paper's printed formulas inside their stated ranges, partition counts."""
+"""Sample spaces of circuits and their exact class counts (``symhx.spaces._classes``, section 8,
+eqs. 28-41): class counts and ratios, the paper's printed formulas inside and outside their
+stated ranges, the classes of a space, its integer tables ``U_e(k)`` and ``Q*``, parsing, and
+the refusals and work limit ``MAX_EXCESS``.
+
+References (:mod:`tests.reference.spaces`, :mod:`tests.reference.combinatorics`): explicit
+circuits classified by class (every word up to rotation for small N, FKM enumeration up to
+``N**L`` of a few million), the count by choosing the vertices and counting the necklaces of a
+content by enumeration, MacMahon's necklace count, partition counts by the coin-change
+recurrence, the closed form of ``R_s(k)`` from the module docstring.
+"""
 
 from __future__ import annotations
 
@@ -11,8 +20,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from symhx.spaces._classes import (
+from symhx.circuits import necklace_count, partitions
+from symhx.spaces import (
     EQ41_SHAPES,
+    MAX_EXCESS,
     Space,
     class_count,
     class_ratio,
@@ -22,42 +33,70 @@ from symhx.spaces._classes import (
     printed_count,
     shape_excess,
     shapes_up_to,
-    visits_of,
 )
-from tests.reference.combinatorics import necklaces, pattern_count_by_choice
+from symhx.spaces._classes import check_shape, visits_of
+from tests.harness.errors import assert_refuses
+from tests.reference.combinatorics import necklace_formula, pattern_count_by_choice
+from tests.reference.spaces import (
+    class_counts_by_walks,
+    classes_by_fkm,
+    partition_counts,
+    qstar,
+    walk_polys,
+)
 
 BOUNDARY_N = [2, 3, 5, 10, 100, 10**3, 10**8, 10**20]
 SHAPES = [(), (2,), (3,), (2, 2), (4,), (3, 2), (2, 2, 2), (5,), (3, 3), (4, 2)]
+INT_WORDS = "an integer such as 7, 10**100 or '1e100'"
 
 
-def shape_of(word: tuple[int, ...]) -> tuple[tuple[int, ...], int]:
-    """(class, k) of an explicit circuit: parts > 1 of its visit pattern, distinct vertices."""
-    mult = sorted(Counter(word).values(), reverse=True)
-    return tuple(m for m in mult if m > 1), len(mult)
+def _circuits(N: int, k: int) -> Fraction:
+    """The simple count phi_N(k) = N!/(k (N-k)!) (eq. 5), as a falling product (any N)."""
+    return Fraction(math.prod(range(N - k + 1, N + 1)), k)
 
 
-def brute_class_counts(N: int, max_len: int) -> Counter:
-    c: Counter = Counter()
-    for L in range(1, max_len + 1):
-        for w in necklaces(N, L):
-            c[shape_of(w)] += 1
-    return c
+@pytest.fixture(scope="module")
+def fkm() -> dict[tuple[int, int], Counter]:
+    """{(N, L): Counter of (class, k)} by FKM enumeration, N <= 7, L <= N + 3 (capped to keep
+    N**L small)."""
+    return {(N, L): classes_by_fkm(N, L) for N in range(1, 8) for L in range(1, N + 4)
+            if N**L <= 2_500_000}
 
 
-def phi_exact(N: int, k: int) -> Fraction:
-    return Fraction(math.prod(range(N - k + 1, N + 1)), k)  # N!/(N-k)! / k
+# --------------------------------------------------------------------------- class counts
+def test_every_class_count_matches_enumeration(fkm):
+    checked = 0
+    for (N, L), c in fkm.items():
+        for v in partitions(L, max_parts=N):
+            s = tuple(x for x in v if x > 1)
+            k = len(v)
+            assert class_count(N, s, k) == c.get((s, k), 0), (N, L, v)
+            checked += 1
+        assert sum(c.values()) == necklace_count(N, L)
+    assert checked > 200
 
 
 @pytest.mark.parametrize(("N", "max_len"), [(1, 6), (2, 7), (3, 7), (4, 6), (5, 6)])
 def test_class_count_matches_explicit_circuits(N, max_len):
-    brute = brute_class_counts(N, max_len)
+    brute = class_counts_by_walks(N, max_len)
     for s in SHAPES:
         for k in range(0, N + 2):
             if k + shape_excess(s) > max_len:
                 continue
             assert class_count(N, s, k) == brute.get((s, k), 0), (s, k)
             if 1 <= k <= N:
-                assert class_ratio(s, k) == brute.get((s, k), 0) / phi_exact(N, k), (s, k)
+                assert class_ratio(s, k) == brute.get((s, k), 0) / _circuits(N, k), (s, k)
+
+
+def test_totals_per_length_are_necklace_counts():
+    """Summed over every pattern of length L: MacMahon's (1/L) sum_{d|L} phi(d) N**(L/d)."""
+    for N in range(1, 9):
+        for L in range(1, N + 6):
+            total = 0
+            for v in partitions(L, max_parts=N):
+                s = tuple(x for x in v if x > 1)
+                total += class_count(N, s, len(v))
+            assert total == necklace_formula(N, L)
 
 
 @settings(max_examples=40, deadline=None)
@@ -69,7 +108,7 @@ def test_class_count_by_choosing_vertices(N, s, k):
         N, tuple(sorted(s + (1,) * (k - len(s)), reverse=True)))
     assert class_count(N, s, k) == want
     if 1 <= k <= N:
-        assert class_ratio(s, k) * phi_exact(N, k) == want
+        assert class_ratio(s, k) * _circuits(N, k) == want
 
 
 @pytest.mark.parametrize("k", range(1, 12))
@@ -87,22 +126,47 @@ def test_polynomial_ratio_closed_form(k):
 
 
 def test_boundary_values_explicit():
-    # k = r: every vertex repeated; values from explicit circuits on N = r vertices
+    """k = r: every vertex repeated; values from explicit circuits on N = r vertices."""
     for s in [(2,), (3,), (4,), (2, 2), (3, 2), (2, 2, 2)]:
         r = len(s)
-        brute = brute_class_counts(r, sum(s))
+        brute = class_counts_by_walks(r, sum(s))
         assert class_count(r, s, r) == brute[(s, r)], s
     assert class_ratio((2,), 0) == 0 and class_ratio((2, 2), 1) == 0
     assert class_ratio((), 0) == 0 and class_ratio((), 1) == 1
 
 
+def test_periodic_boundary_classes():
+    """The boundary lengths (every vertex repeated), enumerated: the printed formulas evaluated
+    there give words / L instead of the number of circuits."""
+    for N in range(2, 7):
+        c3, c4 = classes_by_fkm(N, 3), classes_by_fkm(N, 4)
+        assert class_count(N, (3,), 1) == c3[((3,), 1)] == N
+        assert class_count(N, (4,), 1) == c4[((4,), 1)] == N
+        assert class_count(N, (2, 2), 2) == c4[((2, 2), 2)] == N * (N - 1)
+        assert printed_count("38", N, 3, outside="formula") == Fraction(N, 3)
+        assert printed_count("39", N, 4, outside="formula") == Fraction(N, 4)
+        assert printed_count("40", N, 4, outside="formula") == Fraction(3 * N * (N - 1), 4)
+        assert printed_count("35", N, 2, outside="formula") == Fraction(N, 2)
+        assert printed_count("36", N, 2) == N == class_count(N, (2,), 1)
+
+
 # --------------------------------------------------------------------------- printed formulas
-def test_printed_formulas_inside_their_ranges_are_right():
+PRINTED = (("35", (2,), 3), ("38", (3,), 4), ("39", (4,), 5), ("40", (2, 2), 5))
+
+
+def test_printed_formulas_inside_their_ranges_are_right(fkm):
+    """Inside its stated range (L >= lo) each printed formula equals the enumerated count
+    (FKM: N <= 7, L <= N + 3; explicit walks: N = 3, 4, 5, 7, L <= 7 or 6), below it
+    ``printed_count`` gives 0; eq. (36) is N at L = 2 only."""
+    for (N, L), c in fkm.items():
+        for eq, shape, lo in PRINTED:
+            if L >= lo:
+                assert printed_count(eq, N, L) == c.get((shape, L - shape_excess(shape)), 0), (
+                    eq, N, L)
     for N in (3, 4, 5, 7):
-        brute = brute_class_counts(N, 7 if N <= 4 else 6)
+        brute = class_counts_by_walks(N, 7 if N <= 4 else 6)
         for L in range(1, 8 if N <= 4 else 7):
-            for eq, s, lo in (("35", (2,), 3), ("38", (3,), 4), ("39", (4,), 5),
-                              ("40", (2, 2), 5)):
+            for eq, s, lo in PRINTED:
                 k = L - shape_excess(s)
                 got = printed_count(eq, N, L)
                 if L >= lo:
@@ -119,10 +183,10 @@ def test_printed_formulas_outside_their_ranges():
     assert printed_count("40", N, 4, outside="formula") == Fraction(3 * N * (N - 1), 4)
     assert printed_count("35", N, 2, outside="formula") == Fraction(N, 2)
     assert printed_count("38", N, 2, outside="formula") == 0  # shorter than the class
-    with pytest.raises(ValueError, match="eq must be one of"):
-        printed_count("37", N, 4)
-    with pytest.raises(ValueError, match="outside must be 'zero' or 'formula', got 'x'"):
-        printed_count("38", N, 5, outside="x")
+    assert_refuses(printed_count, "37", N, 4, arg="eq", value="'37'",
+                   allowed="35, 36, 38, 39, 40")
+    assert_refuses(printed_count, "38", N, 5, outside="x", arg="outside", value="'x'",
+                   allowed="'zero' or 'formula'")
 
 
 @pytest.mark.parametrize("N", [5, 10, 1000])
@@ -143,13 +207,27 @@ def test_printed_class_counts(N):
 
 def test_eq41_terms_explicit():
     N = 4
-    brute = brute_class_counts(N, 7)
+    brute = class_counts_by_walks(N, 7)
     for k in range(1, 5):
         terms = eq41_terms(N, k)
         want = {paper_label(s): brute.get((s, k), 0) for s in EQ41_SHAPES}
         if k + 3 <= 7:
             assert terms == want
     assert list(eq41_terms(10, 3)) == ["phi", "phi^1", "phi^{1,0}", "phi^2", "phi^{1,0,0}"]
+
+
+def test_eq41_terms_sum_and_printed_difference():
+    """The printed terms miss exactly phi^{1,0}(3) = N and phi^{1,0,0}(4) = N at k = 1 and
+    phi^2(4) = N (N - 1) at k = 2."""
+    for N in range(2, 9):
+        for k in range(1, N + 1):
+            good = eq41_terms(N, k)
+            bad = eq41_terms(N, k, printed=True)
+            diff = {lab: good[lab] - bad[lab] for lab in good}
+            expect = {"phi": 0, "phi^1": 0, "phi^{1,0}": N if k == 1 else 0,
+                      "phi^2": N * (N - 1) if k == 2 else 0,
+                      "phi^{1,0,0}": N if k == 1 else 0}
+            assert diff == expect
 
 
 # --------------------------------------------------------------------------- shapes
@@ -161,8 +239,15 @@ def test_shapes_up_to_counts_partitions():
         assert all(list(s) == sorted(s, reverse=True) and min(s, default=2) >= 2
                    for s in shapes)
         assert all(shape_excess(s) <= m for s in shapes)
-    with pytest.raises(ValueError, match="maximum excess m must be >= 0, got -1"):
-        shapes_up_to(-1)
+    assert_refuses(shapes_up_to, -1, arg="maximum excess m", value="-1", allowed=">= 0")
+
+
+def test_max_excess_is_an_inclusive_limit():
+    shapes = shapes_up_to(MAX_EXCESS)
+    assert len(shapes) == sum(partition_counts(MAX_EXCESS)) == 9296
+    assert_refuses(shapes_up_to, MAX_EXCESS + 1, arg="maximum excess m",
+                   value=f"m={MAX_EXCESS + 1}",
+                   allowed=[f"documented work limit {MAX_EXCESS}", "MAX_EXCESS"])
 
 
 def test_paper_labels():
@@ -172,40 +257,56 @@ def test_paper_labels():
     assert paper_label((3,)) == "phi^{1,0}"
     assert paper_label((3, 2)) == "phi^{1,1}"
     assert paper_label((4, 2, 2)) == "phi^{1,0,2}"
-    with pytest.raises(ValueError, match=r"parts > 1 of a visit pattern, got \(2, 1\)"):
-        paper_label((2, 1))
+    assert_refuses(paper_label, (2, 1), arg="class", value="(2, 1)",
+                   allowed="the parts > 1 of a visit pattern")
 
 
 def test_visits_of():
     assert visits_of((3, 2), 4) == (3, 2, 1, 1)
     assert visits_of((), 2) == (1, 1)
     assert visits_of((), 0) == ()
-    with pytest.raises(ValueError, match=r"needs at least 2 distinct vertices"):
-        visits_of((2, 2), 1)
+    assert_refuses(visits_of, (2, 2), 1, arg="class", value="(2, 2)",
+                   allowed="at least 2 distinct vertices")
+
+
+# --------------------------------------------------------------------------- refusals
+@pytest.mark.parametrize("shape, shown", [("ab", "str 'ab'"), (5, "int 5"), (b"x", "bytes b'x'")])
+def test_check_shape_refuses_non_sequences(shape, shown):
+    assert_refuses(check_shape, shape, exc=TypeError, arg="shape", value=f"got {shown}",
+                   allowed="a tuple of ints >= 2")
+
+
+def test_check_shape_names_a_bad_entry():
+    assert_refuses(check_shape, [2, "x"], arg="shape entry", value="'x'", allowed=INT_WORDS)
+
+
+@pytest.mark.parametrize("fn", [lambda k: class_count(5, (2,), k), lambda k: class_ratio((2,), k)])
+def test_k_is_named(fn):
+    assert_refuses(fn, "a", arg="k", value="'a'", allowed=INT_WORDS)
+
+
+def test_printed_count_names_L():
+    assert_refuses(printed_count, "35", 5, "x", arg="L", value="'x'", allowed=INT_WORDS)
+
+
+@pytest.mark.parametrize("N", [0, -3])
+def test_N_at_least_one(N):
+    for call in (lambda: class_count(N, (2,), 2), lambda: printed_count("35", N, 3)):
+        assert_refuses(call, arg="N", value=f"got {N}", allowed=">= 1")
 
 
 # --------------------------------------------------------------------------- spaces
-def brute_Q(space: Space, N: int, k: int, p: Fraction, brute: Counter) -> Fraction:
-    w = sum((p ** shape_excess(s) if space.weighting == "length" else 1) * brute.get((s, k), 0)
-            for s in space.shapes)
-    return w / phi_exact(N, k)
-
-
 @pytest.mark.parametrize("name", ["simple", "eq41", "excess<=2", "excess<=3;distinct",
                                   "eq41;distinct", "eq41-printed"])
 def test_space_Q_against_explicit_circuits(name):
+    """Q*(k), its integer form Qnum/Qden and the table U_e(k) against circuits listed one by
+    one (N = 4, length <= 7; the printed space drops its boundary terms)."""
     space = parse_space(name)
     N = 4
-    brute = brute_class_counts(N, 7)
+    polys = walk_polys(N, name)  # walks of length <= N + max excess <= 7
     p = Fraction(2, 7)
     for k in range(1, N + 1):
-        if k + space.max_excess > 7:
-            continue
-        if space.printed:
-            want = sum((p ** shape_excess(s)) * class_count(N, s, k, printed=True)
-                       for s in space.shapes) / phi_exact(N, k)
-        else:
-            want = brute_Q(space, N, k, p, brute)
+        want = qstar(N, p, k, polys[k])
         assert space.Qstar(k, p) == want, k
         a, b = p.numerator, p.denominator
         assert Fraction(space.Qnum(k, a, b), space.Qden(b)) == want
@@ -224,7 +325,7 @@ def test_space_polynomial_region(name):
     for k in range(1, 14):
         w = sum((p ** shape_excess(s) if space.weighting == "length" else 1)
                 * class_count(N, s, k, printed=space.printed) for s in space.shapes)
-        assert space.Qstar(k, p) == w / phi_exact(N, k), k
+        assert space.Qstar(k, p) == w / _circuits(N, k), k
         assert space.Qstar(k, p) == space.Qstar(k, p)  # cached value equal
         for e, u in enumerate(space.U(k)):
             assert u == space.denominator * sum(class_ratio(s, k, printed=space.printed)
@@ -257,6 +358,7 @@ def test_space_ratio_count_and_properties():
 
 def test_parse_space_names_and_errors():
     assert parse_space("excess <= 2").name == "excess<=2"
+    assert parse_space("excess <= 3").name == "excess<=3"
     assert parse_space("excess<=2").shapes == shapes_up_to(2)
     assert parse_space("excess<=0").shapes == ((),)
     assert parse_space("eq41;distinct").weighting == "distinct"
@@ -264,21 +366,23 @@ def test_parse_space_names_and_errors():
     assert parse_space("eq41;length").name == "eq41"
     assert parse_space("eq41", "distinct").name == "eq41;distinct"
     assert parse_space("simple").weighting == "length" and parse_space("simple").max_excess == 0
+    assert parse_space("simple;distinct").base == "simple"
     sp = parse_space("excess<=2")
     assert parse_space(sp) is sp
     assert parse_space(sp, "length") is sp
     assert parse_space(sp, "distinct").name == "excess<=2;distinct"
     assert parse_space(parse_space("eq41"), "distinct").name == "eq41;distinct"
-    with pytest.raises(ValueError, match=r"unknown sample space 'abc'"):
-        parse_space("abc")
-    with pytest.raises(ValueError, match=r"unknown weighting 'x' in space 'eq41;x'"):
-        parse_space("eq41;x")
-    with pytest.raises(ValueError, match=r"weighting must be 'length' or 'distinct', got 'w'"):
-        parse_space("eq41", "w")
-    with pytest.raises(ValueError, match=r"conflicts with weighting='length'"):
-        parse_space("eq41;distinct", "length")
-    with pytest.raises(TypeError, match="space must be a str, got int"):
-        parse_space(3)
+    for bad in ("abc", "eq42"):
+        assert_refuses(parse_space, bad, arg="space", value=repr(bad),
+                       allowed=["'simple'", "'eq41'", "'eq41-printed'", "'excess<=m'"])
+    for bad in ("x", "heavy"):
+        assert_refuses(parse_space, f"eq41;{bad}", arg="weighting", value=f"'{bad}'",
+                       allowed=["';length'", "';distinct'"])
+    assert_refuses(parse_space, "eq41", "w", arg="weighting", value="'w'",
+                   allowed="'length' or 'distinct'")
+    assert_refuses(parse_space, "eq41;distinct", "length", arg="weighting",
+                   value="'eq41;distinct'", allowed="weighting='length'")
+    assert_refuses(parse_space, 3, exc=TypeError, arg="space", value="int", allowed="a str")
 
 
 def test_fresh_space_tables():
