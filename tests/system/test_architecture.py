@@ -64,22 +64,16 @@ KNOWN_PRIVATE_IMPORTS: set[tuple[str, str, str]] = {
 #: Old flat test files (``tests/test_*.py``) not yet moved into the layout: the layout rules skip
 #: exactly these.  Other engineers are moving them; the lead empties this set after merging.
 LEGACY_FLAT_FILES: frozenset[str] = frozenset({
-    "test_dist_log_tails.py", "test_distribution.py", "test_forcing.py", "test_forcing_cli.py",
-    "test_forcing_extra.py", "test_forcing_extremes.py", "test_forcing_inputs.py",
-    "test_forcing_mp_grid.py", "test_forcing_multi_tail.py", "test_forcing_rayleigh.py",
-    "test_frozen_harness.py", "test_impact_contract.py", "test_impact_engines.py",
+    "test_forcing.py", "test_forcing_cli.py", "test_forcing_extra.py", "test_forcing_extremes.py",
+    "test_forcing_inputs.py", "test_forcing_mp_grid.py", "test_forcing_multi_tail.py",
+    "test_forcing_rayleigh.py", "test_impact_contract.py", "test_impact_engines.py",
     "test_impact_ensemble.py", "test_impact_exact.py", "test_impact_fast.py",
     "test_impact_graze_stream.py", "test_impact_reference.py", "test_impact_sweep.py",
-    "test_mut_api_survivors.py", "test_mut_dist_api.py", "test_mut_dist_core.py",
-    "test_mut_dist_survivors.py", "test_mut_forcing1_arguments.py", "test_mut_forcing1_kernels.py",
-    "test_mut_forcing1_rawmp.py", "test_mut_forcing1_rayleigh.py", "test_mut_forcing2_api.py",
-    "test_mut_forcing2_paths.py", "test_mut_forcing3_rayleigh.py", "test_mut_forcing4_rayleigh.py",
-    "test_mut_impact_engine.py", "test_mut_impact_engine2.py", "test_mut_impact_ensemble.py",
-    "test_mut_impact_model.py", "test_mut_rawmp_survivors.py", "test_mut_spaces_classes.py",
-    "test_mut_spaces_critical.py", "test_mut_spaces_critical2.py", "test_mut_spaces_dist.py",
-    "test_mut_spaces_dist2.py", "test_mut_spaces_study.py", "test_spaces_counts.py",
-    "test_spaces_critical.py", "test_spaces_reference.py", "test_spaces_symbolic.py",
-    "test_stored_ensembles.py",
+    "test_mut_forcing1_arguments.py", "test_mut_forcing1_kernels.py", "test_mut_forcing1_rawmp.py",
+    "test_mut_forcing1_rayleigh.py", "test_mut_forcing2_api.py", "test_mut_forcing2_paths.py",
+    "test_mut_forcing3_rayleigh.py", "test_mut_forcing4_rayleigh.py", "test_mut_impact_engine.py",
+    "test_mut_impact_engine2.py", "test_mut_impact_ensemble.py", "test_mut_impact_model.py",
+    "test_mut_rawmp_survivors.py", "test_stored_ensembles.py",
 })
 
 #: folders of tests/ that are not mirrors of the package
@@ -510,13 +504,17 @@ def test_no_test_module_imports_another_test_module() -> None:
 @cache
 def _symhx_private_definitions() -> dict[str, frozenset[str]]:
     """Private name -> the modules defining it (functions, classes, assigned names and
-    attributes, ``__slots__`` entries)."""
+    attributes, ``__slots__`` entries) or using it as their own (``self._x``: a subclass's
+    inherited internals belong to the subclass's module too)."""
     out: dict[str, set[str]] = {}
     for mod, path in _modules().items():
         for node in ast.walk(ast.parse(path.read_text())):
             names: list[str] = []
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
                 names = [node.name]
+            elif isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and \
+                    node.value.id == "self":
+                names = [node.attr]
             elif isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
                 targets = node.targets if isinstance(node, ast.Assign) else [node.target]
                 for t in targets:
