@@ -31,7 +31,7 @@ def register(sub: Any) -> None:
     ps = sub.add_parser(
         "p-sigma",
         help="impact probability p and 1 - p for forcing sigma (eqs. 22-27)",
-        description="Impact probability p = P(Y0 + sum Y_i/|omega^2 - Omega_i^2| > d), 1 - p "
+        description="Impact probability p = P(Y0 + sum Y_i/abs(omega^2 - Omega_i^2) > d), 1 - p "
         "and their natural logs for forcing standard deviation sigma (sigma1 = sigma unless "
         "given). Numbers are exact decimals (0.05 is 1/20). JSON output is strict: with --dps "
         "every value is a decimal string; in float64 a value outside the float range "

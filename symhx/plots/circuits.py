@@ -20,7 +20,8 @@ __all__ = ["circuit_fractions", "plot_circuit_counts"]
 
 
 def circuit_fractions(N: int) -> tuple[np.ndarray, np.ndarray]:
-    """``(k, phi_N(k) / phi_N^tot)`` for ``k = 1 .. N``, each ratio exact then rounded to float64.
+    """``(k, phi_N(k) / phi_N^tot)`` for ``k`` from 1 to ``N``, each ratio exact, then rounded
+    to float64.
 
     >>> k, frac = circuit_fractions(4)
     >>> k.tolist(), frac.tolist() == [4 / 24, 6 / 24, 8 / 24, 6 / 24]

@@ -4,6 +4,7 @@ figure 11 with the paper's panel (b), one choice of sample spaces per figure."""
 
 from __future__ import annotations
 
+import itertools
 import re
 from pathlib import Path
 
@@ -102,7 +103,7 @@ def _display_points(line, step=2.0):
     if line.get_linestyle() in ("None", "", " ") or len(pts) < 2:
         return pts
     dense = [pts[:1]]
-    for a, b in zip(pts[:-1], pts[1:], strict=True):
+    for a, b in itertools.pairwise(pts):
         n = max(1, int(np.hypot(*(b - a)) / step))
         t = np.linspace(0, 1, n + 1)[1:, None]
         dense.append(a + t * (b - a))
