@@ -62,12 +62,23 @@ N, p, k = sp.symbols("N p k", positive=True)
 
 class _Printer(LatexPrinter):
     """sympy's LaTeX printer with the notation of the book: ``\\psi`` for the digamma function,
-    ``\\log\\Gamma`` for ``loggamma``, and the terms of an unevaluated sum in the order given."""
+    ``\\log\\Gamma`` for ``loggamma``, ``\\exp(x)`` for the exponential of a compound ``x``,
+    and the terms of an unevaluated sum in the order given."""
 
     def _print_polygamma(self, expr: Any, exp: Any = None) -> str:
         n, x = expr.args
         base = r"\psi" if n == 0 else rf"\psi^{{({self._print(n)})}}"
         tex = rf"{base}\left({self._print(x)}\right)"
+        return tex if exp is None else rf"{tex}^{{{exp}}}"
+
+    def _print_ExpBase(self, expr: Any, exp: Any = None) -> str:
+        # exp(x) of a compound x as \exp(x): a fraction or a W in a superscript of a
+        # superscript is too small to read
+        arg = expr.args[0]
+        if arg.is_Atom or (arg.is_Mul and len(arg.args) == 2 and -1 in arg.args
+                           and arg.args[1].is_Atom):
+            return super()._print_ExpBase(expr, exp)
+        tex = rf"\exp\left({self._print(arg)}\right)"
         return tex if exp is None else rf"{tex}^{{{exp}}}"
 
     def _print_loggamma(self, expr: Any, exp: Any = None) -> str:
