@@ -123,7 +123,6 @@ def mp_lambdify(args: Any, expr: Any) -> Callable[..., Any]:
     """``sympy.lambdify(args, expr)`` evaluated in this thread's private mpmath context
     (:func:`symhx._mpctx.mp`): call the result inside ``mp().workdps(...)``, never the global
     ``mpmath.workdps``."""
-    from sympy.printing.pycode import MpmathPrinter  # noqa: F401  (sympy's mpmath names)
     from sympy.utilities.lambdify import MPMATH_TRANSLATIONS
 
     from symhx._mpctx import mp

@@ -93,3 +93,12 @@ def test_numeric_checks_ignore_the_global_mpmath_precision():
         assert mpmath.mp.dps == 5
     finally:
         mpmath.mp.dps = old
+
+
+def test_numeric_checks_hold_in_concurrent_threads():
+    """Each thread computes in its own mpmath context (80, 50 and 40 digits side by side)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    labels_ = ["16-series", "log-Nc-expansion", "pc-lambert", "crossing-relaxed"] * 2
+    with ThreadPoolExecutor(4) as pool:
+        assert all(pool.map(lambda lab: derivation(lab).verify(), labels_))
