@@ -15,6 +15,7 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.container import ErrorbarContainer  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
@@ -36,6 +37,10 @@ def ensemble():
 def figures(ensemble):
     figs = {n: P.paper_figure(n, ensemble=ensemble) for n in P.PAPER_FIGURES}
     for fig in figs.values():
+        # out of pyplot's hands with an Agg canvas of its own: the per-test plt.close("all")
+        # of tests/plots/conftest.py would otherwise leave it a canvas without a renderer
+        plt.close(fig)
+        FigureCanvasAgg(fig)
         fig.canvas.draw()
     yield figs
     plt.close("all")

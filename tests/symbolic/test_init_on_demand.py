@@ -1,4 +1,4 @@
-"""symhx.symbolic builds derivations on demand and carries its own typeset texts (issue 29)."""
+"""symhx.symbolic builds derivations on demand and carries its own typeset texts."""
 
 from __future__ import annotations
 
