@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import symhx.spaces._critical as crit
+from symhx._mpctx import local, mp
 from symhx.circuits import circuit_count
 from symhx.critical import discriminant_root, discriminant_root_q
 from symhx.spaces import EQ41_SHAPES, critical_point, parse_space, root_estimates, shapes_up_to
@@ -216,7 +217,8 @@ def test_log_Q_h_and_dh_against_polynomials():
         sp = parse_space(base, w)
         N = 12
         p1 = _poly(N, base, w, 1)
-        with mpmath.workdps(50):
+        # the helpers compute in this thread's symhx context (symhx._mpctx): set both
+        with mpmath.workdps(50), mp().workdps(50):
             for k in (1, 2, 3, 5, 12):
                 pk = _poly(N, base, w, k)
                 for s in (mpmath.mpf(-1), mpmath.mpf("0.3"), mpmath.mpf(2)):
@@ -226,14 +228,14 @@ def test_log_Q_h_and_dh_against_polynomials():
                         pp = mpmath.exp(t) / N
                         return mpmath.log(_Wx(pk, pp)) - mpmath.log(_Wx(p1, pp))
 
-                    assert mpmath.almosteq(crit._h_mp(sp, N, k, s), h(s), 1e-45)
+                    assert mpmath.almosteq(crit._h_mp(sp, N, k, local(s)), h(s), 1e-45)
                     dref = mpmath.diff(h, s)
-                    assert mpmath.almosteq(crit._dh_mp(sp, N, k, s), dref, 1e-35)
+                    assert mpmath.almosteq(crit._dh_mp(sp, N, k, local(s)), dref, 1e-35)
                     # log Q*: W(k) / (p**k N!/(k (N-k)!)) up to the constant denominator D
                     phi = p**k * mpmath.mpf(math.perm(N, k)) / k
                     q = _Wx(pk, p) / phi
                     ref = mpmath.log(q * sp.denominator)
-                    assert mpmath.almosteq(crit._log_Q_mp(sp, k, p), ref, 1e-45)
+                    assert mpmath.almosteq(crit._log_Q_mp(sp, k, local(p)), ref, 1e-45)
                     fr = mpf_to_fraction(p)
                     with mpmath.workdps(80):
                         exact = mpmath.log(_Wx(pk, fr)) - mpmath.log(_Wx(p1, fr))
