@@ -159,27 +159,29 @@ _CONSTANTS: dict[str, Callable[[], arb]] = {
 }
 
 
-def _pow_ball(base: arb, expo: Any) -> arb:
-    """``base**expo`` for a sympy exponent: integers exactly, rationals ``a/q`` by a q-th root
-    (negative bases for odd q), other reals by ``exp(expo log base)`` for a positive base."""
+def _pow_ball(base: arb, expo: Any, shown: Any) -> arb:
+    """``base**expo`` for a sympy exponent: integers exactly, rationals ``a/q`` by a q-th root,
+    other reals by ``exp(expo log base)``. As in sympy, a negative base with a non-integer
+    exponent is the principal *complex* power (``(-8)**(1/3) = 1 + sqrt(3) I``): ValueError. A
+    base ball that still holds 0 gives a ``nan`` ball (the caller raises the precision)."""
     if getattr(expo, "is_Integer", False):
         e = int(expo)
         return base**e if e >= 0 else 1 / base**(-e)
+    if base < 0:
+        raise ValueError(f"{str(shown)[:60]} is not a real number (a negative base to a "
+                         f"non-integer power is complex in sympy; write real_root or -x**(1/q))")
+    if base.is_zero():
+        positive = real_ball(expo) > 0 if not getattr(expo, "is_Rational", False) else expo > 0
+        if positive:
+            return arb(0)
+        raise ValueError(f"{str(shown)[:60]} is not a finite real number")
+    if not base > 0:
+        return arb.nan()
     if getattr(expo, "is_Rational", False):
         a, q = int(expo.p), int(expo.q)
-        if base > 0:
-            r = base.root(q)
-        elif base < 0 and q % 2:
-            r = -((-base).root(q))
-        elif base.is_zero() and a > 0:
-            return arb(0)
-        else:  # a ball holding 0 (not decided yet) or an even root of a negative number
-            r = arb.nan() if base < 0 else base.nonnegative_part().root(q)
+        r = base.root(q)
         return r**a if a >= 0 else 1 / r**(-a)
-    e = real_ball(expo)
-    if base > 0:
-        return (base.log() * e).exp()
-    return arb.nan()
+    return (base.log() * real_ball(expo)).exp()
 
 
 def real_ball(x: Any) -> arb:
@@ -223,7 +225,7 @@ def real_ball(x: Any) -> arb:
         base, expo = x.args
         if _fn_name(base) == "Exp1":
             return real_ball(expo).exp()
-        return _pow_ball(real_ball(base), expo)
+        return _pow_ball(real_ball(base), expo, x)
     if name in ("Min", "Max"):
         balls = [real_ball(a) for a in x.args]
         out = balls[0]
@@ -288,8 +290,8 @@ def rational_bracket(ball: arb) -> tuple[Fraction, Fraction] | None:
 
 
 def _arb_fraction(x: arb) -> Fraction:
-    man, exp = x.man_exp()
-    man, exp = int(man), int(exp)
+    m, e = x.man_exp()
+    man, exp = int(m), int(e)
     return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2 ** (-exp))
 
 

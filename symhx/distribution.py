@@ -979,7 +979,7 @@ def _irrational_modes(N: int, p: Any) -> tuple[int, ...]:
             if pa.is_exact():  # p is a dyadic rational written as an expression: exactly
                 return simple_modes(N, bracket[0], p)
             hump = _irrational_hump(N, *bracket)
-            if hump == "undecided":
+            if isinstance(hump, str):  # "undecided"
                 state["why"] = ("p lies within the ball's width of a breakpoint "
                                 "(k+1)/(k (N-k)) of the mode")
                 return None
