@@ -1,0 +1,104 @@
+"""symhx._mpctx: one private mpmath context per thread, and the conversions at its borders."""
+
+from __future__ import annotations
+
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
+import mpmath
+import pytest
+import sympy
+
+import symhx
+from symhx._mpctx import cached_mp_property, export, is_mpf, local, make_mpf, mp, prec_of_dps
+
+
+def test_each_thread_has_its_own_context():
+    seen: dict[str, int] = {}
+    barrier = threading.Barrier(2)
+
+    def work(name: str, dps: int) -> None:
+        ctx = mp()
+        with ctx.workdps(dps):
+            barrier.wait()  # both are inside their blocks now
+            seen[name] = ctx.dps
+            seen[name + " id"] = id(ctx)
+            barrier.wait()
+
+    with ThreadPoolExecutor(2) as ex:
+        list(ex.map(lambda a: work(*a), [("a", 10), ("b", 70)]))
+    assert seen["a"] == 10 and seen["b"] == 70 and seen["a id"] != seen["b id"]
+    assert mp() is mp() and mpmath.mp.dps == 15
+
+
+def test_export_and_local_keep_the_bits():
+    ctx = mp()
+    with ctx.workdps(40):
+        x = ctx.mpf(2) / 3
+    g = export(x)
+    assert type(g) is mpmath.mpf and g._mpf_ == x._mpf_
+    assert type(local(g)) is ctx.mpf and local(g)._mpf_ == x._mpf_
+    assert export((x, [x], {"a": x}, 7)) == (g, [g], {"a": g}, 7)
+    z = mpmath.mpc(1, 2)
+    assert type(local(z)) is ctx.mpc and export(local(z)) == z
+    assert local("text") == "text" and make_mpf(x._mpf_) == g
+
+
+@pytest.mark.parametrize("dps", [1, 5, 15, 16, 50, 1000])
+def test_export_rounds_like_workdps(dps):
+    ctx = mp()
+    with ctx.workdps(dps + 30):
+        x = ctx.pi() / 7
+    with mpmath.workdps(dps):
+        ref = +mpmath.mp.make_mpf(x._mpf_)
+    assert export(x, dps)._mpf_ == ref._mpf_
+    assert prec_of_dps(dps) == mpmath.libmp.dps_to_prec(dps)
+
+
+def test_is_mpf_of_every_context_and_nothing_else():
+    ctx = mp()
+    assert is_mpf(mpmath.mpf(1)) and is_mpf(ctx.mpf(1)) and is_mpf(mpmath.MPContext().mpf(3))
+    assert not is_mpf(sympy.Float(1.5)) and not is_mpf(1.5) and not is_mpf(mpmath.mpc(1))
+
+
+def test_cached_mp_property_is_exported_once_and_localised_per_reader():
+    calls = []
+
+    class Holder:
+        @cached_mp_property
+        def value(self):
+            calls.append(1)
+            ctx = mp()
+            with ctx.workdps(60):
+                return (ctx.mpf(1) / 7, 3)
+
+    h = Holder()
+    got = [None, None]
+
+    def read(i: int) -> None:
+        got[i] = h.value
+
+    read(0)
+    t = threading.Thread(target=read, args=(1,))
+    t.start()
+    t.join()
+    assert len(calls) == 1 and got[0][0]._mpf_ == got[1][0]._mpf_ and got[0][1] == 3
+    assert type(got[0][0]) is mp().mpf and type(got[1][0]) is not mp().mpf
+    assert type(h.__dict__["_mpcache_value"][0]) is mpmath.mpf  # stored exported
+    with pytest.raises(AttributeError):
+        h.value = 1
+
+
+def test_the_users_global_precision_has_no_effect():
+    ref = (symhx.critical_point(10**40, dps=30).p, symhx.asymptotic_critical_point(10**9).q,
+           symhx.pmf(50, 0.03, 20, space="eq41", dps=25))
+    old = mpmath.mp.dps
+    try:
+        for dps in (3, 200):
+            mpmath.mp.dps = dps
+            got = (symhx.critical_point(10**40, dps=30).p,
+                   symhx.asymptotic_critical_point(10**9).q,
+                   symhx.pmf(50, 0.03, 20, space="eq41", dps=25))
+            assert [g._mpf_ for g in got] == [r._mpf_ for r in ref]
+    finally:
+        mpmath.mp.dps = old
