@@ -323,7 +323,7 @@ def test_issue_reproducer_sf_next_to_a_low_precision_mean():
 
 
 def test_asymptotics_next_to_a_low_precision_call():
-    # the same race on routes of this branch (before the fix: ~20 % of these calls were wrong)
+    # the same race on routes of this branch (before the fix ~14 % of these calls were wrong)
     wrong = _race(lambda: (symhx.asymptotic_critical_point(10**12, order="relaxed", dps=30),
                            symhx.circuits.log_phi(10**20, 300, dps=30)),
                   lambda: symhx.asymptotic_critical_point(10**6, order="next", dps=5), 200)
