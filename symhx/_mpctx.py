@@ -26,11 +26,16 @@ Rules that keep this safe
 * Caches shared by threads hold exported values (or plain ints / ``_mpf_`` tuples);
   :class:`cached_mp_property` does this for cached attributes.
 
-Helpers that take no precision argument (``symhx._numeric.G_mp``, ``mp_value``,
-``stirling_series``, ``log1m_series``) compute in the calling thread's context :func:`mp` at its
-current precision (the caller sets it with ``mp().workdps``), accept mpf of any context and
-return values of that thread's context, ready for the caller's arithmetic.  Public functions
-return exported values.
+Conventions between modules
+---------------------------
+* Helpers that take no precision argument (``symhx._numeric.G_mp``, ``mp_value``,
+  ``stirling_series``, ``log1m_series``) compute in the calling thread's context :func:`mp` at
+  its current precision (the caller sets it with ``mp().workdps``), accept mpf of any context
+  and return values of that thread's context, ready for the caller's arithmetic.
+* Public functions, frozen results, cached attributes and the hooks a subclass hands its base
+  class (``SpaceDistribution._mp_moments``, ``_mp_terms``, ``_pmf1``, ``_logpmf1`` for
+  :class:`symhx.distribution.Distribution`) return exported values; the receiver localises
+  them before operator arithmetic.
 
 The global ``mpmath.mp`` is neither read nor changed: a user's ``mp.dps`` has no effect on symhx,
 and symhx's precision has none on the user's code.  ``mpmath.libmp`` functions that take an

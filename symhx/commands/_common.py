@@ -24,7 +24,7 @@ import mpmath
 from mpmath import libmp
 
 from symhx import validation as V
-from symhx._mpctx import is_mpf, mp
+from symhx._mpctx import is_mpf, local, mp
 
 #: integers with more digits than this are shown as ``d.ddd...e+NN (D digits)`` in text output
 MAX_INT_DIGITS_SHOWN = 60
@@ -213,7 +213,7 @@ def csv_num(x: Any) -> Any:
                 return f"{float(v):.17g}"
             return str(ctx.nstr(v, 17, strip_zeros=False))
     if is_mpf(x):
-        if not _finite(x) or (x != 0 and not 1e-300 < abs(x) < 1e300):
+        if not _finite(x) or (x != 0 and not 1e-300 < abs(local(x)) < 1e300):
             return str(mp().nstr(x, 17, strip_zeros=False))
         return f"{float(x):.17g}"
     if isinstance(x, float):
