@@ -10,6 +10,9 @@ import pytest
 import sympy
 
 import symhx
+import symhx.asymptotics
+import symhx.circuits
+import symhx.spaces
 from symhx._mpctx import cached_mp_property, export, is_mpf, local, make_mpf, mp, prec_of_dps
 
 
@@ -102,3 +105,41 @@ def test_the_users_global_precision_has_no_effect():
             assert [g._mpf_ for g in got] == [r._mpf_ for r in ref]
     finally:
         mpmath.mp.dps = old
+
+
+def _mpfs(x):
+    """Every mpmath number inside a result (dataclass fields, containers, arrays)."""
+    import dataclasses
+
+    import numpy as np
+
+    if hasattr(x, "_mpf_") and not isinstance(x, sympy.Basic):
+        yield x
+    elif isinstance(x, np.ndarray):
+        for v in x.ravel().tolist():
+            yield from _mpfs(v)
+    elif isinstance(x, (list, tuple)):
+        for v in x:
+            yield from _mpfs(v)
+    elif isinstance(x, dict):
+        for v in x.values():
+            yield from _mpfs(v)
+    elif dataclasses.is_dataclass(x) and not isinstance(x, type):
+        for f in dataclasses.fields(x):
+            yield from _mpfs(getattr(x, f.name))
+
+
+def test_public_results_are_plain_global_mpf():
+    results = [
+        symhx.critical_point(10**20, dps=25), symhx.critical_point(60, space="eq41", dps=20),
+        symhx.mode_path(200, p_max="0.05", dps=20).breakpoints, symhx.discriminant_root(99),
+        symhx.asymptotic_critical_point(10**8, order="relaxed"),
+        symhx.asymptotics.pd_series(10**5), symhx.error_table((10**3,), dps=20),
+        symhx.circuits.log_phi(10**9, 7), symhx.pmf(40, 0.03, [1, 5], space="eq41", dps=20),
+        symhx.logpmf(40, 0.03, 5, space="eq41", dps=20),
+        symhx.distribution_of(30, 0.05, space="excess<=2", dps=15).table(),
+        symhx.spaces.class_decomposition(20, 0.05, dps=20).joint,
+        symhx.spaces.class_probabilities(20, 0.05, dps=20),
+    ]
+    found = [v for r in results for v in _mpfs(r)]
+    assert len(found) > 100 and all(type(v) is mpmath.mpf for v in found)
