@@ -165,6 +165,14 @@ def _distribution_cases() -> list[Case]:
             symhx.sf(60, 0.05, 40, dps=dps), symhx.mean(101, 0.013, dps=dps),
             symhx.var(101, 0.02, dps=dps), symhx.logcdf(200, 0.01, 3, dps=dps),
             symhx.pmf(101, sympy.sqrt(2) / 70, 50, dps=dps))))
+        out.append((f"simple per-k dps={dps}", lambda dps=dps: (
+            symhx.pmf(3000, 4e-4, [1, 30, 500], dps=dps), symhx.logpmf(3000, 1e-4, 40, dps=dps),
+            symhx.cdf(300, "0.02", 5, dps=dps), symhx.logsf(300, 0.02, 250, dps=dps),
+            symhx.std(500, 0.004, dps=dps), symhx.entropy(80, 0.05, dps=dps),
+            symhx.normaliser(40, 0.3, dps=dps), symhx.median(300, 0.011, dps=dps))))
+        out.append((f"simple table dps={dps}", lambda dps=dps: (
+            symhx.distribution_of(50, 0.07, dps=dps).table()[::7],
+            symhx.ppf(200, 0.015, ["0.1", "0.9"], dps=dps))))
     return out
 
 
