@@ -28,10 +28,11 @@ def test_each_thread_has_its_own_context():
             seen[name + " id"] = id(ctx)
             barrier.wait()
 
+    before = mpmath.mp.prec
     with ThreadPoolExecutor(2) as ex:
         list(ex.map(lambda a: work(*a), [("a", 10), ("b", 70)]))
     assert seen["a"] == 10 and seen["b"] == 70 and seen["a id"] != seen["b id"]
-    assert mp() is mp() and mpmath.mp.dps == 15
+    assert mp() is mp() and mpmath.mp.prec == before
 
 
 def test_export_and_local_keep_the_bits():

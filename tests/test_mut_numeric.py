@@ -56,8 +56,9 @@ def test_digits_of_matches_str():
 def test_G_mp_and_G_direct_against_exact_ratio(N, K, dps):
     ref = _G_exact(N, K, 2 * dps + 20)
     for f in (G_mp, G_direct):
+        before = mpmath.mp.prec
         got = _at(dps, f, N, K)
-        assert mpmath.mp.dps == 15  # the global precision is not touched
+        assert mpmath.mp.prec == before  # the global precision is not touched
         with mpmath.workdps(2 * dps + 20):
             assert abs(got - ref) <= mpmath.mpf(10) ** (1 - dps) * abs(ref), (f.__name__, N, K)
 
@@ -177,8 +178,9 @@ def test_mp_value_sympy_and_exact():
     for dps in (15, 40, 100):
         with mpmath.workdps(dps + 20):
             ref = mpmath.sqrt(2) / 100 + mpmath.pi / 10**5
+        before = mpmath.mp.prec
         got = _at(dps, mp_value, sympy.sqrt(2) / 100 + sympy.pi / 10**5, None)
-        assert mpmath.mp.dps == 15  # the global precision is not touched
+        assert mpmath.mp.prec == before  # the global precision is not touched
         got_fr = _at(dps, mp_value, "ignored", Fraction(1, 3))
         with mpmath.workdps(dps + 20):
             assert abs(got - ref) <= mpmath.mpf(10) ** (-dps) * ref

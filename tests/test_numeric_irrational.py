@@ -16,6 +16,7 @@ from symhx._numeric import mp_value
 def test_mp_value_reaches_the_working_precision(dps):
     expr = sympy.sqrt(2) / 100 + sympy.pi / 10**5 - sympy.exp(sympy.Rational(-1, 3)) / 10**7
     ctx = mp()
+    before = mpmath.mp.prec
     with ctx.workdps(dps):
         got = mp_value(expr, None)
         assert type(got) is ctx.mpf
@@ -23,7 +24,7 @@ def test_mp_value_reaches_the_working_precision(dps):
     with mpmath.workdps(2 * dps + 20):
         ref = mpmath.sqrt(2) / 100 + mpmath.pi / 10**5 - mpmath.exp(mpmath.mpf(-1) / 3) / 10**7
         assert abs(got - ref) <= 2 * mpmath.mpf(10) ** (-dps) * ref
-    assert mpmath.mp.dps == 15
+    assert mpmath.mp.prec == before  # the global precision is not touched
 
 
 def test_mp_value_of_a_tiny_irrational_keeps_its_relative_accuracy():

@@ -26,6 +26,7 @@ from contextlib import contextmanager
 from fractions import Fraction
 from typing import Any
 
+import mpmath
 import numpy as np
 import pytest
 import sympy
@@ -69,6 +70,23 @@ def bits(x: Any) -> Any:
         with symhx.certify.arb_prec(64):
             return ("arb", x.mid().man_exp(), x.rad().man_exp())
     return repr(x)
+
+
+@pytest.fixture(autouse=True)
+def global_precision_untouched(request: pytest.FixtureRequest) -> Iterator[None]:
+    """The converted routes never touch mpmath's or flint's global precision; the unconverted
+    (xfail) ones may leave it changed when threads interleave their save/restore: restore it,
+    so that no later test of the session inherits it."""
+    import flint
+
+    before = (mpmath.mp.prec, flint.ctx.prec)
+    try:
+        yield
+    finally:
+        after = (mpmath.mp.prec, flint.ctx.prec)
+        mpmath.mp.prec, flint.ctx.prec = before
+    if request.node.get_closest_marker("xfail") is None:
+        assert after == before, f"global precision changed from {before} to {after}"
 
 
 @contextmanager
