@@ -368,7 +368,7 @@ def mpf_bounds(x: arb, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
 
 
 def rel_width_ok(x: arb, dps: int) -> bool:
-    """Whether the ball's relative width (radius / |midpoint|) is below ``10**-dps / 4``
+    """Whether the ball's relative width (``radius / |midpoint|``) is below ``10**-dps / 4``
     (decided exactly, from the exact radius and midpoint: no Arb rounding involved)."""
     with arb_prec(64):
         if x.is_exact():

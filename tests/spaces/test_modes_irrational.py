@@ -15,13 +15,13 @@ import symhx
 from symhx.certify import UndecidedError
 from symhx.validation import mpf_to_fraction
 from tests.reference.irrational import decided_at_both_ends
-from tests.reference.spaces import brute_space_modes, weights
+from tests.reference.spaces import argmax, space_weights
 
 N = 40
 
 
 def _reference(p: sympy.Expr, space: str, digits: int) -> tuple[int, ...]:
-    want = decided_at_both_ends(lambda fr: brute_space_modes(N, fr, space), p, digits)
+    want = decided_at_both_ends(lambda fr: argmax(N, space, fr), p, digits)
     assert want is not None, "the reference bracket is too wide for this p"
     return want
 
@@ -29,7 +29,7 @@ def _reference(p: sympy.Expr, space: str, digits: int) -> tuple[int, ...]:
 def _distinct_jump(space: str) -> tuple[int, sympy.Expr]:
     """With the ;distinct weighting W(k) = C_k p**k, so the jump is the exact algebraic number
     p_c = (C_1 / C_k)**(1/(k-1)) at the argmin k (from the reference weights at p = 1)."""
-    C = weights(N, Fraction(1), space)
+    C = space_weights(N, Fraction(1), space)
     logc = {k: (math.log(C[0]) - math.log(C[k - 1])) / (k - 1) for k in range(2, N + 1)}
     k = min(logc, key=logc.__getitem__)
     r = Fraction(C[0], C[k - 1])
