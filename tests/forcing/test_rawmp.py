@@ -1,11 +1,13 @@
 """The raw-libmp fast path of the one-component mpmath evaluation (``symhx.forcing.rawmp``).
 
 Two checks per point: (1) the value is correct to ``dps`` digits against an independent
-reference (the closed form of eq. (27) written out here, at a precision raised by every digit
-that cancels, from the exact binary inputs); (2) the documented promise of the module, "the same
-operations, roundings and precisions as the mpf-object code": the fast value agrees with the
-object code of :mod:`symhx.forcing.kernels_mp` at the same working precision to within a few
-units of its last digits (so a cut precision shows even where ``dps`` digits survive).
+reference (the closed form of eq. (27) written out, at a precision raised by every digit that
+cancels, from the exact binary inputs: :func:`tests.reference.forcing.eq27_value`); (2) the
+documented promise of the module, "the same operations, roundings and precisions as the
+mpf-object code": the fast value agrees with the object code of :mod:`symhx.forcing.kernels_mp`
+at the same working precision to within a few units of its last digits (so a cut precision
+shows even where ``dps`` digits survive), and bit for bit where both use mpmath's erf series.
+Low ``dps``, far tails and deep cancellation through the public functions complete it.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from fractions import Fraction
 import mpmath
 import pytest
 
+import symhx
 from symhx.forcing.kernels_mp import (
     estimate_float,
     mp_p_from_xy,
@@ -24,20 +27,9 @@ from symhx.forcing.kernels_mp import (
     precision_plan,
 )
 from symhx.forcing.rawmp import single_mp_fast
-from tests.reference.forcing import eq27_p, eq27_xy
+from tests.reference.forcing import eq27_p_or_q, eq27_value
 
 WANTS = ("p", "q", "logp", "logq")
-
-
-def _ref(s0, s1, om, Om, d, want, dps):
-    """Independent reference at ``dps + 30`` digits plus every digit that cancels."""
-    with mpmath.workprec(80):
-        x, y = eq27_xy(s0, s1, om, Om, d)
-        lost = int(max(0, -mpmath.log10(min(x, y))) + max(0, -mpmath.log10(max(x, y))))
-        lost += int(mpmath.log10(1 + x * y / (x + y)))
-    with mpmath.workdps(dps + 30 + lost):
-        p = eq27_p(s0, s1, om, Om, d)
-        return {"p": p, "q": 1 - p, "logp": mpmath.log(p), "logq": mpmath.log(1 - p)}[want]
 
 
 def _object_code(args, want, dps):
@@ -59,7 +51,7 @@ def _scale(want, ref, pt, dps):
     if want == "q":
         return max(abs(ref), mpmath.mpf(1) - abs(ref))
     if want == "logq":
-        return 1 / abs(_ref(*pt, "q", dps)) - 1 + abs(ref)
+        return 1 / abs(eq27_value(*pt, "q", dps)) - 1 + abs(ref)
     return abs(ref)
 
 
@@ -90,7 +82,7 @@ def test_fast_path_against_reference_and_object_code(pt, dps):
         if val is None:
             continue
         done += 1
-        ref = _ref(*pt, want, dps)
+        ref = eq27_value(*pt, want, dps)
         with mpmath.workdps(dps + 40):
             err = abs(val - ref) / abs(ref)
             assert err < mpmath.mpf(10) ** -dps, (want, pt, val, ref)
@@ -98,7 +90,7 @@ def test_fast_path_against_reference_and_object_code(pt, dps):
             # same roundings at the same precision: a few units of the last of prec bits,
             # amplified by the exponent uv (exp(-uv)) and by the digits cancelled in 1 - p
             diff = abs(val - obj) / _scale(want, ref, pt, dps)
-            assert diff < mpmath.mpf(2) ** (-prec + 12) * (1 + abs(_ref(*pt, "logp", dps))), (
+            assert diff < mpmath.mpf(2) ** (-prec + 12) * (1 + abs(eq27_value(*pt, "logp", dps))), (
                 want, pt, float(diff), prec)
     assert done >= 2
 
@@ -123,7 +115,7 @@ def test_inputs_it_does_not_take_give_none():
     c = single_mp_fast(Fraction(3, 8), None, Fraction(1), None, Fraction(2), 30, "p")
     assert a is not None and a == b == c
     with mpmath.workdps(50):
-        assert abs(a / _ref(0.375, None, 1.0, None, 2.0, "p", 30) - 1) < mpmath.mpf(10) ** -30
+        assert abs(a / eq27_value(0.375, None, 1.0, None, 2.0, "p", 30) - 1) < mpmath.mpf(10) ** -30
 
 
 def test_large_erf_arguments_keep_full_precision():
@@ -136,9 +128,9 @@ def test_large_erf_arguments_keep_full_precision():
             for want in ("p", "logp"):
                 val = single_mp_fast(*args, 60, want)
                 if val is None:  # log p with p > 1/2: log1p(-(1 - p)) in the general path
-                    assert want == "logp" and _ref(*pt, "p", 30) > 0.5
+                    assert want == "logp" and eq27_value(*pt, "p", 30) > 0.5
                     continue
-                ref = _ref(*pt, want, 60)
+                ref = eq27_value(*pt, want, 60)
                 obj, prec = _object_code(args, want, 60)
                 with mpmath.workdps(120):
                     assert abs(val / ref - 1) < mpmath.mpf(10) ** -60, (pt, want)
@@ -158,7 +150,7 @@ def test_sqrt_pi_at_fresh_precisions(monkeypatch):
         obj, prec = _object_code(args, "p", dps)
         with mpmath.workdps(120):
             assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 8), dps
-            assert abs(val / _ref(*pt, "p", dps) - 1) < mpmath.mpf(10) ** -dps
+            assert abs(val / eq27_value(*pt, "p", dps) - 1) < mpmath.mpf(10) ** -dps
     assert len(rawmp._SQRT_PI_CACHE) == 2
 
 
@@ -193,7 +185,6 @@ def _raw(v):
 @pytest.mark.parametrize("prec", [53, 113, 200])
 @pytest.mark.parametrize("pt", BIT_POINTS)
 def test_raw_xy_and_closed_form_are_the_object_code_bit_for_bit(pt, prec):
-    from symhx.forcing.kernels_mp import _uv_b_over_r
     from symhx.forcing.rawmp import _raw_p_parts, from_xy_raw, raw_xy
 
     s0, s1, om, Om, d = pt
@@ -202,7 +193,12 @@ def test_raw_xy_and_closed_form_are_the_object_code_bit_for_bit(pt, prec):
         xm, ym = mp_xy_forcing(s0, s1, om, Om, d)
         assert (x, y) == (xm._mpf_, ym._mpf_)
         nuv, b, r = _raw_p_parts(x, y, prec)
-        uv, b_r = _uv_b_over_r(xm, ym)
+        # the mpf-object code of kernels_mp written out, operation for operation
+        r_ = mpmath.sqrt(xm + ym)
+        u, v = xm / r_, ym / r_
+        b_ = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
+        b_ += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+        uv, b_r = u * v, b_ / r_
         assert nuv == (-uv)._mpf_
         assert mpmath.libmp.mpf_div(b, r, prec, mpmath.libmp.round_nearest) == b_r._mpf_
         p = mp_p_from_xy(xm, ym)
@@ -247,3 +243,67 @@ def test_from_xy_raw_leaves_small_p_logs_and_deep_cancellation_to_the_caller():
         ref_q = 1 - mp_p_from_xy(mpmath.mpf("1e-10"), mpmath.mpf("1e-10"))
         assert abs(q / ref_q - 1) < mpmath.mpf(2) ** (-prec + 70)
         assert abs(lq - mpmath.log(ref_q)) < mpmath.mpf(2) ** (-prec + 70)
+
+
+def _units(value, ref, dps):
+    """Relative error in units of ``10**-dps``."""
+    with mpmath.workdps(dps + 60):
+        return abs(value / ref - 1) * mpmath.mpf(10) ** dps
+
+
+LOW_DPS_POINTS = [  # 53-bit sigma/sigma1 (4 sigma**2 rounds below 53 bits), omega < 1
+    (0.1, None, 0.3, None, 1.0), (0.2, 0.7, 0.8, 1.7, 0.6), (0.3, 0.1, 0.7, None, 0.9),
+    (0.1, 0.3, 1.3, 0.9, 2.0),
+]
+
+
+@pytest.mark.parametrize("dps", [1, 2, 3])
+@pytest.mark.parametrize("pt", LOW_DPS_POINTS)
+def test_low_dps_float_inputs_give_correct_digits(pt, dps):
+    """dps 1-3 work below 53 bits: the roundings of 4 sigma**2 and of omega**2 - Omega**2 must
+    still use a rounding mode (a dropped mode raised KeyError inside mpmath.libmp)."""
+    sigma, sigma1, omega, Omega, d = pt
+    p = symhx.impact_probability(sigma, sigma1=sigma1, omega=omega, Omega=Omega, d=d, dps=dps)
+    assert _units(p, eq27_p_or_q(*pt, "p", 60), dps) < 1
+
+
+# sigma1 far from sigma, omega near Omega: the estimate with sigma1 = sigma sees E ~ 0.04,
+# the true exponent is E = 5e13 (13 more guard digits needed)
+TAIL_SIGMA1 = (5e-8, 1e-15, 1.0, 1.00000001, 1.0)
+
+
+# omega**2 ~ 2 but Omega = 0.1: the estimate with Omega**2 = 2 sees E ~ 1e-17, the true E ~ 8e13
+TAIL_OMEGA = (5e-8, None, 1.4142135623730951, 0.1, 1.0)
+
+
+@pytest.mark.parametrize("dps", [15, 30])
+@pytest.mark.parametrize("pt", [TAIL_SIGMA1, TAIL_OMEGA])
+def test_far_tail_guard_uses_sigma1_and_Omega(pt, dps):
+    """The precision plan must be made from the actual sigma1 and Omega: p = exp(-E) with
+    E ~ 1e14 needs log10(E) guard digits, an estimate that drops sigma1 or Omega gives ~12
+    and p then carries ~100 units of error at dps digits."""
+    sigma, sigma1, omega, Omega, d = pt
+    p = symhx.impact_probability(sigma, sigma1=sigma1, omega=omega, Omega=Omega, d=d, dps=dps)
+    assert _units(p, eq27_p_or_q(*pt, "p", dps + 60), dps) < 1
+
+
+def _sigma_for_q_bits(bits):
+    """sigma (omega = 1, Omega**2 = 2, d = 1: x = y = 1/(4 sigma**2)) with 1 - p ~ x y / 6
+    = 2**-bits."""
+    with mpmath.workdps(30):
+        return float((mpmath.mpf(2) ** bits / 96) ** mpmath.mpf(0.25))
+
+
+@pytest.mark.parametrize("dps", [10, 15, 20, 30])
+@pytest.mark.parametrize("bits", [1072.2, 1072.9, 1100.0])
+def test_one_minus_p_for_tiny_x_y_keeps_its_digits(bits, dps):
+    """sigma ~ 1e80: x, y below the float range, the estimate floors x y at 1e-300 and plans
+    ~301 cancelled digits while 1 - p ~ 2**-1072 .. 2**-1100 cancels up to 331: the a
+    posteriori check (at most guard - 4 digits cancelled) must send these to the adaptive loop;
+    a looser check returns 1 - p with fewer than dps correct digits."""
+    sigma = _sigma_for_q_bits(bits)
+    q = symhx.no_impact_probability(sigma, dps=dps)
+    ref = eq27_p_or_q(sigma, None, 1.0, None, 1.0, "q", dps + 1100)
+    with mpmath.workdps(40):
+        assert abs(-mpmath.log(ref, 2) - bits) < 0.01  # the point is where it was aimed
+    assert _units(q, ref, dps) < 1
