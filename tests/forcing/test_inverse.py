@@ -337,3 +337,15 @@ def test_inverse_bracket_contract():
     assert _bracket(lambda t: t - 720.0, 690.0, 12, (-744.0, 709.0)) is None
     assert _bracket(lambda t: 1.0, 0.0, 12) is None
     assert _bracket(lambda t: float("nan"), 0.0, 12) is None
+
+
+@pytest.mark.parametrize("dps", [5, 15, 33, 60])
+def test_inverse_mp_value_is_rounded_to_dps(dps):
+    """ARCHITECTURE.md: an mpmath result is rounded once, at the end, to ``dps`` digits (the
+    guard digits of the secant polish are not handed out): ``s == +s`` at ``dps``."""
+    for p, kw in [("1e-30", {}), ("0.3", {}), ("0.9", {"d": "2"}), (1e-5, {"Omega": "1.7"}),
+                  ("0.2", {"Omega": ["1.7", "2.2"]}), ("1e-400", {})]:
+        s = F.sigma_for_impact_probability(p, **kw, dps=dps)
+        assert isinstance(s, mpmath.mpf)
+        with mpmath.workdps(dps):
+            assert s == +s, (p, kw, dps)

@@ -12,7 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symhx import forcing as F
-from tests.reference.mp import rel_err
+from tests.harness.twins import check_twins
+from tests.reference.mp import assert_mp_close, rel_err
 
 EPS = np.finfo(float).eps
 
@@ -145,3 +146,59 @@ def test_property_p_and_q_complementary_and_accurate(sigma, ratio, omega, Omega,
     lp = F.log_impact_probability(sigma, **kw)
     ref = F.log_impact_probability(sigma, **kw, dps=25)
     assert abs(lp - ref) <= 1e-13 * max(1.0, abs(ref))
+
+
+# ----------------------------------------------------------------------------- seeded twins
+_WANT_FN = {"p": F.impact_probability, "q": F.no_impact_probability,
+            "logp": F.log_impact_probability, "logq": F.log_no_impact_probability}
+
+
+def _seeded_forcings(n, seed):
+    """Seeded random one-component forcings: sigma log-uniform over [0.01, 100] (log grids of
+    the contract), sigma1/sigma over 1e-3 .. 1e3, omega, Omega, d away from 1."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        s0 = float(10 ** rng.uniform(-2, 2))
+        s1 = None if rng.random() < 0.3 else float(s0 * 10 ** rng.uniform(-3, 3))
+        om = float(10 ** rng.uniform(-0.5, 0.5))
+        Om = None if rng.random() < 0.25 else float(om * 10 ** rng.uniform(-0.6, 0.6))
+        out.append((s0, s1, om, Om, float(10 ** rng.uniform(-1, 1)),
+                    ("p", "q", "logp", "logq")[int(rng.integers(4))]))
+    return out
+
+
+def _float_twin(s0, s1, om, Om, d, want):
+    return _WANT_FN[want](s0, sigma1=s1, omega=om, Omega=Om, d=d)
+
+
+def _mp_twin(s0, s1, om, Om, d, want):
+    """The mpmath value at 30 digits and the condition number ``kappa = |d ln f/d ln d|`` of
+    the value (of its argument, for a log), by a central difference at 35 digits."""
+    kw = dict(sigma1=s1, omega=om, Omega=Om)
+    fn = _WANT_FN[want if want in ("p", "q") else want[3:]]
+    val = _WANT_FN[want](s0, **kw, d=d, dps=30)
+    with mpmath.workdps(40):
+        h = mpmath.mpf(10) ** -12
+        lo = fn(s0, **kw, d=mpmath.mpf(d) * (1 - h), dps=35)
+        hi = fn(s0, **kw, d=mpmath.mpf(d) * (1 + h), dps=35)
+        kappa = abs(mpmath.log(hi) - mpmath.log(lo)) / (2 * h)
+    return val, float(kappa)
+
+
+def _within_contract(got, twin, case):
+    """``1e-13 + 4 kappa eps`` relative for p and 1 - p (normal floats); the logs carry the
+    relative error of their argument as an absolute error (plus their own rounding)."""
+    ref, kappa = twin
+    bound = 1e-13 + 4 * kappa * float(EPS)
+    if case[-1].startswith("log"):
+        assert_mp_close(got, ref, rtol=4 * float(EPS), atol=bound, what=case[-1])
+    elif ref >= np.finfo(float).tiny:
+        assert_mp_close(got, ref, rtol=bound, what=case[-1])
+
+
+def test_float64_and_mpmath_twins_on_seeded_forcings():
+    """Twins (tests/harness/twins.py): the float64 path and the mpmath path at 30 digits on 300
+    seeded random forcings (p, 1 - p and both logs), to the documented contract."""
+    assert check_twins(_float_twin, _mp_twin, _seeded_forcings(300, 20260629),
+                       _within_contract) == 300

@@ -16,6 +16,7 @@ import math
 from fractions import Fraction
 
 import mpmath
+import numpy as np
 import pytest
 
 import symhx
@@ -27,7 +28,8 @@ from symhx.forcing.kernels_mp import (
     precision_plan,
 )
 from symhx.forcing.rawmp import single_mp_fast
-from tests.reference.forcing import eq27_p_or_q, eq27_value
+from tests.harness.twins import check_twins
+from tests.reference.forcing import eq27_p_or_q, eq27_value, eq27_xy
 
 WANTS = ("p", "q", "logp", "logq")
 
@@ -307,3 +309,61 @@ def test_one_minus_p_for_tiny_x_y_keeps_its_digits(bits, dps):
     with mpmath.workdps(40):
         assert abs(-mpmath.log(ref, 2) - bits) < 0.01  # the point is where it was aimed
     assert _units(q, ref, dps) < 1
+
+
+def _twin_cases(n, seed):
+    """Seeded random one-component forcings (log-uniform sigma, sigma1/sigma, omega, Omega, d;
+    Omega None in a quarter of them), each with a dps and a wanted quantity."""
+    rng = np.random.default_rng(seed)
+    cases = []
+    for _ in range(n):
+        s0 = float(10 ** rng.uniform(-2.3, 2.5))
+        s1 = None if rng.random() < 0.3 else float(s0 * 10 ** rng.uniform(-3, 3))
+        om = float(10 ** rng.uniform(-0.5, 0.5))
+        Om = None if rng.random() < 0.25 else float(om * 10 ** rng.uniform(-0.6, 0.6))
+        d = float(10 ** rng.uniform(-1, 1))
+        cases.append(((s0, s1, om, Om, d), int(rng.choice([5, 15, 30, 60])),
+                      WANTS[int(rng.integers(4))]))
+    return cases
+
+
+def _raw_route(pt, dps, want):
+    """The raw-libmp twin, with the working precision of its plan (None: it declines)."""
+    args = tuple(_fr(v) for v in pt)
+    val = single_mp_fast(*args, dps, want)
+    return None if val is None else (val, _object_code(args, want, dps)[1])
+
+
+def _mpf_route(pt, dps, want):
+    """The mpf-object twin (kernels_mp with the same plan) at the same working precision."""
+    return _object_code(tuple(_fr(v) for v in pt), want, dps)
+
+
+def _same_roundings(raw, obj, case):
+    """Bit for bit where both use mpmath's erf series (erf arguments below 2), else within a
+    few units of the last of the working bits (the raw erf takes 1 - erfc above 2)."""
+    if raw is None:   # the raw route declines: the public path uses the object code itself
+        return
+    (val, prec), (ref, prec2) = raw, obj
+    assert prec == prec2
+    pt, dps, want = case
+    with mpmath.workprec(80):
+        x, y = eq27_xy(*pt)
+        r = mpmath.sqrt(x + y)
+        small_erf = x / r < 2 and y / r < 2
+    if small_erf:
+        assert val == ref, (val, ref)
+        return
+    with mpmath.workprec(prec + 60):
+        scale = _scale(want, eq27_value(*pt, want, dps), pt, dps)
+        diff = abs(val - ref) / scale
+        assert diff < mpmath.mpf(2) ** (-prec + 12) * (1 + abs(eq27_value(*pt, "logp", dps))), (
+            float(diff))
+
+
+def test_raw_libmp_and_mpf_object_twins_on_seeded_cases():
+    """Twins (tests/harness/twins.py): the raw-libmp route and the mpf-object route of the same
+    precision plan, on 300 seeded random forcings, dps 5 to 60, every wanted quantity."""
+    cases = _twin_cases(300, 20260628)
+    assert check_twins(_raw_route, _mpf_route, cases, _same_roundings) == 300
+    assert sum(_raw_route(*c) is not None for c in cases) > 200   # the raw route is exercised
