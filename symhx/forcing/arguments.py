@@ -29,6 +29,7 @@ from symhx.validation import check_array, check_dps, to_rational
 
 __all__ = [
     "IRRATIONAL_EXTRA_DIGITS",
+    "MAX_SCALES",
     "ForcingParams",
     "bad_index",
     "elementwise",
@@ -57,6 +58,13 @@ def bad_index(arr: np.ndarray, bad: np.ndarray) -> str:
         return ""
     idx = np.unravel_index(int(np.argmax(bad)), arr.shape)
     return f" at index {idx[0] if len(idx) == 1 else tuple(int(i) for i in idx)}"
+
+
+#: most Rayleigh scales of a sum (``RayleighSum``; eq. 22 with ``M + 1`` amplitudes, so at most
+#: ``MAX_SCALES - 1`` forcing components): checked before any conversion or evaluation, for the
+#: float64 and the mpmath paths alike (the float64 path takes under 50 ms a threshold at this
+#: size, the mpmath path is bounded by ``rayleigh.MAX_MP_SUM_WORK`` too)
+MAX_SCALES = 64
 
 
 #: extra digits of a sympy irrational input over the requested ``dps``: ``p = exp(-E)`` turns a
@@ -188,6 +196,10 @@ class ForcingParams:
         if is_components(Omega):
             if not Omega:
                 raise ValueError("Omega: an empty list of forcing components")
+            if len(Omega) + 1 > MAX_SCALES:
+                raise ValueError(f"Omega: {len(Omega)} forcing components, more than "
+                                 f"MAX_SCALES - 1 = {MAX_SCALES - 1} (a sum of at most "
+                                 f"MAX_SCALES = {MAX_SCALES} Rayleigh amplitudes, eq. 22)")
             if any(is_array(o) for o in Omega):
                 raise TypeError("Omega: each forcing component must be a scalar")
             om_t = tuple(conv(f"Omega[{i}]", o) for i, o in enumerate(Omega))

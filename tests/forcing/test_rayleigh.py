@@ -230,9 +230,12 @@ def test_probability_at_and_below_zero_is_exact(scales):
 def test_probability_method_and_error_estimate():
     assert RayleighSum([0.5, 0.3]).probability(1.0, dps=20).method == "closed form"
     assert (RayleighSum([0.5, 0.3, 0.2]).probability(1.0, dps=20).method
-            == "nested Gauss-Legendre (1-D)")
+            == "Laplace-transform inversion")
     assert (RayleighSum([1, 0.9, 0.5, 0.3, 0.2]).probability(0.1).method
-            == "nested Gauss-Legendre (2-D)")
+            == "Laplace-transform inversion")
+    # a pair whose closed form is beyond its float64 range (one scale negligible)
+    assert RayleighSum([1.0, 1e-100]).probability(1.0).method == "Laplace-transform inversion"
+    assert RayleighSum([1.0, 1e-20]).probability(1.0).method == "closed form"
     # one scale, lower tail below the median: the closed form; the estimate covers the true
     # error (mostly the rounding to 25 digits) and stays within the 25 digits asked for
     S = RayleighSum(["0.7"])

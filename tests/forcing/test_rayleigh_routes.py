@@ -1,8 +1,8 @@
 """The routes inside ``RayleighSum`` (``symhx.forcing.rayleigh``): which evaluation a threshold
-takes (the upper half decided by the float64 sf, the Laplace region, the rescaling of extreme
-magnitudes, the limits at subnormal thresholds), the grouping of the scales, the cached rules,
-the group functions at and below zero, the refusals with their way out, and silence under any
-numpy error state."""
+takes (the tail integrated is the one below about 1/2, the Laplace region, the rescaling of
+extreme magnitudes, the limits at zero and at subnormal thresholds), the order and repetition of
+the scales, the group functions at and below zero, the refusals with their way out, and silence
+under any numpy error state."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import pytest
 
 from symhx.forcing import RayleighSum
 from symhx.forcing import rayleigh as ray
-from symhx.forcing.rayleigh import _upper_half
+from symhx.forcing.kernels_mp import MAX_EXPONENT
 from tests.harness.errors import assert_refuses
 
 
@@ -30,30 +30,33 @@ def test_float_routes_under_any_numpy_error_state():
 
 
 # ------------------------------------------------------------------ route decisions
-def _mp(v):
-    return [mpmath.mpf(s) for s in v] if isinstance(v, list) else mpmath.mpf(v)
-
-
-@pytest.mark.parametrize(("scales", "x", "want"), [
-    # the float64 sf decides where it can be formed: True iff it is <= 0.55
-    ([1.0, 1.0, 1.0], 0.5, False), ([1.0, 1.0, 1.0], 3.0, False), ([1.0, 1.0, 1.0], 5.0, True),
-    ([1.0, 1.0, 1.0], 40.0, True), ([0.5, 0.2], 0.3, False), ([0.5, 0.2], 2.0, True),
-    ([0.5], 0.5, False), ([0.5], 0.7, True),
-    # x <= 0: sf = 1
-    ([1.0, 1.0, 1.0], 0.0, False), ([1.0, 1.0, 1.0], -1.0, False),
-    # scales or x where the float64 route is not tried: upper half whenever x > 0
-    ([1e-200, 2e-200, 3e-200], 1e-201, True), ([1e-200, 2e-200, 3e-200], 0.5, True),
-    ([1e-200, 2e-200, 3e-200], 0.0, False), ([1e-200, 2e-200, 3e-200], -1.0, False),
-    ([1e200, 1e200], 1e199, True),
-    # the limits are exclusive: 1e-150 and 1e150 themselves are not tried
-    ([1e-150, 1e-150], 1e-151, True), ([1e150, 1e150, 1e150], 1e149, True),
-    ([5e149, 5e149, 5e149], 1e150, True), ([5e149, 5e149, 5e149], 9e149, False),
+@pytest.mark.parametrize(("scales", "x"), [
+    ([1.0, 1.0, 1.0], 0.5), ([1.0, 1.0, 1.0], 3.0), ([1.0, 1.0, 1.0], 5.0),
+    ([1.0, 1.0, 1.0], 40.0), ([0.5, 0.2], 0.3), ([0.5, 0.2], 2.0), ([0.5], 0.5), ([0.5], 0.7),
+    ([1.0, 1.0, 1.0], 0.0), ([1.0, 1.0, 1.0], -1.0),
+    ([1e-200, 2e-200, 3e-200], 1e-201), ([1e-200, 2e-200, 3e-200], 0.5),
+    ([1e-200, 2e-200, 3e-200], 0.0), ([1e-200, 2e-200, 3e-200], -1.0), ([1e200, 1e200], 1e199),
+    ([1e-150, 1e-150], 1e-151), ([1e150, 1e150, 1e150], 1e149), ([5e149, 5e149, 5e149], 1e150),
+    ([5e149, 5e149, 5e149], 9e149),
 ])
-def test_upper_half_decides_by_the_float64_sf(scales, x, want):
-    if 1e-150 < min(scales) and max(scales) < 1e150 and 0 < x < 1e150:
-        sf = RayleighSum(scales).sf(x, dps=20)   # the decision agrees with the true sf here
-        assert (sf <= 0.5) == want
-    assert _upper_half(_mp(scales), _mp(x)) is want
+def test_the_tail_integrated_keeps_both_tails_accurate(scales, x):
+    """The tail below about 1/2 is the one evaluated (from the mean on the upper one), the
+    other is ``1 -`` it: both tails (and both logs) at 20 digits agree with 40 digits to 20
+    digits on both sides of the median, at scales near and beyond the float64 range."""
+    S = RayleighSum(scales)
+    with mpmath.workdps(20):
+        capped = x > 0 and mpmath.mpf(x) ** 2 / (2 * mpmath.fsum(mpmath.mpf(s) ** 2
+                                                                 for s in scales)) > MAX_EXPONENT
+    for kind in ("sf", "cdf", "logsf", "logcdf"):
+        if capped and kind in ("sf", "cdf", "logcdf"):   # exp(-E) beyond MAX_EXPONENT
+            assert_refuses(getattr(S, kind), x, dps=20, arg="x", allowed="MAX_EXPONENT")
+            continue
+        lo, hi = getattr(S, kind)(x, dps=20), getattr(S, kind)(x, dps=40)
+        with mpmath.workdps(60):
+            if hi == 0 or mpmath.isinf(hi):
+                assert lo == hi, (kind, lo, hi)
+            else:
+                assert abs(lo / hi - 1) < mpmath.mpf(10) ** -19, (kind, lo, hi)
 
 
 def test_float_routes_beyond_the_float_range_after_rescaling():
@@ -115,9 +118,14 @@ def test_subnormal_thresholds_take_the_limit_at_zero(scales):
 def test_float_route_refusals_name_the_value_and_the_way_out():
     from fractions import Fraction
 
-    S = RayleighSum([1, 1e-30, 1e-30])   # quadrature range 1e30, Laplace regime from 1e35
-    assert_refuses(S.logsf, np.array([1.0, 1e32]), arg="x", value="1e+32",
-                   allowed=["beyond the float64 range", "use dps="])
+    # scales spread over 30 orders of magnitude have a float64 log sf at every threshold: at
+    # 1e32 (beyond x max(s) = 1e30, short of the Laplace regime) it is that of the largest
+    # scale alone to the last bit, as the bracket log P(R1 > x) <= log sf <= log P(R1 > x - a)
+    # + P(R2 + R3 > a), a = 1e-28, a relative width of 2e-60, says
+    S = RayleighSum([1, 1e-30, 1e-30])
+    got = S.logsf(np.array([1.0, 1e32]))
+    assert abs(got[1] / -0.5e64 - 1) < 4.5e-16
+    assert abs(got[0] / float(S.logsf(1, dps=30)) - 1) < 1e-15
     assert S.logsf(np.array([1e36]))[0] < -1e71   # the Laplace regime has its value
     assert_refuses(RayleighSum([1, Fraction(10) ** 400]).sf, 1.0, arg="scales[1]",
                    value="1.0e+400", allowed=["outside the float64 range", "use dps="])
@@ -126,45 +134,33 @@ def test_float_route_refusals_name_the_value_and_the_way_out():
 
 
 @pytest.mark.parametrize("kind, want", [("sf", 1), ("pdf", 0)])
-def test_scaled_convolution_at_zero(kind, want):
-    """The nested scaled integrand at a threshold 0: ``P(S > 0) exp(0) = 1``, density 0 (the
-    inner quadratures can reach it by rounding of ``x - tau``)."""
+def test_sum_at_zero_is_the_limit(kind, want):
+    """At a threshold 0 (which the routes can meet by rounding): ``P(S > 0) = 1``, density 0,
+    ``P(S <= 0) = 0``, in the mpmath and the float64 evaluation of three scales."""
+    from fractions import Fraction
+
+    scales = [Fraction(s) for s in ("0.5", "0.3", "0.2")]
     with mpmath.workdps(30):
-        groups = [ray._MGroup(g) for g in ray.make_groups([mpmath.mpf(s) for s in
-                                                           ("0.5", "0.3", "0.2")])]
-        cs = ray._saddle_c(20, 3, 1.0)
-        assert ray._conv_scaled_mp(groups, mpmath.mpf(0), kind, 8, cs) == want
-        assert ray._conv_mp(groups, mpmath.mpf(0), 8, cs) == 0
+        assert ray._mp_sum(scales, Fraction(0), kind, 20) == (want, 0)
+        assert ray._mp_sum(scales, Fraction(0), "cdf", 20) == (0, 0)
+    assert ray._float_eval([0.5, 0.3, 0.2], np.array([0.0]), kind)[0][0] == want
+    assert ray._float_eval([0.5, 0.3, 0.2], np.array([0.0]), "cdf")[0][0] == 0.0
 
 
-# ------------------------------------------------------------------ groups
-def test_make_groups_puts_the_leftover_single_second_to_last():
-    """Adjacent pairs after sorting; from three groups on, a single scale goes second to last
-    (the innermost integrand then is a pair's)."""
-    assert ray.make_groups([3, 2, 1]) == [(3, 2), (1,)]
-    assert ray.make_groups([1, 2, 3, 4]) == [(4, 3), (2, 1)]
-    assert ray.make_groups([5, 4, 3, 2, 1]) == [(5, 4), (1,), (3, 2)]
-    assert ray.make_groups([1, 7, 2, 6, 3, 5, 4]) == [(7, 6), (5, 4), (1,), (3, 2)]
-    assert ray.make_groups([6, 5, 4, 3, 2, 1]) == [(6, 5), (4, 3), (2, 1)]
-
-
-# ------------------------------------------------------------------ the cached rules
-def test_mp_gauss_legendre_rule_from_an_empty_cache(monkeypatch):
-    """A fresh rule (nothing cached) integrates polynomials of degree 2n - 1 exactly on [-1, 1]
-    and is cached per (order, precision)."""
-    monkeypatch.setattr(ray, "_MP_GL_CACHE", {})
-    with mpmath.workdps(40):
-        xs, ws = ray._mp_gl(7)
-        assert len(xs) == len(ws) == 7
-        for k in range(14):
-            exact = mpmath.mpf(2) / (k + 1) if k % 2 == 0 else 0
-            assert abs(mpmath.fsum(w * x**k for x, w in zip(xs, ws, strict=True)) - exact) \
-                < mpmath.mpf(10) ** -38
-        assert ray._mp_gl(7) is ray._MP_GL_CACHE[(7, mpmath.mp.prec)]
-    S = RayleighSum(["0.5", "0.3", "0.2"])
-    ref = S.sf(1, dps=25)
-    monkeypatch.setattr(ray, "_MP_GL_CACHE", {})
-    assert S.sf(1, dps=25) == ref
+# ------------------------------------------------------------------ order and repetition
+def test_the_order_and_repetition_of_the_scales_does_not_matter():
+    """The sum is symmetric in its scales: any order of the same scales gives the same values,
+    bit for bit (equal scales are evaluated once, with their multiplicity), float64 and mpmath;
+    and a repeated scale is the same as listing it twice."""
+    x = np.array([0.3, 1.5, 4.0])
+    for sets in ([[3, 2, 1], [1, 2, 3], [2, 3, 1]], [[1, 1, 2, 2], [2, 1, 2, 1], [1, 2, 2, 1]],
+                 [[5, 4, 3, 2, 1], [1, 3, 5, 2, 4]]):
+        base = RayleighSum(sets[0])
+        for other in sets[1:]:
+            S = RayleighSum(other)
+            for kind in ("sf", "cdf", "pdf", "logsf", "logcdf"):
+                assert np.array_equal(getattr(S, kind)(x), getattr(base, kind)(x)), (other, kind)
+            assert S.sf(1.5, dps=20) == base.sf(1.5, dps=20)
 
 
 # ------------------------------------------------------------------ group functions at t <= 0

@@ -123,22 +123,24 @@ def test_cost_of_a_planned_one_minus_p_is_one_evaluation(sigma, monkeypatch):
             assert rel_err(got, r[k], 80) <= mpmath.mpf(10) ** -dps, (want, sigma, dps)
 
 
-def test_cost_of_the_far_upper_cdf_is_one_upper_tail_quadrature(monkeypatch):
-    # far in the upper tail the cdf is 1 - sf (one sf quadrature, no cdf quadrature)
+def test_cost_of_the_far_upper_cdf_is_one_upper_tail_inversion(monkeypatch):
+    # far in the upper tail the cdf is 1 - sf: one inversion, of the upper tail; below the
+    # mean one inversion of the lower tail
     import symhx.forcing.rayleigh as R
 
     calls = []
-    orig = R._conv_mp
+    orig = R.invert_arb
 
-    def spy(*a):
-        calls.append(a[1])
-        return orig(*a)
+    def spy(scales, x, kind, dps):
+        calls.append(kind)
+        return orig(scales, x, kind, dps)
 
-    monkeypatch.setattr(R, "_conv_mp", spy)
+    monkeypatch.setattr(R, "invert_arb", spy)
     S = RayleighSum(["0.5", "0.3", "0.2"])
     far = S.cdf("4", dps=20)
-    assert calls == []
+    assert calls == ["sf"]
     with mpmath.workdps(40):
         assert abs(far - (1 - S.sf("4", dps=30))) < mpmath.mpf(10) ** -20
+    calls.clear()
     S.cdf("0.5", dps=20)
-    assert calls
+    assert calls == ["cdf"]
