@@ -157,7 +157,7 @@ def test_validated_exact_and_float():
                    allowed="forcing components")
     assert_refuses(ForcingParams.validated, 0.5, None, 1, [3, [1.5]], exc=TypeError, arg="Omega",
                    allowed="each forcing component must be a scalar")
-    with pytest.raises(ValueError, match=r"^Omega: an empty array of forcing frequencies"):
+    with pytest.raises(ValueError, match=r"Omega: an empty array of forcing frequencies"):
         ForcingParams.validated(0.5, None, 1, np.array([]))
     for i, name in enumerate(("sigma", "omega", "d")):
         args = [0.5, None, 1, None, 1]
@@ -181,7 +181,7 @@ def test_validated_arrays_and_scalars_iteration():
                    (1, 1): (2, 3)}
     assert_refuses(ForcingParams.validated, ["0.5", "-1"], dps=20, arg="sigma",
                    value="'-1' at index 1", allowed="> 0")
-    with pytest.raises(ValueError, match=r"at index \(1, 0\)$"):
+    with pytest.raises(ValueError, match=r"at index \(1, 0\)"):
         ForcingParams.validated([["0.5"], ["-1"]], dps=20)
     fpf = ForcingParams.validated(np.array([0.5, 2.0]), None, np.array([1.0]), 3.0)
     assert fpf.broadcast_fields() == ["sigma", "omega"]
@@ -254,9 +254,9 @@ def test_zero_dimensional_object_input_has_no_index():
 def test_float_arg_zero_and_names():
     assert_refuses(float_arg, "x", np.array([1.0, 0.0]), arg="x", value="0.0 at index 1",
                    allowed="> 0")
-    with pytest.raises(ValueError, match=r"^x"):
+    with pytest.raises(ValueError, match=r"\bx\b"):
         float_arg("x", [1.0, -1.0])
-    with pytest.raises(TypeError, match=r"^x"):
+    with pytest.raises(TypeError, match=r"\bx\b"):
         float_arg("x", True, positive=False)
     assert (float_arg("x", np.array([1.0, 0.0]), positive=False) == [1.0, 0.0]).all()
 

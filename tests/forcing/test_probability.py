@@ -128,7 +128,7 @@ def test_naive_double_integral_where_it_works():
         with pytest.raises(ValueError, match="outside the float64 range"):
             F.naive_impact_probability(**{"sigma": 0.5, **kw})
     with pytest.raises(ValueError, match=r"outside the float64 range of the literal eq\. \(27\) "
-                                         r"integrand; use impact_probability$"):
+                                         r"integrand; use impact_probability"):
         F.naive_impact_probability(1e-170)
     with pytest.raises(ValueError, match="outside the float64 range"):
         F.naive_impact_probability(0.5, d=1e200)

@@ -83,7 +83,7 @@ def test_theory_curve_tiny_p_and_limits():
         tc = F.theory_curve(sigma, N=11, **kw)
         want = forcing_values(sigma, kw.get("sigma1"), 1, kw.get("Omega"), kw.get("d", 1))[0]
         assert 0 < tc.p[0] and rel_err(tc.p[0], want) < 1e-14, (sigma, kw)
-    with pytest.raises(ValueError, match=r"^sigma must be > 0, got -1"):
+    with pytest.raises(ValueError, match=r"sigma must be > 0, got -1"):
         F.theory_curve(-1)
     for kw in [{"sigma1": np.array([0.1, 0.2])}, {"Omega": np.array([1.5, 2.5])}]:
         assert_refuses(F.theory_curve, 0.1, **kw, exc=TypeError,
