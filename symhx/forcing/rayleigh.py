@@ -31,9 +31,11 @@ import mpmath
 import numpy as np
 from scipy import special
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import (
     MAX_SCALES,
     ForcingParams,
+    exported,
     float_arg,
     is_array,
     is_components,
@@ -111,10 +113,10 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
             # huge frequencies whose scale is still a float64 (or +inf)
             out.append(scale / abs(omf - Omf) / (omf + Omf))
         return tuple(out)
-    with mpmath.workdps(work_dps):
+    with thread_mp().workdps(work_dps):
         s0 = mp_arg("sigma", fp.sigma)
         om = mp_arg("omega", fp.omega)
-        out = [mpmath.sqrt(2) * s0]
+        out = [thread_mp().sqrt(2) * s0]
         for i, (Om, s1) in enumerate(zip(omegas, s1s, strict=True)):
             om2 = 2 if Om is None else mp_arg("Omega", Om) ** 2
             delta = om * om - om2
@@ -122,7 +124,7 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
                 raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)")
             s1v = s0 if s1 is None else mp_arg("sigma1", s1)
-            out.append(mpmath.sqrt(2) * s1v / abs(delta))
+            out.append(thread_mp().sqrt(2) * s1v / abs(delta))
         return tuple(out)
 
 
@@ -130,6 +132,7 @@ def _om_name(fp: ForcingParams, i: int) -> str:
     return f"Omega[{i}]" if fp.components else "Omega"
 
 
+@exported
 def rayleigh_scales(
     sigma: Any, *, sigma1: Any = None, omega: Any = 1, Omega: Any = None, dps: int | None = None
 ) -> tuple[Any, ...]:
@@ -169,7 +172,7 @@ def rayleigh_scales(
     fp = ForcingParams.validated(sigma, sigma1, omega, Omega, 1, dps=dps)
     if dps is None:
         return scales_of(fp)
-    with mpmath.workdps(dps + 10):
+    with thread_mp().workdps(dps + 10):
         return tuple(+s for s in scales_of(fp, dps + 10))
 
 
@@ -216,6 +219,7 @@ class _FGroup:
         float64 (cdf and density below ``h**2 / min(s) < 1e-460``, scaled tail 1)."""
         return t / (math.sqrt(2.0) * max(self.scales)) >= _TINY
 
+    @exported
     def cdf(self, t: np.ndarray) -> np.ndarray:
         t = np.maximum(t, 0.0)
         if len(self.scales) == 1:
@@ -225,6 +229,7 @@ class _FGroup:
         out[pos] = pq_float(self._uv(t[pos]), "q")
         return out
 
+    @exported
     def pdf(self, t: np.ndarray) -> np.ndarray:
         out = np.zeros_like(t)
         if len(self.scales) == 1:
@@ -274,7 +279,7 @@ class _MGroup:
     """mpmath group of one or two Rayleigh scales (closed forms on scalars)."""
 
     def __init__(self, scales: Sequence[Any]) -> None:
-        self.scales = tuple(mpmath.mpf(s) for s in scales)
+        self.scales = tuple(thread_mp().mpf(s) for s in scales)
         self.var = sum(s * s for s in self.scales)
 
     def _xy(self, t: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
@@ -283,41 +288,41 @@ class _MGroup:
 
     def cdf(self, t: mpmath.mpf) -> mpmath.mpf:
         if t <= 0:
-            return mpmath.mpf(0)
+            return thread_mp().mpf(0)
         if len(self.scales) == 1:
-            return -mpmath.expm1(-t * t / (2 * self.scales[0] ** 2))
+            return -thread_mp().expm1(-t * t / (2 * self.scales[0] ** 2))
         return mp_q_from_xy(*self._xy(t))
 
     def pdf(self, t: mpmath.mpf) -> mpmath.mpf:
         if t <= 0:
-            return mpmath.mpf(0)
+            return thread_mp().mpf(0)
         if len(self.scales) == 1:
             s = self.scales[0]
-            return t / (s * s) * mpmath.exp(-t * t / (2 * s * s))
+            return t / (s * s) * thread_mp().exp(-t * t / (2 * s * s))
         x, y = self._xy(t)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
-        return 4 * u * v / r * mpmath.exp(-u * v) * mp_i2(u, v) / t
+        return 4 * u * v / r * thread_mp().exp(-u * v) * mp_i2(u, v) / t
 
     def msf(self, t: mpmath.mpf) -> mpmath.mpf:
         """``sf(t) exp(t**2/(2 var))`` (all terms positive)."""
         if t <= 0 or len(self.scales) == 1:
-            return mpmath.mpf(1)
+            return thread_mp().mpf(1)
         x, y = self._xy(t)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
-        b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-        b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+        b = v * thread_mp().exp(-u * u) + u * thread_mp().exp(-v * v)
+        b += thread_mp().sqrt(thread_mp().pi) * u * v * (thread_mp().erf(u) + thread_mp().erf(v))
         return b / r
 
     def mpdf(self, t: mpmath.mpf) -> mpmath.mpf:
         """``pdf(t) exp(t**2/(2 var))``."""
         if t <= 0:
-            return mpmath.mpf(0)
+            return thread_mp().mpf(0)
         if len(self.scales) == 1:
             return t / self.scales[0] ** 2
         x, y = self._xy(t)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
         return 4 * u * v / r * mp_i2(u, v) / t
 
@@ -564,14 +569,14 @@ def _mp_pair(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
     """One or two scales by their closed forms at ``dps`` digits (inside the working
     precision): ``kind`` sf, cdf or pdf, and the absolute error estimate."""
     grp = _MGroup(scales)
-    tol = mpmath.mpf(10) ** (-dps - 10)
+    tol = thread_mp().mpf(10) ** (-dps - 10)
     if x <= 0:
-        return (mpmath.mpf(1) if kind == "sf" else mpmath.mpf(0)), mpmath.mpf(0)
+        return (thread_mp().mpf(1) if kind == "sf" else thread_mp().mpf(0)), thread_mp().mpf(0)
     e = x * x / (2 * grp.var)
     if kind == "pdf":
-        v = grp.mpdf(x) * mpmath.exp(-e)
+        v = grp.mpdf(x) * thread_mp().exp(-e)
         return v, abs(v) * tol
-    sf = grp.msf(x) * mpmath.exp(-e)
+    sf = grp.msf(x) * thread_mp().exp(-e)
     if kind == "sf" or sf <= 0.5:
         v = sf if kind == "sf" else 1 - sf
         return v, abs(sf) * tol
@@ -586,15 +591,15 @@ def _mp_tail_pair_log(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int)
     grp = _MGroup(scales)
     if kind == "logsf":
         if x <= 0:
-            return mpmath.mpf(0)
-        val = mpmath.log(grp.msf(x)) - x * x / (2 * grp.var)
-        if val > -mpmath.log(2):
-            val = mpmath.log1p(-_mp_pair(scales, x, "cdf", dps + 5)[0])
+            return thread_mp().mpf(0)
+        val = thread_mp().log(grp.msf(x)) - x * x / (2 * grp.var)
+        if val > -thread_mp().log(2):
+            val = thread_mp().log1p(-_mp_pair(scales, x, "cdf", dps + 5)[0])
         return val
     v = _mp_pair(scales, x, "cdf", dps + 5)[0]
     if v > 0.5:
-        return mpmath.log1p(-_mp_pair(scales, x, "sf", dps + 5)[0])
-    return mpmath.log(v) if v > 0 else mpmath.mpf("-inf")
+        return thread_mp().log1p(-_mp_pair(scales, x, "sf", dps + 5)[0])
+    return thread_mp().log(v) if v > 0 else thread_mp().mpf("-inf")
 
 
 def _mp_sum(scales: Sequence[Fraction], x: Fraction, kind: str, dps: int
@@ -602,27 +607,27 @@ def _mp_sum(scales: Sequence[Fraction], x: Fraction, kind: str, dps: int
     """Three or more scales (or any, for a check) by the Arb inversion: ``(value, absolute
     error)`` of ``kind`` (sf, cdf, pdf, logsf, logcdf) at the current working precision."""
     if x <= 0:
-        v = {"sf": 1, "cdf": 0, "pdf": 0, "logsf": 0, "logcdf": mpmath.mpf("-inf")}[kind]
-        return mpmath.mpf(v), mpmath.mpf(0)
+        v = {"sf": 1, "cdf": 0, "pdf": 0, "logsf": 0, "logcdf": thread_mp().mpf("-inf")}[kind]
+        return thread_mp().mpf(v), thread_mp().mpf(0)
     if kind == "pdf":
         inv = invert_arb(scales, x, "pdf", dps + 3)
-        v = mpmath.exp(mpmath.mpf(inv.log_scale)) * mpmath.mpf(inv.t)
+        v = thread_mp().exp(thread_mp().mpf(inv.log_scale)) * thread_mp().mpf(inv.t)
         return v, abs(v) * inv.rel_err
-    with mpmath.workprec(64):
-        mean = mpmath.sqrt(mpmath.pi / 2) * mpmath.fsum(mpf_of(s) for s in scales)
+    with thread_mp().workprec(64):
+        mean = thread_mp().sqrt(thread_mp().pi / 2) * thread_mp().fsum(mpf_of(s) for s in scales)
         upper = mpf_of(x) >= mean
     side = "sf" if upper else "cdf"
     inv = invert_arb(scales, x, side, dps + 3)
-    ls, t = mpmath.mpf(inv.log_scale), mpmath.mpf(inv.t)
+    ls, t = thread_mp().mpf(inv.log_scale), thread_mp().mpf(inv.t)
     if kind == "log" + side:
-        return ls + mpmath.log(t), mpmath.mpf(inv.rel_err)
-    small = mpmath.exp(ls) * t
+        return ls + thread_mp().log(t), thread_mp().mpf(inv.rel_err)
+    small = thread_mp().exp(ls) * t
     err = abs(small) * inv.rel_err
     if kind == side:
         return small, err
     if kind in ("sf", "cdf"):
         return 1 - small, err
-    return mpmath.log1p(-small), err / (1 - small)
+    return thread_mp().log1p(-small), err / (1 - small)
 
 
 # =========================================================================== the distribution
@@ -677,34 +682,38 @@ class RayleighSum:
         return f"RayleighSum({[float(s) for s in self.scales]!r})"
 
     # ---- moments
+    @exported
     def mean(self, *, dps: int | None = None) -> Any:
         """``E[S] = sqrt(pi/2) sum s_i``."""
         dps = check_dps(dps, allow_none=True)
         if dps is None:
             return float(math.sqrt(math.pi / 2) * math.fsum(self._float_scales()))
-        with mpmath.workdps(dps + 10):
-            val = mpmath.sqrt(mpmath.pi / 2) * mpmath.fsum(mpf_of(s) for s in self._exact)
-            with mpmath.workdps(dps):
+        with thread_mp().workdps(dps + 10):
+            ctx = thread_mp()
+            val = ctx.sqrt(ctx.pi / 2) * ctx.fsum(mpf_of(s) for s in self._exact)
+            with thread_mp().workdps(dps):
                 return +val
 
+    @exported
     def var(self, *, dps: int | None = None) -> Any:
         """``Var S = (2 - pi/2) sum s_i**2``."""
         dps = check_dps(dps, allow_none=True)
         if dps is None:
             return float((2 - math.pi / 2) * math.fsum(s * s for s in self._float_scales()))
-        with mpmath.workdps(dps + 10):
-            val = (2 - mpmath.pi / 2) * mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
-            with mpmath.workdps(dps):
+        with thread_mp().workdps(dps + 10):
+            val = (2 - thread_mp().pi / 2) * thread_mp().fsum(mpf_of(s) ** 2 for s in self._exact)
+            with thread_mp().workdps(dps):
                 return +val
 
+    @exported
     def std(self, *, dps: int | None = None) -> Any:
         """Standard deviation ``sqrt(Var S)``."""
         dps = check_dps(dps, allow_none=True)
         if dps is None:
             return math.sqrt(self.var())
-        with mpmath.workdps(dps + 10):
-            val = mpmath.sqrt(self.var(dps=dps + 10))
-            with mpmath.workdps(dps):
+        with thread_mp().workdps(dps + 10):
+            val = thread_mp().sqrt(self.var(dps=dps + 10))
+            with thread_mp().workdps(dps):
                 return +val
 
     def rvs(self, size: Any = None, random_state: Any = None) -> Any:
@@ -724,6 +733,7 @@ class RayleighSum:
         return float(out) if shape is None else out
 
     # ---- probabilities
+    @exported
     def sf(self, x: Any, *, dps: int | None = None) -> Any:
         """``P(S > x)``."""
         return self._eval(x, "sf", dps)
@@ -736,14 +746,17 @@ class RayleighSum:
         """Density of ``S`` at ``x``."""
         return self._eval(x, "pdf", dps)
 
+    @exported
     def logsf(self, x: Any, *, dps: int | None = None) -> Any:
         """``log P(S > x)``; ``log1p(-cdf)`` where ``sf > 1/2`` (relative accuracy kept)."""
         return self._eval(x, "logsf", dps)
 
+    @exported
     def logcdf(self, x: Any, *, dps: int | None = None) -> Any:
         """``log P(S <= x)``; ``log1p(-sf)`` where ``cdf > 1/2``."""
         return self._eval(x, "logcdf", dps)
 
+    @exported
     def probability(self, x: Any, *, tail: str = "upper", dps: int | None = None
                     ) -> RayleighSumResult:
         """``P(S > x)`` (``tail="upper"``) or ``P(S <= x)`` with an error estimate (of the
@@ -760,12 +773,12 @@ class RayleighSum:
             return RayleighSumResult(float(val[0]), float(err[0]), method)
         self._check_mp_work(dps)
         method = "closed form" if len(self._exact) <= 2 else "Laplace-transform inversion"
-        with mpmath.workdps(dps + 15 + self._exp_digits(x)):
+        with thread_mp().workdps(dps + 15 + self._exp_digits(x)):
             val, err = self._mp_value(x, kind, dps)
-            with mpmath.workdps(dps):   # returned at dps digits (the guard digits are not
+            with thread_mp().workdps(dps):   # returned at dps digits (the guard digits are not
                 out = +val              # correct digits): the estimate includes that rounding
             err = err + abs(out - val)
-            with mpmath.workdps(dps):
+            with thread_mp().workdps(dps):
                 return RayleighSumResult(out, +err, method)
 
     # ---- internals
@@ -781,16 +794,17 @@ class RayleighSum:
     def _exp_digits(self, x: Any) -> int:
         """Extra digits for ``exp(-E)``, ``E ~ x**2/(2 sum s**2)``, to keep its relative
         accuracy (E ~ 1e6 costs 6 digits)."""
-        with mpmath.workprec(53):
+        with thread_mp().workprec(53):
             xm = _mp_x(x)   # a sympy expression too (evaluated), not taken as 0
-            var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
-            e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
+            var = thread_mp().fsum(mpf_of(s) ** 2 for s in self._exact)
+            e = xm * xm / (2 * var) if xm > 0 else thread_mp().mpf(0)
         if e > MAX_EXPONENT:
             raise ValueError(
-                f"x: P(S > x) = exp(-E) with E ~ {mpmath.nstr(e, 3)} above the cap MAX_EXPONENT "
+                f"x: P(S > x) = exp(-E) with E ~ {thread_mp().nstr(e, 3)} above the cap "
+                f"MAX_EXPONENT "
                 f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
                 "guard digits); logsf has no cap")
-        return int(mpmath.log10(e)) + 1 if e > 1 else 0
+        return int(thread_mp().log10(e)) + 1 if e > 1 else 0
 
     def _float_scales(self) -> list[float]:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
@@ -808,7 +822,7 @@ class RayleighSum:
             scales = [mpf_of(s) for s in self._exact]
             if kind in ("sf", "cdf", "pdf"):
                 return _mp_pair(scales, xm, kind, dps)
-            return _mp_tail_pair_log(scales, xm, kind, dps), mpmath.mpf(0)
+            return _mp_tail_pair_log(scales, xm, kind, dps), thread_mp().mpf(0)
         fr = to_rational(x, "x")
         xf = fr if fr is not None else mpf_to_fraction(xm)
         return _mp_sum(self._exact, xf, kind, dps)
@@ -833,9 +847,9 @@ class RayleighSum:
         # = log m - E does not (its absolute error E 10**-prec is relative 10**-prec), so its
         # cost does not grow with E
         guard = 15 + (0 if kind == "logsf" else self._exp_digits(x))
-        with mpmath.workdps(dps + guard):
+        with thread_mp().workdps(dps + guard):
             val = self._mp_value(x, kind, dps)[0]
-            with mpmath.workdps(dps):
+            with thread_mp().workdps(dps):
                 return +val
 
 
@@ -865,10 +879,11 @@ def _mp_x(x: Any) -> mpmath.mpf:
     """A finite real threshold as an mpf at the current precision (``<= 0`` allowed)."""
     fr = to_rational(x, "x")
     if fr is None:
-        return mpmath.mpf(x.evalf(mpmath.mp.dps + 5))
-    return mpf_of(fr) if fr > 0 else mpmath.mpf(fr.numerator) / fr.denominator
+        return thread_mp().mpf(x.evalf(thread_mp().dps + 5))
+    return mpf_of(fr) if fr > 0 else thread_mp().mpf(fr.numerator) / fr.denominator
 
 
+@exported
 def rayleigh_sum_probability(
     scales: Sequence[Any], d: Any = 1, *, tail: str = "upper", dps: int | None = None
 ) -> RayleighSumResult:

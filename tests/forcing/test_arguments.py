@@ -10,6 +10,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import (
     ForcingParams,
     bad_index,
@@ -97,7 +98,8 @@ def test_float_arg_scalars():
 
 
 def test_mpf_of_and_mp_arg():
-    with mpmath.workdps(30):
+    tctx = thread_mp()   # mpf_of and mp_arg compute in the calling thread's context
+    with mpmath.workdps(30), tctx.workdps(30):
         v = mpf_of(Fraction(3, 1 << 200))
         assert v == mpmath.ldexp(3, -200)
         assert mpf_of(Fraction(5)) == 5
@@ -106,20 +108,20 @@ def test_mpf_of_and_mp_arg():
             mpmath.eps
         big = Fraction((1 << 300) + 1, 1 << 10)  # dyadic, more bits than 30 digits: rounded
         assert mpf_of(big) == mpmath.ldexp(mpmath.mpf((1 << 300) + 1), -10)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), tctx.workdps(60):
         assert abs(mpf_of(Fraction(1, 3)) - mpmath.mpf(1) / 3) < mpmath.mpf(10) ** -59
-    with mpmath.workdps(20):
+    with mpmath.workdps(20), tctx.workdps(20):
         x = mpmath.mpf("0.1")
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), tctx.workdps(50):
         y = mp_arg("s", x)
-        assert y == x and y.context is mpmath.mp
+        assert y == x and y.context is tctx   # this thread's context
         assert mp_arg("s", "0.1") == mpmath.mpf(1) / 10
         assert mp_arg("s", 0.25) == mpmath.mpf(0.25)
-        ctx = mpmath.MPContext()
-        ctx.dps = 40
-        x3 = ctx.mpf("0.3")  # another context's mpf (a thread's, issue 28): its exact value
+        other = mpmath.MPContext()
+        other.dps = 40
+        x3 = other.mpf("0.3")  # another context's mpf (a thread's, issue 28): its exact value
         assert mp_arg("s", x3) == mpmath.mp.make_mpf(x3._mpf_)
-        with mpmath.workdps(80):
+        with mpmath.workdps(80), tctx.workdps(80):
             w = mpmath.mpf(1) / 3
         assert mp_arg("s", w) == mpmath.mpf(1) / 3  # rounded to the current precision
         for bad in (mpmath.mpf(0), mpmath.mpf(-1), mpmath.inf, mpmath.nan):

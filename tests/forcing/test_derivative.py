@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from tests.harness.errors import assert_refuses
 from tests.reference.forcing import forcing_dp, one_rayleigh_dp, three_gl_p
 from tests.reference.mp import rel_err
@@ -22,7 +23,8 @@ from tests.reference.mp import rel_err
 @pytest.mark.parametrize("sigma", ["0.013", "0.05", "0.3", "2", "80"])
 @pytest.mark.parametrize("sigma1", [None, "0.07"])
 def test_dp_dsigma_against_mpmath_diff(sigma, sigma1):
-    with mpmath.workdps(70):  # central difference, h = 1e-20: O(h^2) and roundoff ~1e-40
+    # central difference, h = 1e-20: O(h^2) and roundoff ~1e-40
+    with mpmath.workdps(70), thread_mp().workdps(70):
         ref = mpmath.diff(lambda s: F.impact_probability(s, sigma1=sigma1, Omega=1.9, dps=60),
                           mpmath.mpf(sigma), h=mpmath.mpf("1e-20"))
         got = F.dp_dsigma(sigma, sigma1=sigma1, Omega=1.9, dps=30)
@@ -40,7 +42,8 @@ def test_dp_dsigma_several_components():
     h = 1e-5
     fd = (F.impact_probability(0.3 + h, **kw) - F.impact_probability(0.3 - h, **kw)) / (2 * h)
     assert abs(F.dp_dsigma(0.3, **kw) / fd - 1) < 1e-8
-    with mpmath.workdps(40):  # p at 35 digits: the difference quotient keeps ~23 digits
+    # p at 35 digits: the difference quotient keeps ~23 digits
+    with mpmath.workdps(40), thread_mp().workdps(40):
         ref = mpmath.diff(lambda s: F.impact_probability(s, **kw, dps=35), mpmath.mpf("0.3"),
                           h=mpmath.mpf("1e-12"))
         assert rel_err(F.dp_dsigma("0.3", **kw, dps=20), ref) < 1e-18
@@ -121,7 +124,7 @@ def test_dp_float64_fallback_where_the_kernel_overflows():
 def test_dp_several_components():
     """Central difference (h = 1e-12, 60 digits) of an independent two-component quadrature."""
     Oms, d = ["1.7", "2.2"], "1.2"
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         s = mpmath.mpf("0.35")
         h = mpmath.mpf("1e-12")
         want = (three_gl_p(s + h, Oms, d, 60) - three_gl_p(s - h, Oms, d, 60)) / (2 * h)

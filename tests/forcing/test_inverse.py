@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from tests.harness.errors import assert_refuses
 from tests.reference.forcing import (
     forcing_dp,
@@ -44,7 +45,7 @@ def test_inverse_round_trip_float(p):
 
 
 def test_inverse_mpmath_and_arrays():
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         for p in ("1e-400", "1e-20", "0.3", "0.999999"):
             s = F.sigma_for_impact_probability(p, dps=40, Omega=1.9, d=0.5)
             back = F.impact_probability(s, Omega=1.9, d=0.5, dps=45)
@@ -82,11 +83,11 @@ def test_inverse_bad_targets():
 
 @pytest.mark.parametrize("target", ["1e-300", "1e-40", "0.001", "0.5", "0.999", "1 - 1e-30"])
 def test_inverse_against_independent_quadrature(target):
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         pt = (1 - mpmath.mpf("1e-30")) if target == "1 - 1e-30" else mpmath.mpf(target)
     s = F.sigma_for_impact_probability(pt, dps=DPS)
     p, q, dp = quadrature_values(s, None, 1, None, 1, 2 * DPS + 10)
-    with mpmath.workdps(2 * DPS + 10):
+    with mpmath.workdps(2 * DPS + 10), thread_mp().workdps(2 * DPS + 10):
         # sigma is correct to dps digits, so p(sigma) is within kappa * 10**-dps of the target
         # (kappa = |d ln p/d ln sigma|, or of 1 - p in the upper half)
         if pt <= 0.5:
@@ -107,7 +108,7 @@ def test_inverse_float_and_mp_against_bracketing_root(p):
     assert rel_err(gm, want) <= tol(), (p, mpmath.nstr(rel_err(gm, want), 3))
     # round trip through the reference
     r = forcing_values(gm)
-    with mpmath.workdps(3 * DPS):
+    with mpmath.workdps(3 * DPS), thread_mp().workdps(3 * DPS):
         pt = mpmath.mpf(p)
         kappa = gm * forcing_dp(gm) / (r[0] if pt <= 0.5 else r[1])
         err = rel_err(r[0], pt) if pt <= 0.5 else rel_err(r[1], 1 - pt)
@@ -117,7 +118,7 @@ def test_inverse_float_and_mp_against_bracketing_root(p):
 @pytest.mark.parametrize("p", ["1e-400", "1e-2000", "1 - 1e-20", "1 - 1e-60"])
 def test_inverse_far_outside_float64(p):
     """The bisection start of the mpmath path (no float64 start exists)."""
-    with mpmath.workdps(100):
+    with mpmath.workdps(100), thread_mp().workdps(100):
         pt = 1 - mpmath.mpf(p[4:]) if p.startswith("1 - ") else mpmath.mpf(p)
     target = pt if not p.startswith("1 - ") else Fraction(1) - Fraction(p[4:])
     want = sigma_root(pt, work=120)
@@ -186,7 +187,7 @@ def test_inverse_bad_and_unreachable_targets():
     import sympy
 
     s = F.sigma_for_impact_probability(sympy.sqrt(2) / 4, dps=DPS)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         assert rel_err(s, sigma_root(mpmath.sqrt(2) / 4)) <= tol()
 
 
@@ -194,7 +195,7 @@ def test_inverse_several_components_round_trip():
     """Round trip through the independent two-component quadrature (kappa < 3 here)."""
     sm = F.sigma_for_impact_probability("0.2", Omega=["1.7", "2.2"], d="1.2", dps=10)
     sf = F.sigma_for_impact_probability(0.2, Omega=[1.7, 2.2], d=1.2)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert rel_err(three_gl_p(sm, ["1.7", "2.2"], "1.2", 40), "0.2") <= 3 * tol(10)
         assert rel_err(three_gl_p(sf, ["1.7", "2.2"], "1.2", 40), "0.2") <= 1e-14
     sf = F.sigma_for_impact_probability(0.2, sigma1=[0.3, 0.4], Omega=[1.7, 2.2])
@@ -251,7 +252,7 @@ _MP_CASES = [
 
 @pytest.mark.parametrize("p, kw, dps", _MP_CASES)
 def test_inverse_mp_scales_tails_and_precisions(p, kw, dps):
-    with mpmath.workdps(dps + 60):
+    with mpmath.workdps(dps + 60), thread_mp().workdps(dps + 60):
         pt = 1 - mpmath.mpf(p[4:]) if p.startswith("1 - ") else mpmath.mpf(p)
     target = Fraction(1) - Fraction(p[4:]) if p.startswith("1 - ") else p
     want = sigma_root(pt, kw.get("sigma1"), kw.get("omega", 1), kw.get("Omega"), kw.get("d", 1),
@@ -291,19 +292,19 @@ def test_inverse_symbolic_targets_keep_their_digits():
     import sympy
 
     s = F.sigma_for_impact_probability(sympy.sqrt(2) / 4, dps=60)
-    with mpmath.workdps(120):
+    with mpmath.workdps(120), thread_mp().workdps(120):
         want = sigma_root(mpmath.sqrt(2) / 4, work=100)
     assert rel_err(s, want) <= tol(60)
     s = F.sigma_for_impact_probability(1 - sympy.exp(-100), dps=20)  # 1 - p = 3.7e-44
-    with mpmath.workdps(120):
+    with mpmath.workdps(120), thread_mp().workdps(120):
         want = sigma_root(1 - mpmath.exp(-100), work=120)
     assert rel_err(s, want) <= tol(20)
     s = F.sigma_for_impact_probability(1 - sympy.exp(-20))
-    with mpmath.workdps(120):
+    with mpmath.workdps(120), thread_mp().workdps(120):
         pt = 1 - mpmath.exp(-20)
         want = sigma_root(Fraction(float(pt)), work=40)  # the float nearest to p
     assert isinstance(s, float) and rel_err(s, want) < 1e-14
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         nearest = float(mpmath.pi / 10)
     assert F.sigma_for_impact_probability(sympy.pi / 10) == F.sigma_for_impact_probability(nearest)
 
@@ -347,5 +348,5 @@ def test_inverse_mp_value_is_rounded_to_dps(dps):
                   ("0.2", {"Omega": ["1.7", "2.2"]}), ("1e-400", {})]:
         s = F.sigma_for_impact_probability(p, **kw, dps=dps)
         assert isinstance(s, mpmath.mpf)
-        with mpmath.workdps(dps):
+        with mpmath.workdps(dps), thread_mp().workdps(dps):
             assert s == +s, (p, kw, dps)

@@ -12,6 +12,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing import inversion as inv
 
@@ -20,7 +21,7 @@ EPS = float(np.finfo(float).eps)
 
 def _laplace_mp(z: complex) -> mpmath.mpc:
     """``L(z)`` at 40 digits (mpmath's erfc; the digits 1 - ... cancels are far below 40)."""
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         zz = mpmath.mpc(z.real, z.imag)
         return 1 - mpmath.sqrt(mpmath.pi) * zz * mpmath.exp(zz * zz) * mpmath.erfc(zz)
 
@@ -41,7 +42,7 @@ def test_laplace_transform_to_a_few_ulps_over_the_right_half_plane():
     worst = 0.0
     for g, zz in zip(got, z, strict=True):
         ref = _laplace_mp(complex(zz))
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             err = float(abs(mpmath.mpc(g.real, g.imag) / ref - 1))
         worst = max(worst, err)
         assert err < 8 * EPS, (zz, err)
@@ -50,7 +51,7 @@ def test_laplace_transform_to_a_few_ulps_over_the_right_half_plane():
     # error of a few eps times |log L| from the rounding of the log itself)
     for zz in (1e200j, 3e250 + 1e250j, 1e300 + 0j):
         lg = complex(inv.log_laplace_float(np.array([zz]))[0])
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             zm = mpmath.mpc(zz.real, zz.imag)
             ref = -mpmath.log(2 * zm * zm) + mpmath.log(1 - 3 / (2 * zm * zm))
             assert abs(mpmath.mpc(lg.real, lg.imag) - ref) < 4 * EPS * abs(ref), zz
@@ -76,7 +77,7 @@ def test_tilted_mean_of_one_amplitude(tau):
     the contour), ``M(tau) = E e^{tau R} = 1 + tau sqrt(pi/2) e^{tau**2/2} erfc(-tau/sqrt 2)``
     and ``M' = (M - 1)/tau + tau M`` (integration by parts of the density) at 60 digits."""
     got = float(inv._unit_kprime(np.array([tau]))[0])
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         t = mpmath.mpf(tau)
         if t == 0:
             ref = mpmath.sqrt(mpmath.pi / 2)

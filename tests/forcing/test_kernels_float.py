@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import ForcingParams
 from symhx.forcing.kernels_float import (
     delta_float,
@@ -138,7 +139,7 @@ def _check_public(pt, c=C):
     vals = [float(getattr(F, f)(s0, sigma1=s1, omega=om, Omega=Om, d=d)) for f in
             ("impact_probability", "no_impact_probability", "log_impact_probability",
              "log_no_impact_probability")]
-    with mpmath.workprec(80):
+    with mpmath.workprec(80), thread_mp().workprec(80):
         x, y = eq27_xy(s0, s1, om, Om, d)
         e = x * y / (x + y)
     if e > 1e308:  # log p below every float: the limits
@@ -265,7 +266,7 @@ def test_uv_building_blocks():
     hx, hy = np.array([0.3, 2.0, 5e-3]), np.array([0.7, 2.0, 40.0])
     uv = uv_from_h(hx, hy)
     for i in range(3):
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             x, y = mpmath.mpf(hx[i]) ** 2, mpmath.mpf(hy[i]) ** 2
             r = mpmath.sqrt(x + y)
             for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
@@ -274,7 +275,7 @@ def test_uv_building_blocks():
     s0, s1, om, Om, d = np.array(0.3), np.array([0.2, 5.0]), np.array(1.2), np.array(0.6), 0.8
     uv = uv_forcing(s0, s1, om, Om, d)
     for i in range(2):
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             x, y = eq27_xy(float(s0), s1[i], float(om), float(Om), d)
             r = mpmath.sqrt(x + y)
             for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
@@ -318,7 +319,7 @@ def test_series_truncation_table():
     tolerance (1/21!), checked against the exact coefficients of phi~ and psi~."""
     from symhx.forcing.kernels_float import PHI1_C, PSI1_C, _series_zmax
 
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         exact_phi = [(-1) ** n / mpmath.factorial(n + 1) for n in range(1, 20)]
         exact_psi = [(-1) ** n / (mpmath.factorial(n) * (2 * n + 1)) for n in range(1, 21)]
         tol = 1 / mpmath.factorial(21)
@@ -451,7 +452,7 @@ def test_uv_chunk_scalar_and_array_arguments():
         for i in range(m):
             s0, s1, de, d = (mpmath.mpf(v[i] if a else v[0])
                              for a, v in zip(mask, (s0v, s1v, dev, dv), strict=True))
-            with mpmath.workdps(40):
+            with mpmath.workdps(40), thread_mp().workdps(40):
                 x, y = d * d / (4 * s0 * s0), (d * de) ** 2 / (4 * s1 * s1)
                 r = mpmath.sqrt(x + y)
                 for got, ref in ((uv.x[i], x), (uv.y[i], y), (uv.r[i], r), (uv.u[i], x / r),
@@ -583,7 +584,7 @@ def test_uv_forcing_where_delta_under_or_overflows():
     for s0, s1, om, Om, d in UV_FORCING_EDGES:
         uv = uv_forcing(np.array(s0), np.array(s1), np.array(om),
                         None if Om is None else np.array(Om), np.array(d))
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             x, y = eq27_xy(s0, s1, om, Om, d)
             r = mpmath.sqrt(x + y)
             for got, ref in ((uv.x, x), (uv.y, y), (uv.r, r), (uv.u, x / r), (uv.v, y / r),
@@ -600,7 +601,7 @@ def test_uv_forcing_where_delta_under_or_overflows():
     uv = uv_forcing(s0, s1, om, None, np.array(1.0))
     assert uv.r[0] == uv.r[1] == uv.e[1] == math.inf
     for i in (0, 2, 3):
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             x, y = eq27_xy(float(s0[i]), float(s1[i]), float(om[i]), None, 1.0)
             assert rel_err(uv.e[i], x * y / (x + y)) < 8 * EPS, i
             if i:

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 
 EPS = np.finfo(float).eps
 
@@ -35,7 +36,7 @@ EXTREME_RATIOS = np.logspace(-150, 150, 15)  # sigma1/sigma (including 1)
 
 def _log10_uv(s0: float, s1: float, omega: float, Omega: float | None, d: float) -> float:
     """log10 of uv = d**2/(4 (sigma0**2 + (sigma1/|omega**2 - Omega**2|)**2)), no overflow."""
-    with mpmath.workdps(20):
+    with mpmath.workdps(20), thread_mp().workdps(20):
         om2 = 2 if Omega is None else mpmath.mpf(Omega) ** 2
         t = mpmath.mpf(s1) / abs(mpmath.mpf(omega) ** 2 - om2)
         return float(mpmath.log10(mpmath.mpf(d) ** 2 / (4 * (mpmath.mpf(s0) ** 2 + t**2))))
@@ -46,7 +47,7 @@ def _mp_values(s0, s1, omega, Omega, d):
     kw = dict(sigma1=s1, omega=omega, Omega=Omega)
     lp = F.log_impact_probability(s0, **kw, d=d, dps=30)
     lq = F.log_no_impact_probability(s0, **kw, d=d, dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         h = mpmath.mpf(10) ** -12
         dm = mpmath.mpf(d) * (1 - h)
         dp = mpmath.mpf(d) * (1 + h)
@@ -67,7 +68,7 @@ def _check_point(s0, s1, vals, omega=1.0, Omega=None, d=1.0):
         assert p == 0.0 and lp == -math.inf and q == 1.0 and lq == 0.0, (s0, s1, vals)
         return worst
     mlp, mlq, kp = _mp_values(s0, s1, omega, Omega, d)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         mp_, mq = mpmath.exp(mlp), mpmath.exp(mlq)
         kq = kp * mp_ / mq  # |d ln q/d ln d| = d g(d)/q = kappa_p p/q
         cases = (("p", p, mp_, kp), ("q", q, mq, kq),

@@ -12,6 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from tests.harness.twins import check_twins
 from tests.reference.mp import assert_mp_close, rel_err
 
@@ -33,7 +34,7 @@ PAPER_RATIOS = [None, 0.1, 3.0, 30.0]  # sigma1 = ratio * sigma (None: sigma1 = 
 # ----------------------------------------------------------------------------- float64 vs mpmath
 def _kappa_mp(sigma, s1, kw):
     """|d ln p/d ln sigma| with every sigma_i scaled together, by mpmath central difference."""
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         h = mpmath.mpf(10) ** -12
         sm, sp = mpmath.mpf(sigma) * (1 - h), mpmath.mpf(sigma) * (1 + h)
         s1m = None if s1 is None else mpmath.mpf(s1) * (1 - h)
@@ -178,7 +179,7 @@ def _mp_twin(s0, s1, om, Om, d, want):
     kw = dict(sigma1=s1, omega=om, Omega=Om)
     fn = _WANT_FN[want if want in ("p", "q") else want[3:]]
     val = _WANT_FN[want](s0, **kw, d=d, dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         h = mpmath.mpf(10) ** -12
         lo = fn(s0, **kw, d=mpmath.mpf(d) * (1 - h), dps=35)
         hi = fn(s0, **kw, d=mpmath.mpf(d) * (1 + h), dps=35)

@@ -13,6 +13,7 @@ import mpmath
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import kernels_mp as K
 from symhx.forcing.rawmp import from_xy_raw
 from tests.harness.errors import assert_refuses
@@ -28,13 +29,13 @@ from tests.reference.mp import rel_err
 def test_i2_i3_closed_forms_against_quadrature(u, v):
     """The positive integrals of the derivative (cancelling closed forms) to dps digits."""
     for dps in (15, 30):
-        with mpmath.workdps(dps):
+        with mpmath.workdps(dps), thread_mp().workdps(dps):
             uu, vv = mpmath.mpf(u), mpmath.mpf(v)
             i2, i3 = K.mp_i2(uu, vv), K.mp_i3(uu, vv)
             assert max(i2._mpf_[1].bit_length(), i3._mpf_[1].bit_length()) <= mpmath.mp.prec
         # the reference integrates at the same (rounded) u, v far above the claim
         # (z = -v + r t on t in [0, 1], r = u + v: an O(1) integrand for any r)
-        with mpmath.workdps(2 * dps + 30):
+        with mpmath.workdps(2 * dps + 30), thread_mp().workdps(2 * dps + 30):
             r = uu + vv
             t0 = vv / r  # the peak z = 0, width 1/r
             pts = sorted({mpmath.mpf(0), mpmath.mpf(1)} | {
@@ -53,14 +54,14 @@ def test_i2_i3_closed_forms_against_quadrature(u, v):
 def test_mp_q_from_xy_adaptive_loop(x, y):
     """``1 - p`` from ``(x, y)`` directly (the adaptive cancellation loop) to the precision."""
     for dps in (15, 40):
-        with mpmath.workdps(dps):
+        with mpmath.workdps(dps), thread_mp().workdps(dps):
             xm, ym = mpmath.mpf(x), mpmath.mpf(y)
             q = K.mp_q_from_xy(xm, ym)
             p = K.mp_p_from_xy(xm, ym)
             lp = from_xy_raw(xm._mpf_, ym._mpf_, mpmath.mp.prec, "logp", 0, False)
             assert q._mpf_[1].bit_length() <= mpmath.mp.prec
         # x = d**2/(2 S0), y = d**2/(2 S1) with d = 1
-        with mpmath.workdps(3 * dps + 100):
+        with mpmath.workdps(3 * dps + 100), thread_mp().workdps(3 * dps + 100):
             S0, S1 = 1 / (2 * xm), 1 / (2 * ym)
         rp, rq, rlp, _ = ref_sq(S0, S1, 1, dps)
         tol = 2 * mpmath.mpf(2) ** -mpmath.workdps(dps)(lambda: mpmath.mp.prec)()
@@ -70,7 +71,7 @@ def test_mp_q_from_xy_adaptive_loop(x, y):
 
 
 def test_mp_xy_forcing_definitions():
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         x, y = K.mp_xy_forcing(Fraction(1, 5), Fraction(1, 3), Fraction(3, 2), Fraction(7, 10),
                                Fraction(6, 5))
         assert rel_err(x, mpmath.mpf(36) / 25 / (4 * mpmath.mpf(1) / 25)) < 1e-38
@@ -85,7 +86,7 @@ def test_mp_xy_forcing_definitions():
                                   (1e-20, 1e-19), (5.0, 1e-30)])
 def test_estimates_are_the_float_closed_form(x, y):
     want = closed_form_float(x, y)
-    with mpmath.workprec(64):
+    with mpmath.workprec(64), thread_mp().workprec(64):
         got = K.estimate(mpmath.mpf(x), mpmath.mpf(y))
     for g, w in zip(got, want, strict=True):
         assert abs(g - w) <= 1e-12 * w + 1e-25, (x, y, got, want)
@@ -99,7 +100,7 @@ def test_estimates_are_the_float_closed_form(x, y):
 
 
 def test_estimate_extremes():
-    with mpmath.workprec(64):
+    with mpmath.workprec(64), thread_mp().workprec(64):
         mp = mpmath.mpf
         # far above d on both scales: p ~ 1; far apart: p ~ exp(-min)
         e, xy, p = K.estimate(mp("1e-300"), mp("1e-280"))
@@ -166,7 +167,7 @@ def test_resonance_is_an_error():
     for dps in (None, 20):
         with pytest.raises(ValueError, match="resonance"):
             F.impact_probability("0.3", omega="1.5", Omega="1.5", dps=dps)
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         assert_refuses(K.mp_xy_forcing, Fraction(1, 3), None, 3, 3, 1, arg="Omega",
                        allowed="resonance Omega == omega")
         for i, name in enumerate(("sigma", "sigma1", "omega", "Omega", "d")):

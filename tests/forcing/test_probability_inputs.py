@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 
 FUNCS = [F.impact_probability, F.no_impact_probability, F.log_impact_probability,
          F.log_no_impact_probability, F.dp_dsigma]
@@ -64,7 +65,7 @@ def test_decimal_strings_are_exact_and_floats_binary():
     b = F.impact_probability(Fraction(1, 10), dps=40)
     c = F.impact_probability(0.1, dps=40)
     assert a == b and a != c
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         ref = F.impact_probability(mpmath.mpf(1) / 10, dps=50)
         assert abs(a / ref - 1) < mpmath.mpf(10) ** -40
     # float64 path: a string is the correctly rounded float

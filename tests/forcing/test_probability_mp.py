@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from tests.reference.forcing import (
     eq26_p,
     eq27_q_double_integral,
@@ -85,7 +86,7 @@ def test_mpmath_correct_to_dps_against_twice_dps(dps):
 
 def test_mpmath_p_plus_q_is_one_and_logs_agree():
     for sigma in ("0.01", "0.2", "40"):
-        with mpmath.workdps(60):
+        with mpmath.workdps(60), thread_mp().workdps(60):
             p = F.impact_probability(sigma, dps=50)
             q = F.no_impact_probability(sigma, dps=50)
             assert abs(p + q - 1) < mpmath.mpf(10) ** -50
@@ -94,7 +95,7 @@ def test_mpmath_p_plus_q_is_one_and_logs_agree():
 
 
 def test_omega_none_is_exact_sqrt2_in_mpmath():
-    with mpmath.workdps(80):
+    with mpmath.workdps(80), thread_mp().workdps(80):
         sqrt2 = mpmath.sqrt(2)
         a = F.impact_probability("0.1", dps=60)
         b = F.impact_probability("0.1", Omega=sqrt2, dps=60)
@@ -102,7 +103,7 @@ def test_omega_none_is_exact_sqrt2_in_mpmath():
 
 
 def test_mpmath_string_inputs_are_exact_decimals():
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         a = F.impact_probability("0.1", dps=40)
         b = F.impact_probability(0.1, dps=40)  # the binary double nearest 0.1
         # p'(0.1)/p * |0.1 - float(0.1)| / 0.1 ~ 57 * 5.5e-18: distinguishable at 40 digits
@@ -122,7 +123,8 @@ def test_mpmath_path_against_independent_quadrature(sigma, ratio, Omega):
     p, q, dp = quadrature_values(sigma, sigma1, 1, Omega, 1, 2 * GRID_DPS + 10)
     kw = dict(sigma1=sigma1, Omega=Omega)
     tol = mpmath.mpf(10) ** -GRID_DPS
-    with mpmath.workdps(2 * GRID_DPS + 10):  # each log from the tail that is small
+    # each log from the tail that is small
+    with mpmath.workdps(2 * GRID_DPS + 10), thread_mp().workdps(2 * GRID_DPS + 10):
         lp = mpmath.log(p) if p < 0.5 else mpmath.log1p(-q)
         lq = mpmath.log(q) if q < 0.5 else mpmath.log1p(-p)
     # float inputs (raw-libmp fast path) and decimal strings (general path)
@@ -144,7 +146,7 @@ def test_mpmath_extremes_keep_relative_accuracy():
     lp = F.log_impact_probability(1e200, dps=30)
     lq = F.log_no_impact_probability(0.01346, dps=30)
     p = F.impact_probability(0.01346, dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert lp < 0 and abs(lp / (-1 / (96 * mpmath.mpf(1e200) ** 4)) - 1) < 1e-25
         assert abs(lq / -p - 1) < 1e-25
     assert F.no_impact_probability(1e-200, sigma1=1e100, dps=30) > 0
@@ -157,7 +159,7 @@ def test_reference_against_mpmath_quad():
     """The completed-square reference is the eq. 27 convolution (checked by mpmath.quad)."""
     for sigma, sigma1, Omega, d in [("0.3", None, None, 1), ("0.13", "0.4", "1.7", "1.3"),
                                     ("2", None, "3", "0.7")]:
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             S0, S1 = squares(sigma, sigma1, 1, Omega)
             dd = mp_exact(d)
             conv = mpmath.quad(lambda t, a=S0, b=S1, c=dd: t / a * mpmath.exp(-t * t / (2 * a))
@@ -250,7 +252,7 @@ def test_several_components_every_want():
     """Two forcing components (the Rayleigh sum path) for p, 1 - p and both logs."""
     Oms = ["1.7", "2.2"]
     p = three_component_p("0.35", Oms, "1.2", 2 * DPS + 20)
-    with mpmath.workdps(2 * DPS + 20):
+    with mpmath.workdps(2 * DPS + 20), thread_mp().workdps(2 * DPS + 20):
         vals = {"p": p, "q": 1 - p, "logp": mpmath.log(p), "logq": mpmath.log(1 - p)}
     for want, fn in FUNCS.items():
         got = fn("0.35", Omega=Oms, d="1.2", dps=DPS)
@@ -268,7 +270,7 @@ def test_several_components_every_want():
 def test_single_mp_reaches_the_general_path_for_mpf_and_log_p_near_one():
     """mpf inputs and ``log p`` with ``p > 1/2`` (computed as ``log1p(-(1 - p))``)."""
     for sigma in ("0.9", "7", "2e4", "3e8"):
-        with mpmath.workdps(50):
+        with mpmath.workdps(50), thread_mp().workdps(50):
             s = mpmath.mpf(sigma)
         r = forcing_values(s)
         for want in ("p", "q", "logp", "logq"):
@@ -322,7 +324,7 @@ def test_sympy_irrational_inputs_keep_every_digit(dps):
     import sympy
 
     for sigma, d in [(sympy.sqrt(2) / 10, 1), (sympy.pi / 10**7, sympy.sqrt(3))]:
-        with mpmath.workdps(dps + 200):
+        with mpmath.workdps(dps + 200), thread_mp().workdps(dps + 200):
             s_mp, d_mp = mpmath.mpf(sympy.N(sigma, dps + 200)), mpmath.mpf(sympy.N(d, dps + 200))
             r = forcing_values(s_mp, None, 1, None, d_mp, dps=dps)
         for k, want in ((0, "p"), (2, "logp")):

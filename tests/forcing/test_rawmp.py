@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import symhx
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.kernels_mp import (
     estimate_float,
     mp_p_from_xy,
@@ -37,7 +38,7 @@ WANTS = ("p", "q", "logp", "logq")
 def _object_code(args, want, dps):
     """The mpf-object evaluation of kernels_mp at the fast path's working precision."""
     guard, direct_q = precision_plan(estimate_float(*args), want)
-    with mpmath.workdps(dps + guard):
+    with mpmath.workdps(dps + guard), thread_mp().workdps(dps + guard):
         x, y = mp_xy_forcing(*args)
         if want == "p":
             return mp_p_from_xy(x, y), mpmath.mp.prec
@@ -85,7 +86,7 @@ def test_fast_path_against_reference_and_object_code(pt, dps):
             continue
         done += 1
         ref = eq27_value(*pt, want, dps)
-        with mpmath.workdps(dps + 40):
+        with mpmath.workdps(dps + 40), thread_mp().workdps(dps + 40):
             err = abs(val - ref) / abs(ref)
             assert err < mpmath.mpf(10) ** -dps, (want, pt, val, ref)
             obj, prec = _object_code(args, want, dps)
@@ -116,7 +117,7 @@ def test_inputs_it_does_not_take_give_none():
     b = single_mp_fast(0.375, None, 1.0, None, 2.0, 30, "p")
     c = single_mp_fast(Fraction(3, 8), None, Fraction(1), None, Fraction(2), 30, "p")
     assert a is not None and a == b == c
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         assert abs(a / eq27_value(0.375, None, 1.0, None, 2.0, "p", 30) - 1) < mpmath.mpf(10) ** -30
 
 
@@ -134,7 +135,7 @@ def test_large_erf_arguments_keep_full_precision():
                     continue
                 ref = eq27_value(*pt, want, 60)
                 obj, prec = _object_code(args, want, 60)
-                with mpmath.workdps(120):
+                with mpmath.workdps(120), thread_mp().workdps(120):
                     assert abs(val / ref - 1) < mpmath.mpf(10) ** -60, (pt, want)
                     assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 12) * (
                         1 + abs(mpmath.log(abs(ref)))), (pt, want)
@@ -150,7 +151,7 @@ def test_sqrt_pi_at_fresh_precisions(monkeypatch):
     for dps in (23, 23, 61):
         val = single_mp_fast(*args, dps, "p")
         obj, prec = _object_code(args, "p", dps)
-        with mpmath.workdps(120):
+        with mpmath.workdps(120), thread_mp().workdps(120):
             assert abs(val / obj - 1) < mpmath.mpf(2) ** (-prec + 8), dps
             assert abs(val / eq27_value(*pt, "p", dps) - 1) < mpmath.mpf(10) ** -dps
     assert len(rawmp._SQRT_PI_CACHE) == 2
@@ -169,7 +170,7 @@ def test_erf_raw_is_within_one_ulp_of_prec():
         for uf in (0.013, 0.7, 1.9, 2.1, 3.3, 5.0, 7.5, 9.9, 12.5, 17.0, 23.0, 31.0, 60.0, *edge):
             u = lm.from_float(uf)
             got = mpmath.mp.make_mpf(_erf_raw(u, prec))  # exact, no rounding
-            with mpmath.workprec(3 * prec):
+            with mpmath.workprec(3 * prec), thread_mp().workprec(3 * prec):
                 ref = mpmath.erf(mpmath.mpf(uf))
                 assert abs(got - ref) <= mpmath.mpf(2) ** (-prec) * abs(ref), (prec, uf)
 
@@ -191,7 +192,7 @@ def test_raw_xy_and_closed_form_are_the_object_code_bit_for_bit(pt, prec):
 
     s0, s1, om, Om, d = pt
     x, y = raw_xy(_raw(s0), _raw(s0 if s1 is None else s1), _raw(om), _raw(Om), _raw(d), prec)
-    with mpmath.workprec(prec):
+    with mpmath.workprec(prec), thread_mp().workprec(prec):
         xm, ym = mp_xy_forcing(s0, s1, om, Om, d)
         assert (x, y) == (xm._mpf_, ym._mpf_)
         nuv, b, r = _raw_p_parts(x, y, prec)
@@ -230,7 +231,7 @@ def test_from_xy_raw_leaves_small_p_logs_and_deep_cancellation_to_the_caller():
     from symhx.forcing.rawmp import from_xy_raw
 
     prec = 120
-    with mpmath.workprec(prec):
+    with mpmath.workprec(prec), thread_mp().workprec(prec):
         big, tiny = mpmath.mpf(40)._mpf_, mpmath.mpf("1e-10")._mpf_
         # p ~ 2e-9 < 2**-16: log(1 - p) is log1p(-p) of the caller
         assert from_xy_raw(big, big, prec, "logq", 12, False) is None
@@ -241,7 +242,7 @@ def test_from_xy_raw_leaves_small_p_logs_and_deep_cancellation_to_the_caller():
         # 30 guard digits allow 3.3 * 26 = 85.8 bits: taken, and right to its working bits
         q = from_xy_raw(tiny, tiny, prec, "q", 30, True)
         lq = from_xy_raw(tiny, tiny, prec, "logq", 30, True)
-    with mpmath.workdps(80):
+    with mpmath.workdps(80), thread_mp().workdps(80):
         ref_q = 1 - mp_p_from_xy(mpmath.mpf("1e-10"), mpmath.mpf("1e-10"))
         assert abs(q / ref_q - 1) < mpmath.mpf(2) ** (-prec + 70)
         assert abs(lq - mpmath.log(ref_q)) < mpmath.mpf(2) ** (-prec + 70)
@@ -249,7 +250,7 @@ def test_from_xy_raw_leaves_small_p_logs_and_deep_cancellation_to_the_caller():
 
 def _units(value, ref, dps):
     """Relative error in units of ``10**-dps``."""
-    with mpmath.workdps(dps + 60):
+    with mpmath.workdps(dps + 60), thread_mp().workdps(dps + 60):
         return abs(value / ref - 1) * mpmath.mpf(10) ** dps
 
 
@@ -292,7 +293,7 @@ def test_far_tail_guard_uses_sigma1_and_Omega(pt, dps):
 def _sigma_for_q_bits(bits):
     """sigma (omega = 1, Omega**2 = 2, d = 1: x = y = 1/(4 sigma**2)) with 1 - p ~ x y / 6
     = 2**-bits."""
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         return float((mpmath.mpf(2) ** bits / 96) ** mpmath.mpf(0.25))
 
 
@@ -306,7 +307,7 @@ def test_one_minus_p_for_tiny_x_y_keeps_its_digits(bits, dps):
     sigma = _sigma_for_q_bits(bits)
     q = symhx.no_impact_probability(sigma, dps=dps)
     ref = eq27_p_or_q(sigma, None, 1.0, None, 1.0, "q", dps + 1100)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert abs(-mpmath.log(ref, 2) - bits) < 0.01  # the point is where it was aimed
     assert _units(q, ref, dps) < 1
 
@@ -347,14 +348,14 @@ def _same_roundings(raw, obj, case):
     (val, prec), (ref, prec2) = raw, obj
     assert prec == prec2
     pt, dps, want = case
-    with mpmath.workprec(80):
+    with mpmath.workprec(80), thread_mp().workprec(80):
         x, y = eq27_xy(*pt)
         r = mpmath.sqrt(x + y)
         small_erf = x / r < 2 and y / r < 2
     if small_erf:
         assert val == ref, (val, ref)
         return
-    with mpmath.workprec(prec + 60):
+    with mpmath.workprec(prec + 60), thread_mp().workprec(prec + 60):
         scale = _scale(want, eq27_value(*pt, want, dps), pt, dps)
         diff = abs(val - ref) / scale
         assert diff < mpmath.mpf(2) ** (-prec + 12) * (1 + abs(eq27_value(*pt, "logp", dps))), (

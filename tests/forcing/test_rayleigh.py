@@ -11,6 +11,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing.rayleigh import rayleigh_scales, rayleigh_sum_probability
 from tests.harness.errors import assert_refuses
@@ -28,7 +29,7 @@ def test_rayleigh_sum_methods():
     assert sf[0] == sf[1] == 1.0 and cdf[0] == cdf[1] == 0.0 and pdf[0] == 0.0
     assert np.all(np.abs(sf + cdf - 1) < 4 * EPS)
     # pdf is the derivative of the cdf (independent: central difference at 30 digits)
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         h = mpmath.mpf("1e-8")
         fd = (S.cdf(mpmath.mpf(1) + h, dps=25) - S.cdf(mpmath.mpf(1) - h, dps=25)) / (2 * h)
         assert rel_err(S.pdf(1.0, dps=20), fd) < 1e-14
@@ -36,7 +37,7 @@ def test_rayleigh_sum_methods():
     # moments: closed forms vs the sample and vs numerical integration of the sf
     assert S.mean() == pytest.approx(math.sqrt(math.pi / 2) * 1.0, rel=1e-15)
     assert S.var() == pytest.approx((2 - math.pi / 2) * 0.38, rel=1e-15)
-    with mpmath.workdps(20):
+    with mpmath.workdps(20), thread_mp().workdps(20):
         m_int = mpmath.quad(lambda t: S.sf(t, dps=15), [0, 0.5, 1, 2, 5, 12])  # sf(12)~e-190
         assert rel_err(S.mean(dps=20), m_int) < 1e-13
     r = S.rvs(size=200_000, random_state=1)
@@ -72,7 +73,7 @@ def test_rayleigh_sum_bad_x_and_dps():
 
 def test_decimal_strings_are_exact_scales():
     a = RayleighSum(["0.1", "0.2", "0.3"]).sf(0.5, dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         b = RayleighSum([mpmath.mpf(1) / 10, mpmath.mpf(2) / 10, mpmath.mpf(3) / 10]).sf(
             mpmath.mpf("0.5"), dps=30)
         assert rel_err(a, b) < 1e-29
@@ -84,7 +85,7 @@ def test_moments_and_rvs():
     assert S.mean() == math.sqrt(math.pi / 2) * 1.0
     assert abs(S.var() - (2 - math.pi / 2) * 0.38) < 4 * EPS
     assert abs(S.std() - math.sqrt((2 - math.pi / 2) * 0.38)) < 4 * EPS
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         m = mpmath.sqrt(mpmath.pi / 2) * 1
         v = (2 - mpmath.pi / 2) * (mpmath.mpf(38) / 100)
         assert abs(S.mean(dps=40) - m) < mpmath.mpf(10) ** -40
@@ -149,7 +150,7 @@ def test_moments_closed_forms_and_types():
     assert m == pytest.approx(sum(sc) * math.sqrt(math.pi / 2), rel=1e-15)
     assert v == pytest.approx((2 - math.pi / 2) * sum(s * s for s in sc), rel=1e-15)
     assert S.std() == pytest.approx(math.sqrt(v), rel=1e-15)
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         ref = mpmath.sqrt(mpmath.pi / 2) * (mpmath.mpf(0.5) + mpmath.mpf(0.3) + mpmath.mpf(0.2))
         assert abs(S.mean(dps=40) - ref) < mpmath.mpf(10) ** -40
         assert isinstance(S.std(dps=30), mpmath.mpf)
@@ -178,7 +179,7 @@ def test_small_print_of_the_functions():
 def test_one_scale_against_the_rayleigh_closed_form():
     # P(R <= x) = 1 - exp(-x**2/(2 s**2)), density x/s**2 exp(-x**2/(2 s**2)), both 0 at x <= 0
     S = RayleighSum(["0.7"])
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         s = mpmath.mpf(7) / 10
         for x in ("0.1", "1", "5"):
             xm = mpmath.mpf(x)
@@ -240,7 +241,7 @@ def test_probability_method_and_error_estimate():
     # error (mostly the rounding to 25 digits) and stays within the 25 digits asked for
     S = RayleighSum(["0.7"])
     res = S.probability("0.3", tail="lower", dps=25)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         true = -mpmath.expm1(-mpmath.mpf("0.09") / (2 * mpmath.mpf("0.49")))
         err = abs(res.value - true)
         assert err <= res.error <= mpmath.mpf(10) ** -25 * true
@@ -252,7 +253,7 @@ def test_moments_with_scales_not_summing_to_one():
     S = RayleighSum(sc)
     assert S.mean() == pytest.approx(2.75 * math.sqrt(math.pi / 2), rel=2e-16)
     assert S.var() == pytest.approx((2 - math.pi / 2) * 4.3125, rel=4e-16)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         m = mpmath.sqrt(mpmath.pi / 2) * mpmath.mpf("2.75")
         v = (2 - mpmath.pi / 2) * mpmath.mpf("4.3125")
         assert abs(S.mean(dps=30) / m - 1) < mpmath.mpf(10) ** -30
@@ -273,14 +274,14 @@ def test_mpmath_results_come_at_the_digits_asked_for():
     for tail in ("upper", "lower"):
         res = S.probability("1", tail=tail, dps=20)
         assert res.value._mpf_[3] <= prec
-        with mpmath.workdps(60):
+        with mpmath.workdps(60), thread_mp().workdps(60):
             ref = S.sf("1", dps=40) if tail == "upper" else S.cdf("1", dps=40)
             assert abs(res.value - ref) <= res.error <= mpmath.mpf(10) ** -20 * ref
     for fn in (impact_probability, no_impact_probability, log_no_impact_probability):
         for kw in ({}, {"Omega": [2, "0.5"]}):
             v = fn("0.5", d="1.3", dps=20, **kw)
             assert v._mpf_[3] <= prec, (fn.__name__, kw)
-            with mpmath.workdps(60):
+            with mpmath.workdps(60), thread_mp().workdps(60):
                 ref = fn("0.5", d="1.3", dps=40, **kw)
                 assert abs(v / ref - 1) <= mpmath.mpf(10) ** -19
 

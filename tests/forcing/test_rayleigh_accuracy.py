@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing.rayleigh import rayleigh_scales
 from tests.reference.forcing import (
@@ -76,7 +77,7 @@ def test_float64_meets_contract_and_error_estimate_is_honest(scales, d, upper, r
     tail = "upper" if upper else "lower"
     res = F.rayleigh_sum_probability(scales, d, tail=tail)
     S = RayleighSum(scales)
-    with mpmath.workdps(SPREAD_REF_DPS):
+    with mpmath.workdps(SPREAD_REF_DPS), thread_mp().workdps(SPREAD_REF_DPS):
         if not 1e-300 < ref:
             pytest.skip("below the float range")
         # condition number |d ln P/d ln d| = d pdf(d)/P, from the mpmath path
@@ -97,7 +98,7 @@ def test_mpmath_meets_dps_against_nested_quadrature(i, upper, refs):
     res = F.rayleigh_sum_probability(scales, d, tail=tail, dps=18)
     assert rel_err(res.value, ref) < 1e-18
     # its error estimate is honest too (against the 22-digit reference)
-    with mpmath.workdps(SPREAD_REF_DPS + 10):
+    with mpmath.workdps(SPREAD_REF_DPS + 10), thread_mp().workdps(SPREAD_REF_DPS + 10):
         assert res.error + mpmath.mpf(10) ** -21 * ref >= abs(res.value - ref)
 
 
@@ -114,7 +115,7 @@ def test_logs_both_tails(i, upper, refs):
     scales, d = SPREAD_CASES[i]
     ref = refs[_key(i, upper)]
     S = RayleighSum(scales)
-    with mpmath.workdps(SPREAD_REF_DPS):
+    with mpmath.workdps(SPREAD_REF_DPS), thread_mp().workdps(SPREAD_REF_DPS):
         # near 1, log(ref) keeps only absolute accuracy: use the other tail
         lref = mpmath.log(ref) if ref < 0.5 else mpmath.log1p(-refs[_key(i, not upper)])
         fn = S.logsf if upper else S.logcdf
@@ -169,7 +170,7 @@ def test_float64_three_kinds_and_error_estimate(scales, x):
         r, ro = refs[main], refs[other]
         if not r > 1e-300:
             continue
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             lr = mpmath.log(r) if r <= 0.5 else mpmath.log1p(-ro)
         v = fn(x)
         assert abs(v - float(lr)) <= 1e-13 * abs(float(lr)) + 8 * EPS * (n + abs(float(lr))), (
@@ -188,14 +189,14 @@ def test_mpmath_meets_dps(scales, x):
     for k in ("sf", "cdf", "pdf"):
         v = getattr(S, k)(x, dps=20)
         assert rel_err(v, refs[k]) < 1e-20, (k, scales, x)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         lsf = mpmath.log(refs["sf"]) if refs["sf"] <= 0.5 else mpmath.log1p(-refs["cdf"])
         lcdf = mpmath.log(refs["cdf"]) if refs["cdf"] <= 0.5 else mpmath.log1p(-refs["sf"])
     assert rel_err(S.logsf(x, dps=20), lsf) < 1e-20
     assert rel_err(S.logcdf(x, dps=20), lcdf) < 1e-20
     for tail, kind in (("upper", "sf"), ("lower", "cdf")):
         res = S.probability(x, tail=tail, dps=20)
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             true = abs(res.value - refs[kind])
             assert res.error + mpmath.mpf(10) ** -(RAYLEIGH_REF_DPS - 1) * refs[kind] >= true
             assert res.error <= mpmath.mpf(10) ** -20 * abs(refs[kind])
@@ -284,7 +285,7 @@ def test_several_components_mpmath_converges_with_dps():
 def test_three_scales_against_own_quadrature(x):
     """sf, cdf, log sf at moderate E (up to ~65): mpmath at 25 digits and float64."""
     s = ("0.5", "0.3", "0.2")
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         a, b = three_scale_sf_gl(x, s, 20), three_scale_sf_gl(x, s, 28)
         assert rel_err(a, b) < 1e-32
         S = RayleighSum(list(s))
@@ -310,7 +311,7 @@ def test_mp_cdf_and_sf_are_two_integrands_summing_to_one(scales, x):
     S = RayleighSum(scales)
     cdf, sf = S.cdf(x, dps=30), S.sf(x, dps=30)
     assert 1e-12 < cdf < 0.45
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         assert abs(cdf + sf - 1) < mpmath.mpf(10) ** -30
 
 
@@ -318,7 +319,7 @@ def test_mp_five_scales_cdf_and_sf_sum_to_one():
     S = RayleighSum(["1", "0.9", "0.5", "0.3", "0.2"])
     cdf, sf = S.cdf("1", dps=12), S.sf("1", dps=12)
     assert 1e-4 < cdf < 1e-3
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert abs(cdf + sf - 1) < mpmath.mpf(10) ** -12
 
 
@@ -328,10 +329,10 @@ def test_mp_cdf_is_scale_invariant_beyond_the_float_range():
     small = RayleighSum(["1e-200", "2e-200", "3e-200"]).cdf("1e-203", dps=25)
     unit = RayleighSum(["1", "2", "3"]).cdf("0.001", dps=25)
     assert 1e-24 < unit < 1e-22
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         assert abs(small / unit - 1) < mpmath.mpf(10) ** -25
     big = RayleighSum(["1e200", "2e200", "3e200"]).sf("1e201", dps=25)
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         assert abs(big / RayleighSum(["1", "2", "3"]).sf("10", dps=25) - 1) < mpmath.mpf(10) ** -25
 
 

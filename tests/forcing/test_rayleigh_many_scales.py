@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import symhx
+from symhx._mpctx import mp as thread_mp
 from symhx.cli import main as cli_main
 from symhx.forcing import MAX_SCALES
 from tests.harness.errors import assert_refuses
@@ -32,7 +33,7 @@ def sandwich(big, small, x, dps=40):
     ``R_big <= S <= R_big + T`` with ``P(sum R_small > t) <= sum P(R_j > t/M)`` gives
     ``sf_1(x) <= sf(x) <= sf_1(x - t) + eps`` with ``t = 1e10 max(small)`` (the chosen slack),
     ``eps = M exp(-(t/M)**2/(2 max(small)**2))``. Returns ``(lo, hi)`` of sf."""
-    with mpmath.workdps(dps):
+    with mpmath.workdps(dps), thread_mp().workdps(dps):
         b = mpmath.mpf(big)
         m = len(small)
         smax = max(mpmath.mpf(s) for s in small)
@@ -60,7 +61,7 @@ def test_negligible_scale_gives_the_dominant_rayleigh_in_every_method(scales, x)
     assert rel_err(hi, lo) < 1e-60
     S = RayleighSum(scales)
     sf, cdf, pdf = S.sf(x), S.cdf(x), S.pdf(x)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         xm, bm = mpmath.mpf(x), mpmath.mpf(big)
         ref_cdf = -mpmath.expm1(-xm * xm / (2 * bm * bm))
         ref_pdf = xm / bm**2 * mpmath.exp(-xm * xm / (2 * bm * bm))
@@ -95,7 +96,7 @@ def test_negligible_scale_at_dps_agrees_with_the_sandwich(scales, kind):
     """dps=20: the value is Rayleigh(1)'s to 20 digits (the negligible scales shift it by
     ~1e-100 relative), and float64 agrees with the dps value to a few ulps."""
     lo, _ = sandwich(1, scales[1:], 1, dps=50)
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         ref = {"sf": lo, "cdf": 1 - lo, "pdf": lo, "logsf": mpmath.log(lo),
                "logcdf": mpmath.log(1 - lo)}[kind]
     S = RayleighSum(scales)

@@ -10,6 +10,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing import rayleigh as ray
 from symhx.forcing.kernels_mp import MAX_EXPONENT
@@ -44,7 +45,7 @@ def test_the_tail_integrated_keeps_both_tails_accurate(scales, x):
     other is ``1 -`` it: both tails (and both logs) at 20 digits agree with 40 digits to 20
     digits on both sides of the median, at scales near and beyond the float64 range."""
     S = RayleighSum(scales)
-    with mpmath.workdps(20):
+    with mpmath.workdps(20), thread_mp().workdps(20):
         capped = x > 0 and mpmath.mpf(x) ** 2 / (2 * mpmath.fsum(mpmath.mpf(s) ** 2
                                                                  for s in scales)) > MAX_EXPONENT
     for kind in ("sf", "cdf", "logsf", "logcdf"):
@@ -52,7 +53,7 @@ def test_the_tail_integrated_keeps_both_tails_accurate(scales, x):
             assert_refuses(getattr(S, kind), x, dps=20, arg="x", allowed="MAX_EXPONENT")
             continue
         lo, hi = getattr(S, kind)(x, dps=20), getattr(S, kind)(x, dps=40)
-        with mpmath.workdps(60):
+        with mpmath.workdps(60), thread_mp().workdps(60):
             if hi == 0 or mpmath.isinf(hi):
                 assert lo == hi, (kind, lo, hi)
             else:
@@ -140,7 +141,7 @@ def test_sum_at_zero_is_the_limit(kind, want):
     from fractions import Fraction
 
     scales = [Fraction(s) for s in ("0.5", "0.3", "0.2")]
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         assert ray._mp_sum(scales, Fraction(0), kind, 20) == (want, 0)
         assert ray._mp_sum(scales, Fraction(0), "cdf", 20) == (0, 0)
     assert ray._float_eval([0.5, 0.3, 0.2], np.array([0.0]), kind)[0][0] == want
@@ -168,7 +169,7 @@ def test_the_order_and_repetition_of_the_scales_does_not_matter():
 @pytest.mark.parametrize("t", ["0", "-0.25"])
 def test_mp_group_functions_at_and_below_zero(scales, t):
     """A group (one Rayleigh or a pair) is >= 0: cdf 0, density 0 (also scaled), tail 1."""
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         g = ray._MGroup([mpmath.mpf(s) for s in scales])
         tm = mpmath.mpf(t)
         assert g.cdf(tm) == 0 and g.pdf(tm) == 0 and g.mpdf(tm) == 0 and g.msf(tm) == 1

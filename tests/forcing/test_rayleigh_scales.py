@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.rayleigh import rayleigh_scales, scales_of
 from tests.harness.errors import assert_refuses
 from tests.reference.mp import rel_err
@@ -25,7 +26,7 @@ def test_rayleigh_scales_and_groups():
     want = [0.5, 0.25 / 2.0, 0.1 / 6.75]
     assert all(abs(g / (math.sqrt(2) * w) - 1) < 2 * EPS for g, w in zip(got, want, strict=True))
     got = rayleigh_scales("0.5", sigma1=["0.25", "0.1"], omega="1.5", Omega=["0.5", 3], dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         for g, w in zip(got, ("0.5", "0.125", "0.1/6.75"), strict=True):
             wv = mpmath.sqrt(2) * (mpmath.mpf(0.1) / mpmath.mpf(6.75) if "/" in w else
                                    mpmath.mpf(w))
@@ -34,7 +35,7 @@ def test_rayleigh_scales_and_groups():
             assert abs(g / wv - 1) < mpmath.mpf(10) ** -29
     assert [round(s, 12) for s in rayleigh_scales(0.5)] == [0.707106781187] * 2
     two = rayleigh_scales(0.5, omega=2, dps=25)  # Omega^2 = 2 exactly: |4 - 2| = 2
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         assert abs(two[1] - mpmath.sqrt(2) / 4) < mpmath.mpf(10) ** -25
     assert rayleigh_scales(0.5, sigma1=0.1, Omega=[3, 2])[1:] == pytest.approx(
         [math.sqrt(2) * 0.1 / 8, math.sqrt(2) * 0.1 / 3], rel=4 * EPS)
@@ -52,7 +53,7 @@ def test_rayleigh_scales_and_groups():
         rayleigh_scales(0.5, sigma1=[0.1])
     fp = F.ForcingParams.validated("0.5", None, 1, [3, 2], dps=20)
     sc = scales_of(fp, 30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert abs(sc[2] - mpmath.sqrt(2) * mpmath.mpf(1) / 2 / 3) < mpmath.mpf(10) ** -29
 
 
@@ -64,7 +65,7 @@ def test_forced_scales_at_tiny_and_huge_frequencies():
     ref = F.rayleigh_scales(0.5, sigma1=1e-300, omega=1e-160, Omega=2e-160, dps=30)
     assert all(rel_err(g, r) < 1e-15 for g, r in zip(got, ref, strict=True))
     assert F.rayleigh_scales(0.5, omega=1e-200, Omega=1e-199)[1] == math.inf
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         s = F.rayleigh_scales(0.5, omega=1e-200, Omega=1e-199, dps=30)[1]
         assert rel_err(s, mpmath.sqrt(2) * mpmath.mpf(0.5) / (mpmath.mpf(1e-199) ** 2
                                                           - mpmath.mpf(1e-200) ** 2)) < 1e-28

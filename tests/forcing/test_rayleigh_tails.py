@@ -20,6 +20,7 @@ import pytest
 import sympy
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing.kernels_mp import MAX_EXPONENT
 from tests.harness.errors import assert_refuses
@@ -57,7 +58,7 @@ def test_negligible_scale_bracket_mpmath(x):
     s3 = mpmath.mpf("1e-60")
     S = RayleighSum(["0.7", "0.4", "1e-60"])
     got = S.logsf(x, dps=50)
-    with mpmath.workdps(80):
+    with mpmath.workdps(80), thread_mp().workdps(80):
         lo = log_pair_sf(x, "0.7", "0.4")
         hi = log_pair_sf(x - 40 * s3, "0.7", "0.4")  # + P(R3 > a) = e^-800: below 1e-300 of it
         slack = abs(lo) * mpmath.mpf(10) ** -49
@@ -69,7 +70,7 @@ def test_negligible_scale_bracket_float(x):
     """The float64 log sf (E up to ~7e8) inside the bracket (relative width ~1e-16)."""
     S = RayleighSum([0.7, 0.4, 1e-15])
     got = S.logsf(x)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         lo = log_pair_sf(x, 0.7, 0.4)
         hi = log_pair_sf(mpmath.mpf(x) - 40 * mpmath.mpf(1e-15), 0.7, 0.4)
         slack = abs(lo) * mpmath.mpf(1e-14)
@@ -82,7 +83,7 @@ def test_laplace_error_shrinks_like_one_over_E():
     constant (the next order is O(1/E)), from E = 1e2 to 1e5."""
     scales = ["0.5", "0.3", "0.2"]
     S = RayleighSum(scales)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         v = mpmath.mpf("0.38")
         prods = []
         for e in (100, 1000, 10000, 100000):
@@ -113,7 +114,7 @@ def test_mpmath_large_E_converges_at_60_digits():
     got = F.log_impact_probability("1e-4", Omega=["1.7", "2.2"], d="1", dps=60)
     lo = F.log_impact_probability("1e-4", Omega=["1.7", "2.2"], d="1", dps=30)
     assert rel_err(got, lo) < 1e-29
-    with mpmath.workdps(80):
+    with mpmath.workdps(80), thread_mp().workdps(80):
         lap = laplace_logsf(forcing_scales("1e-4", ["1.7", "2.2"], 80), 1)
         e = -lap
         assert abs(got - lap) < 10 / e
@@ -123,11 +124,11 @@ def test_scales_carry_digits_for_huge_E():
     """p = exp(-E) with E ~ 1.9e29 at 20 digits: the Laplace term is exact to ~1e-29 there, and
     scales with only dps + 15 digits would leave a relative error ~E 1e-35 ~ 1e-5."""
     got = F.impact_probability("1e-15", Omega=["1.7", "2.2"], d="1", dps=20)
-    with mpmath.workdps(90):
+    with mpmath.workdps(90), thread_mp().workdps(90):
         ref = mpmath.exp(laplace_logsf(forcing_scales("1e-15", ["1.7", "2.2"], 90), 1))
         assert rel_err(got, ref, 90) < 1e-19
     lg = F.log_impact_probability("1e-15", Omega=["1.7", "2.2"], d="1", dps=20)
-    with mpmath.workdps(90):
+    with mpmath.workdps(90), thread_mp().workdps(90):
         assert rel_err(lg, mpmath.log(ref), 90) < 1e-19
 
 
@@ -137,7 +138,7 @@ def test_cap_and_uncapped_log():
     with pytest.raises(ValueError, match="MAX_EXPONENT"):
         F.impact_probability("1e-160", Omega=["1.7", "2.2"], d="1", dps=20)
     got = F.log_impact_probability("1e-160", Omega=["1.7", "2.2"], d="1", dps=20)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         ref = laplace_logsf(forcing_scales("1e-160", ["1.7", "2.2"], 40), 1)
         assert rel_err(got, ref) < 1e-19
 
@@ -151,7 +152,8 @@ def test_direct_methods_tails_and_arrays():
     got = {k: getattr(S, k)(xs) for k in ("sf", "cdf", "logsf", "logcdf")}
     for idx in np.ndindex(xs.shape):
         x = float(xs[idx])
-        with mpmath.workdps(40):  # the small one of sf, cdf at 32 digits, the other by 1 - it
+        # the small one of sf, cdf at 32 digits, the other by 1 - it
+        with mpmath.workdps(40), thread_mp().workdps(40):
             if x <= 1:
                 cdf = S.cdf(x, dps=32)
                 sf, lsf, lcdf = 1 - cdf, mpmath.log1p(-cdf), mpmath.log(cdf)
@@ -180,21 +182,21 @@ def test_float_scales_spread_far_apart():
     it (x min(s) < 1e5 V) a value too (it used to be refused): the bracket again."""
     two = RayleighSum([1.0, 1e-25])
     for x in (10.0, 1e3, 1e20, 1e31):
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             assert rel_err(two.logsf(x), log_pair_sf(x, 1.0, 1e-25)) < 1e-15, x
     three = RayleighSum([1.0, 0.5, 1e-25])
     for x in (10.0, 1e3, 1e5):
-        with mpmath.workdps(40):
+        with mpmath.workdps(40), thread_mp().workdps(40):
             lo = log_pair_sf(x, 1.0, 0.5)
             hi = log_pair_sf(mpmath.mpf(x) - 40 * mpmath.mpf(1e-25), 1.0, 0.5)
             assert lo - abs(lo) * 1e-14 <= three.logsf(x) <= hi + abs(lo) * 1e-14, x
     # x min(s) = 1e6 V: the Laplace regime (the third scale moves log P by O(10) of 4e61)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert rel_err(three.logsf(1e31), log_pair_sf(mpmath.mpf(1e31), 1.0, 0.5)) < 1e-15
     assert three.sf(1e31) == 0.0 and three.cdf(1e31) == 1.0
     # beyond x max(s) = 1e30 but short of the Laplace regime: the bracket (relative width
     # 40e-30 x / V ~ 1e-58, far below an ulp)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         got = RayleighSum([1.0, 0.5, 1e-30]).logsf(1e31)
         assert rel_err(got, log_pair_sf(mpmath.mpf(1e31), 1.0, 0.5)) < 1e-15
 
@@ -220,7 +222,7 @@ def test_far_tail_density_is_minus_the_derivative_of_sf():
     """The scaled density (its own quadrature) against a central difference of the scaled sf at
     E ~ 1.2e3 (both mpmath); the float64 density against the mpmath one at E ~ 5e2."""
     S = RayleighSum(["0.5", "0.3", "0.2"])
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         x, h = mpmath.mpf(30), mpmath.mpf("1e-12")
         fd = (S.sf(x - h, dps=32) - S.sf(x + h, dps=32)) / (2 * h)
         pdf = S.pdf(x, dps=20)
@@ -255,7 +257,7 @@ def test_float64_routes_at_extreme_magnitudes(c):
             ref = getattr(S, kind)(mpmath.mpf(x), dps=25)
             assert rel_err(got, ref) < 1e-13, (kind, u)
             assert rel_err(got, getattr(base, kind)(u)) < 1e-13, (kind, u)
-        with mpmath.workdps(30):
+        with mpmath.workdps(30), thread_mp().workdps(30):
             assert rel_err(S.pdf(x), S.pdf(mpmath.mpf(x), dps=25)) < 1e-13
             assert rel_err(S.pdf(x) * c, base.pdf(u)) < 1e-13
     res = S.probability(5 * c)
@@ -274,7 +276,7 @@ def test_laplace_log_tail_every_term(scales):
         x = K * V / min(scales)
         got = S.logsf(x)
         ref = S.logsf(mpmath.mpf(x), dps=20)
-        with mpmath.workdps(30):
+        with mpmath.workdps(30), thread_mp().workdps(30):
             assert abs(got - ref) <= 4 * math.ulp(got), (K, float(got - ref))
 
 
@@ -284,7 +286,7 @@ def test_multi_component_p_far_out_keeps_its_digits():
     off by ~4e-18.  Reference: dps = 40 (there the guard digits alone would suffice)."""
     a = F.impact_probability(1, Omega=[1.7, 2.2], d="1e9", dps=20)
     b = F.impact_probability(1, Omega=[1.7, 2.2], d="1e9", dps=40)
-    with mpmath.workdps(50):
+    with mpmath.workdps(50), thread_mp().workdps(50):
         assert abs(a / b - 1) < mpmath.mpf(10) ** -20
 
 
@@ -300,7 +302,7 @@ def test_edges_far_tail_and_arrays():
     assert isinstance(S.sf(1.0), float) and isinstance(S.logsf([1.0]), np.ndarray)
     assert S.logsf(-1.0) == 0.0 and S.logcdf(0.0) == -math.inf
     # sf underflows at 1e4 but log sf is finite (the mpmath path, 30 digits, is the reference)
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         assert abs(S.logsf(1e4) / S.logsf(1e4, dps=30) - 1) < 1e-14 and S.logcdf(1e4) == 0.0
     for k in ("sf", "cdf", "pdf"):
         res = S.probability(1e4, tail="upper" if k == "sf" else "lower")
@@ -316,12 +318,12 @@ def test_edges_far_tail_and_arrays():
     assert rel_err(out[0, 0], rayleigh_sum_value((0.5, 0.3, 0.2), 0.4, "sf")) < 1e-20
     # far upper tail in mpmath: E = x^2/(2 sum s^2) ~ 1e6 needs its extra digits
     p = S.sf(300, dps=20)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         c = mpmath.mpf(0.5)
         assert 0 < p < mpmath.exp(-300**2 / (2 * 3 * c * c)) * 1e10
     sympy = pytest.importorskip("sympy")
     v = S.sf(sympy.sqrt(2) / 2, dps=20)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         h = mpmath.sqrt(2) / 2
     w = S.sf(h, dps=20)
     assert rel_err(v, w) < 1e-19
@@ -335,13 +337,13 @@ def test_log_cdf_leading_power_takes_logs_of_ratios():
     S = RayleighSum([1e-314, 2e-314, 3e-314])
     got = S.logcdf(5e-324)
     ref = S.logcdf(mpmath.mpf(5e-324), dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert abs(got / ref - 1) < 4e-16
     # a ratio below 1e-300 (x / 1e10): log x - log s, still to a few ulp of each log
     S2 = RayleighSum([1e10, 2e10, 3e10])
     got = S2.logcdf(5e-300)
     ref = S2.logcdf(mpmath.mpf(5e-300), dps=30)
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert abs(got / ref - 1) < 1e-15
 
 
@@ -365,7 +367,7 @@ def test_mp_lower_tail_is_the_leading_power(scales):
     fr = [Fraction(s) for s in scales]
     x = min(fr) / 10**17
     got = RayleighSum(scales).cdf(x, dps=30)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         ref = _mpf(x) ** (2 * n) / mpmath.factorial(2 * n)
         for s in fr:
             ref /= _mpf(s) ** 2
@@ -377,7 +379,7 @@ def test_probability_keeps_its_digits_far_in_the_tail():
     S = RayleighSum(["1", "1", "1"])
     x = "2449489.742783178"
     res = S.probability(x, dps=20)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         ref = mpmath.exp(S.logsf(x, dps=45))
         assert abs(res.value / ref - 1) < mpmath.mpf(10) ** -20
 
@@ -388,7 +390,7 @@ def test_a_sympy_threshold_gets_its_guard_digits():
     S = RayleighSum([1, 1, 1])
     x = sympy.sqrt(2) * 10**9
     got = S.sf(x, dps=20)
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         ref = mpmath.exp(S.logsf(x, dps=60))
         assert abs(got / ref - 1) < mpmath.mpf(10) ** -20
 
@@ -422,7 +424,7 @@ def test_mp_logsf_far_below_the_median_keeps_its_relative_accuracy():
 def test_exponent_cap_error_quotes_E_to_three_digits():
     S = RayleighSum(["0.5", "0.3", "0.2"])
     x = 10**155
-    with mpmath.workprec(53):
+    with mpmath.workprec(53), thread_mp().workprec(53):
         e = mpmath.mpf(x) ** 2 / (2 * mpmath.mpf("0.38"))
     assert e > MAX_EXPONENT
     with pytest.raises(ValueError) as info:

@@ -10,6 +10,7 @@ import pytest
 
 import symhx
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from tests.harness.errors import assert_refuses
 from tests.reference.forcing import forcing_values
 from tests.reference.mp import rel_err
@@ -56,13 +57,13 @@ def test_theory_curve_is_the_composition_with_reference_p():
     for idx in np.ndindex(sig.shape):
         p = forcing_values(float(sig[idx]), None, 1, "1.6", "1.1", 25)[0]
         assert rel_err(tc.p[idx], p) < 1e-15
-        with mpmath.workdps(25):
+        with mpmath.workdps(25), thread_mp().workdps(25):
             p25 = +p
         assert rel_err(tc.mean[idx], symhx.mean(41, p25, dps=25)) < 1e-15
         assert tc.mode[idx] == symhx.mode(41, p25)
     tc = F.theory_curve(0.2, N=11, sigma1=0.25, space="eq41")
     p = forcing_values(0.2, 0.25, dps=30)[0]
-    with mpmath.workdps(30):
+    with mpmath.workdps(30), thread_mp().workdps(30):
         p30 = +p
     assert tc.p.shape == (1,) and rel_err(tc.p[0], p) < 1e-15
     assert rel_err(tc.mean[0], symhx.mean(11, p30, space="eq41", dps=30)) < 1e-15

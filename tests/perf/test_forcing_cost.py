@@ -13,6 +13,7 @@ import mpmath
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing import probability as P
 from tests.reference.forcing import forcing_values, sigma_root
@@ -95,7 +96,7 @@ def test_cost_of_planning_mpf_inputs_in_float_range_is_a_float_estimate(monkeypa
     def boom(*args):
         raise AssertionError("mpf estimate used for inputs in the float range")
 
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         args = (mpmath.mpf("0.3"), mpmath.mpf("0.2"), mpmath.mpf("1.1"), mpmath.mpf("1.7"),
                 mpmath.mpf("0.9"))
     monkeypatch.setattr(P, "estimate", boom)
@@ -139,7 +140,7 @@ def test_cost_of_the_far_upper_cdf_is_one_upper_tail_inversion(monkeypatch):
     S = RayleighSum(["0.5", "0.3", "0.2"])
     far = S.cdf("4", dps=20)
     assert calls == ["sf"]
-    with mpmath.workdps(40):
+    with mpmath.workdps(40), thread_mp().workdps(40):
         assert abs(far - (1 - S.sf("4", dps=30))) < mpmath.mpf(10) ** -20
     calls.clear()
     S.cdf("0.5", dps=20)
