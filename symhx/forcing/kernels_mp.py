@@ -10,6 +10,7 @@ import sys
 
 import mpmath
 
+from symhx._mpctx import local
 from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import mp_arg
 from symhx.forcing.kernels_float import SQRT_PI
@@ -30,6 +31,7 @@ __all__ = [
 
 def _uv_b_over_r(x: mpmath.mpf, y: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
     """``(u v, b / r)`` with ``p = exp(-u v) b / r``: the closed form's positive terms."""
+    x, y = local(x), local(y)   # any context's mpf: this thread's arithmetic
     r = thread_mp().sqrt(x + y)
     u = x / r
     v = y / r
@@ -50,6 +52,7 @@ def mp_q_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
     the result is checked a posteriori and recomputed if more digits cancelled than planned.
     """
     prec = thread_mp().prec
+    x, y = local(x), local(y)
     p = mp_p_from_xy(x, y)
     if p <= 0.5:
         return 1 - p
@@ -161,6 +164,7 @@ def precision_plan(est: tuple[float, float, float], want: str) -> tuple[int, boo
 # ---- mpmath groups
 def mp_i2(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
     """``int_{-v}^{u} (v+z)(u-z) exp(-z**2) dz`` in closed form, extra digits for cancellation."""
+    u, v = local(u), local(v)
     r = u + v
     extra = 10 + (int(-thread_mp().log10(r**2 / 3)) if r < 1 else 0)
     with thread_mp().workdps(thread_mp().dps + extra):
@@ -172,6 +176,7 @@ def mp_i2(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
 
 def mp_i3(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
     """``int_{-v}^{u} (v+z)**2 (u-z) exp(-z**2) dz`` (closed form, extra digits as it cancels)."""
+    u, v = local(u), local(v)
     r = u + v
     extra = 10 + (int(-thread_mp().log10(r**4 / 12)) if r < 1 else 0)
     with thread_mp().workdps(thread_mp().dps + extra):
