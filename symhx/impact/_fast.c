@@ -412,8 +412,9 @@ static void gap_poly(const Eng *E, int i, double *out) {
 }
 
 /* ------------------------------------------------------------------ event queue
- * An indexed binary min-heap of the sites keyed by (next event time, site): the earliest event,
- * exact ties to the smallest site (the order of the reference engine's linear scan).  Only the
+ * An indexed binary min-heap of the sites keyed by (next event time, stuck, site): the earliest
+ * event; at one instant the free gaps (impacts) before the stuck ones (releases), then the
+ * smallest site (the key of the reference engine's linear scan, engine.Engine.run).  Only the
  * re-searched sites move in it: O(log n) per event instead of a scan of all n + 1 sites. */
 static inline int hless(const Eng *E, int a, int b) {
     double ta = E->nt[a], tb = E->nt[b];

@@ -120,7 +120,7 @@ class Outcome(IntEnum):
     NOW = 4     #: at contact and approaching at the start time
 
 
-# private aliases (older names, still imported by symhx.impact.ensemble)
+# short aliases of the outcomes for this module's search and run loop
 _NONE, _CONT, _ROOT, _GRAZE, _NOW = (Outcome.NONE, Outcome.CONT, Outcome.ROOT, Outcome.GRAZE,
                                      Outcome.NOW)
 _TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
@@ -325,9 +325,9 @@ EVENT_DTYPE = np.dtype({"names": ["t", "site", "kind", "u0", "u1", "aux"],
 
 
 class EventLog:
-    """The typed record of one run, filled by either engine through :meth:`add_event`,
-    :meth:`add_update` (one at a time, the Python engines) or :meth:`extend` (the arrays of the C
-    engine, kept as they are: no per-event Python work).
+    """The typed record of one run, filled by either engine: through :meth:`add_event` and
+    :meth:`add_update` (one at a time, the Python engines) or built by :meth:`from_buffers` (the
+    buffers of the C engine, kept as they are: no per-event Python work).
 
     :meth:`event_arrays` gives ``times, sites, kinds, u_before, u_after, aux`` (one entry per
     event; ``kinds`` are :class:`EventKind` values); :meth:`updates` gives, per pipe ``j``, the
