@@ -88,6 +88,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from symhx._mpctx import export, is_mpf, mp
 from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 from symhx.validation import check_dps
 
@@ -162,8 +163,10 @@ def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
     dps = check_dps(dps, allow_none=True)
     if dps is None:
         return row.omega * row.d * V_STICK_FLOAT64
-    with mpmath.workdps(20):
-        return mpmath.mpf(row.omega) * row.d * mpmath.power(10, -mpmath.mpf(dps) / 2 - 1)
+    ctx = mp()   # this thread's context: nothing depends on mpmath's global precision
+    with ctx.workdps(20):
+        v = ctx.mpf(row.omega) * row.d * ctx.power(10, -ctx.mpf(dps) / 2 - 1)
+    return export(v)
 
 
 def _cos_sin(x: float) -> tuple[float, float]:
@@ -223,24 +226,41 @@ class FloatContext:
 
 
 class MPContext:
-    """mpmath arithmetic at the current precision (create and use inside ``workdps``); ``num``
-    rounds an exact value (``Fraction``, :data:`~symhx.impact.SQRT2`, ...) correctly."""
+    """mpmath arithmetic in the calling thread's own context (``symhx._mpctx.mp()``), never in
+    mpmath's global one: threads with different precisions do not see each other's.
+
+    Create it in the thread that uses it and compute inside its :meth:`workdps` (the working
+    precision of everything it makes, :attr:`eps` included); ``num`` rounds an exact value
+    (``Fraction``, :data:`~symhx.impact.SQRT2`, ...) correctly at that precision.  Its numbers
+    belong to this thread: pass them through ``symhx._mpctx.export`` before they leave it
+    (:func:`symhx.impact.simulate` does).
+
+    >>> from symhx.impact import SQRT2
+    >>> mc = MPContext()
+    >>> with mc.workdps(30):
+    ...     print(mc.num(SQRT2), mc.eps == mc.num(2) ** -mc.mp.prec)
+    1.41421356237309504880168872421 True
+    """
 
     is_mp = True
 
-    def __init__(self) -> None:  # call inside workdps
-        self.eps = mpmath.mpf(2) ** (-mpmath.mp.prec)
-        self.inf = mpmath.inf
+    def __init__(self) -> None:
+        ctx = self.mp = mp()
+        self.inf = ctx.inf
+        self.cos = ctx.cos
+        self.sin = ctx.sin
+        self.sqrt = ctx.sqrt
+        self.cos_sin = ctx.cos_sin
+        self.workdps = ctx.workdps
+        self.workprec = ctx.workprec
 
-    @staticmethod
-    def num(x: Any) -> mpmath.mpf:
-        return exact_to_mpf(x)
+    @property
+    def eps(self) -> Any:
+        """``2**-prec`` at the context's current precision."""
+        return self.mp.ldexp(self.mp.mpf(1), -self.mp.prec)
 
-    cos = staticmethod(mpmath.cos)
-    sin = staticmethod(mpmath.sin)
-    sqrt = staticmethod(mpmath.sqrt)
-    cos_sin = staticmethod(mpmath.cos_sin)
-
+    def num(self, x: Any) -> Any:
+        return exact_to_mpf(x, self.mp)
 
 
 
@@ -264,7 +284,7 @@ class RowArrays:
 def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     """Closed-form arrays of ``row`` in the arithmetic ``ctx`` (float64 arrays for
     :class:`FloatContext`; object arrays of mpf from the row's *exact* inputs for
-    :class:`MPContext`, inside the caller's ``workdps``).
+    :class:`MPContext`, inside its ``workdps``).
 
     Both engines use it: the float64 arrays are bit-identical whatever engine asks.
 
@@ -394,6 +414,19 @@ class EventLog:
         return (np.array(cols[0], dtype=dtype), np.array(cols[1], dtype=np.int64),
                 np.array(cols[2], dtype=np.int8), np.array(cols[3], dtype=dtype),
                 np.array(cols[4], dtype=dtype), np.array(cols[5], dtype=dtype))
+
+    def exported(self) -> EventLog:
+        """This log with every mpf turned into mpmath's global type, bit for bit
+        (``symhx._mpctx.export``): the record of a run of the mpmath engine, made in one thread's
+        own context, safe to keep and to read in any thread.  Float logs come back as they are.
+        """
+        if self._ev_arr is not None or not is_mpf(self._coef0_rows()[0][0]):
+            return self   # a float log (the C or the Python float64 engine)
+        out = EventLog(export([list(c) for c in self._coef0_rows()]))
+        out._events = [export(e) for e in self._events]
+        if self._upd_t is not None:
+            out._upd_t, out._upd_c = export(self._upd_t), export(self._upd_c)
+        return out
 
     def updates(self) -> tuple[list[list[Any]], list[Any]]:
         """``(upd_t, upd_c)``: per pipe ``j = 0..n+1`` the start times and coefficient vectors

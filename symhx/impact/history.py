@@ -2,19 +2,28 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 from bisect import bisect_right
 from dataclasses import dataclass, field
 from typing import Any
 
-import mpmath
 import numpy as np
 
+from symhx._mpctx import export, local, mp
 from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventLog
-from symhx.impact.model import PipeRow
+from symhx.impact.model import PipeRow, exact_to_mpf
 from symhx.validation import check_array, to_rational
 
 __all__ = ["GRAZE", "IMPACT", "RELEASE", "STICK", "History"]
+
+
+def _exported(a: np.ndarray) -> np.ndarray:
+    """An object array of mpf as mpmath's global type (bit for bit)."""
+    out = np.empty(a.shape, dtype=object)
+    for idx in np.ndindex(*a.shape):
+        out[idx] = export(a[idx])
+    return out
 
 
 @dataclass(eq=False)
@@ -87,14 +96,31 @@ class History:
                 x += a * cs + b * sn
                 v += f * (b * cs - a * sn)
             return float(x), float(v)
-        x = c[0]
-        v = mpmath.mpf(0)
+        ctx = mp()   # this thread's context, at the history's working precision (see state)
+        x = local(c[0])
+        v = ctx.zero
         for m, f in enumerate(F):
-            cs, sn = mpmath.cos_sin(f * t)
-            a, b = c[1 + 2 * m], c[2 + 2 * m]
+            f = local(f)
+            cs, sn = ctx.cos_sin(f * t)
+            a, b = local(c[1 + 2 * m]), local(c[2 + 2 * m])
             x += a * cs + b * sn
             v += f * (b * cs - a * sn)
         return x, v
+
+    def pieces(self) -> tuple[list[list[Any]], list[Any]]:
+        """The closed-form motion between the events: ``(starts, coefs)`` where, for each body
+        ``j = 0..n + 1`` (``0`` and ``n + 1`` are the walls), ``starts[j]`` lists the times from
+        which it follows each coefficient vector ``coefs[j][k] = [c0, a_0, b_0, a_1, b_1, ...]``
+        (``x_j(t) = c0 + sum_m a_m cos(F_m t) + b_m sin(F_m t)``, ``F = (omega, Omega_1, ...)``,
+        absolute time; the first piece starts at ``t = 0``).
+
+        >>> from symhx.impact import PipeRow, simulate
+        >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
+        >>> starts, coefs = simulate(row, 1.0).pieces()
+        >>> len(starts[1]), [float(c) for c in coefs[1][0][:3]]   # one impact: two pieces
+        (2, [1.0, 0.0, 2.0])
+        """
+        return self._log.updates()
 
     def state(self, t: Any) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities of pipes ``1..n`` at time ``t`` (after any event at ``t``).
@@ -113,9 +139,11 @@ class History:
         if end is None or not 0 <= fr <= end:
             raise ValueError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
         if self._wdps is not None:
-            with mpmath.workdps(self._wdps):
-                t = mpmath.mpf(fr.numerator) / fr.denominator
-                return self._state(t, object)
+            ctx = mp()   # this thread's own context: safe next to other threads
+            with ctx.workdps(self._wdps):
+                t = ctx.mpf(fr.numerator) / fr.denominator
+                xs, vs = self._state(t, object)
+            return _exported(xs), _exported(vs)
         return self._state(float(t), float)
 
     def _state(self, t: Any, dtype: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -167,18 +195,26 @@ class History:
     def gaps(self, t: Any) -> np.ndarray:
         """Gaps ``Delta_i(t)``, ``i = 0..n`` (eq. 21)."""
         x, _ = self.state(t)
-        right = (self.row.n + 1) * (mpmath.mpf(self.row.d) if x.dtype == object else self.row.d)
-        full = np.concatenate(([x[0] * 0], x, [right]))
-        return full[1:] - full[:-1]
+        if x.dtype != object:
+            full = np.concatenate(([0.0], x, [(self.row.n + 1) * self.row.d]))
+            return full[1:] - full[:-1]
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            xl = [ctx.zero, *(local(v) for v in x),
+                  (self.row.n + 1) * exact_to_mpf(self.row.exact("d"), ctx)]
+            return _exported(np.array([b - a for a, b in itertools.pairwise(xl)],
+                                      dtype=object))
 
     def energy(self, t: Any) -> Any:
         """Mechanical energy ``sum v^2/2 + omega^2 (x - j d)^2 / 2`` (no forcing work included)."""
         x, v = self.state(t)
         if x.dtype == object:
-            with mpmath.workdps(self._wdps):
-                om, d = mpmath.mpf(self.row.omega), mpmath.mpf(self.row.d)
-                return mpmath.fsum(vj**2 / 2 + om**2 * (xj - (j + 1) * d) ** 2 / 2
-                                   for j, (xj, vj) in enumerate(zip(x, v, strict=False)))
+            ctx = mp()
+            with ctx.workdps(self._wdps):
+                om = exact_to_mpf(self.row.exact("omega"), ctx)
+                d = exact_to_mpf(self.row.exact("d"), ctx)
+                return export(ctx.fsum(local(vj)**2 / 2 + om**2 * (local(xj) - (j + 1) * d) ** 2 / 2
+                                       for j, (xj, vj) in enumerate(zip(x, v, strict=False))))
         j = np.arange(1, self.row.n + 1) * self.row.d
         return float(np.sum(v**2) / 2 + self.row.omega**2 * np.sum((x - j) ** 2) / 2)
 

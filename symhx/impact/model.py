@@ -28,7 +28,9 @@ from typing import Any
 
 import mpmath
 import numpy as np
+from mpmath import libmp
 
+from symhx._mpctx import is_mpf
 from symhx.validation import check_int, check_real, check_seed, to_rational
 
 __all__ = ["MAX_EVENTS", "MAX_HORIZON", "MAX_PIPES", "MAX_SCALE", "SQRT2", "PipeRow",
@@ -68,10 +70,10 @@ class _Sqrt2:
         return math.sqrt(2.0)
 
     def _mpmath_(self, prec: int, rounding: str) -> mpmath.mpf:
-        # correctly rounded at ``prec`` bits (a square root at more bits rounded again to
-        # ``prec`` is a double rounding: wrong in the last bit at 1401 bits, for instance)
-        with mpmath.workprec(prec):
-            return mpmath.sqrt(2)
+        # correctly rounded at ``prec`` bits by libmp with an explicit precision (thread-safe:
+        # no context's precision is read or set; a square root at more bits rounded again to
+        # ``prec`` would be a double rounding: wrong in the last bit at 1401 bits, for instance)
+        return mpmath.mp.make_mpf(libmp.mpf_sqrt(libmp.from_int(2), prec, rounding))
 
     def __repr__(self) -> str:
         return "sqrt(2)"
@@ -154,23 +156,29 @@ def _scalar(value: Any, name: str) -> tuple[float, Any]:
     return f, fr
 
 
-def exact_to_mpf(x: Any) -> mpmath.mpf:
-    """An exact value (``Fraction``, float, int, :data:`SQRT2`, sympy number) as an mpf correctly
-    rounded at the current mpmath precision (call inside ``workdps``).
+def exact_to_mpf(x: Any, ctx: Any = None) -> mpmath.mpf:
+    """An exact value (``Fraction``, float, int, mpf, :data:`SQRT2`, sympy number) as an mpf of
+    the mpmath context ``ctx``, correctly rounded at that context's current precision.
+
+    symhx passes its thread's own context (``symhx._mpctx.mp()``, inside its ``workdps``), so
+    the engines never read mpmath's global precision; ``ctx=None`` means mpmath's global
+    context ``mpmath.mp``, for interactive use.
 
     >>> from fractions import Fraction
     >>> with mpmath.workdps(30):
     ...     print(exact_to_mpf(Fraction(1, 3)))
     0.333333333333333333333333333333
     """
+    if ctx is None:
+        ctx = mpmath.mp
     if isinstance(x, Fraction):   # one rounding (numerator and denominator may be huge)
-        return mpmath.mpf(mpmath.libmp.from_rational(x.numerator, x.denominator, mpmath.mp.prec,
-                                                     mpmath.libmp.round_nearest))
-    if isinstance(x, (float, int, mpmath.mpf)) or hasattr(x, "_mpmath_"):
-        return mpmath.mpf(x)
+        return ctx.make_mpf(libmp.from_rational(x.numerator, x.denominator, ctx.prec,
+                                                libmp.round_nearest))
+    if isinstance(x, (float, int)) or is_mpf(x) or hasattr(x, "_mpmath_"):
+        return ctx.mpf(x)
     if hasattr(x, "evalf"):   # a sympy number (kept as the user gave it)
-        return +mpmath.mpf(x.evalf(mpmath.mp.dps + 10))
-    return mpmath.mpf(x)
+        return +ctx.mpf(x.evalf(ctx.dps + 10))
+    return ctx.mpf(x)
 
 
 def _array(value: Any, name: str, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray | None]:
