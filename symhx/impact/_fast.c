@@ -231,7 +231,9 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
         double tolA = TOLF * EPS * (M2 + M3 * at), tolJ = TOLF * EPS * (M3 + M4 * at);
         if (first) {
             first = 0;
-            if (D < -tolD && !(V > tolV)) { *te = t; return S_NOW; }   /* overlap, not opening */
+            /* a gap overlapping (by rounding), not opening; a contact force clearly tensile,
+             * rising or not: contact now (a release at once) -- engine.Engine.search */
+            if (D < -tolD && !(is_gap && V > tolV)) { *te = t; return S_NOW; }
             if (D <= tolD) {
                 double h;
                 if (graze_restart && V < 0) V = 0;

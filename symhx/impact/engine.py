@@ -36,7 +36,9 @@ For ``g(t) = c0 + sum_m (a_m cos + b_m sin)`` put ``c_m = |(a_m, b_m)|`` and
   search resumes where it stopped, so no step is repeated).
 * At a contact (``g = 0`` after an impact, graze or release) the search starts one-sidedly from
   the Taylor bound ``V s + g'' s^2/2 - M_3 s^3/6`` (or the next non-vanishing derivative), so it
-  never rediscovers the same root.
+  never rediscovers the same root.  A gap that starts overlapping by more than rounding while
+  opening is such a contact too; a *contact force* that starts below ``-tolD`` is tensile, so
+  its contact releases at once, however fast the force is rising.
 
 Events
 ------
@@ -51,7 +53,9 @@ contact force (itself a trigonometric polynomial with the forcing frequencies on
 Plastic and slow contacts: an impact slower than ``v_stick``, and every impact with ``r = 0``,
 merges the two bodies (``STICK``); the merged body's contact force then decides (``RELEASE`` as
 soon as it is tensile, possibly at the same instant), so an ``r = 0`` cascade through a chain of
-touching pipes is resolved in one merge per contact instead of a velocity halved forever.
+touching pipes is resolved in one merge per contact instead of a velocity halved forever.  A
+stuck contact is therefore compressive (or within rounding of zero) at every time: a merge
+under tension is released at its own instant, even while the tension still grows.
 
 Simultaneous events are processed in increasing time; at one instant the free gaps (impacts)
 before the stuck ones (releases), then in increasing site order, each pairwise; a contact left
@@ -556,7 +560,9 @@ class Engine:
             tolJ = _TOL * eps * (M3 + M4 * at)
             if first:
                 first = False
-                if D < -tolD and not V > tolV:   # overlapping (by rounding) and not opening
+                # a gap overlapping (by rounding) and not opening, or a contact force clearly
+                # tensile, rising or not: contact now (a release at once for a stuck contact)
+                if D < -tolD and not (is_gap and V > tolV):
                     return t, _NOW
                 if D <= tolD:  # at contact: one-sided start
                     if graze_restart and V < 0:
