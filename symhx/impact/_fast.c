@@ -750,4 +750,17 @@ static PyMethodDef methods[] = {
 static struct PyModuleDef moddef = {PyModuleDef_HEAD_INIT, "_fast",
                                     "Float64 impact engine (C).", -1, methods};
 
-PyMODINIT_FUNC PyInit__fast(void) { return PyModule_Create(&moddef); }
+/* SHA-256 of this file, passed by setup.py: symhx.impact.fast.source_sha256() reads it and a test
+ * compares it with _fast.c on disk (a stale build is caught, not used) */
+#ifndef SYMHX_FAST_SOURCE_SHA256
+#define SYMHX_FAST_SOURCE_SHA256 "unknown"
+#endif
+
+PyMODINIT_FUNC PyInit__fast(void) {
+    PyObject *m = PyModule_Create(&moddef);
+    if (m && PyModule_AddStringConstant(m, "source_sha256", SYMHX_FAST_SOURCE_SHA256) < 0) {
+        Py_DECREF(m);
+        return NULL;
+    }
+    return m;
+}
