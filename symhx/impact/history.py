@@ -6,6 +6,7 @@ import itertools
 import math
 from bisect import bisect_right
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
@@ -157,8 +158,11 @@ class History:
         return xs, vs
 
     def states(self, times: Any) -> tuple[np.ndarray, np.ndarray]:
-        """Positions and velocities at many times at once: arrays of shape ``(len(times), n)``
-        (vectorised for the float64 engine; the mpmath engine loops over :meth:`state`).
+        """Positions and velocities at many times at once: arrays of shape ``(len(times), n)``,
+        row ``k`` equal to :meth:`state` at ``times[k]`` (after any event at that time; an event
+        time of the history gives the state after its events).  Vectorised for the float64
+        engine; the mpmath engine takes every time at its exact value (an mpf event time is not
+        rounded to float64) and loops over :meth:`state`.
 
         >>> from symhx.impact import PipeRow, simulate
         >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[1.0])
@@ -166,16 +170,17 @@ class History:
         >>> x.shape, float(x[0, 0])
         ((2, 1), 1.0)
         """
+        n = self.row.n
+        if self.dps is not None:
+            vals = self._exact_times(times)
+            xs = np.empty((len(vals), n), dtype=object)
+            vs = np.empty((len(vals), n), dtype=object)
+            for k, t in enumerate(vals):
+                xs[k], vs[k] = self.state(t)
+            return xs, vs
         ts = check_array(times, "times", nonnegative=True, allow_empty=True).ravel()
         if ts.size and ts.max() > float(self.t_end):
             raise ValueError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {ts.max()!r}")
-        n = self.row.n
-        if self.dps is not None:
-            xs = np.empty((ts.size, n), dtype=object)
-            vs = np.empty((ts.size, n), dtype=object)
-            for k, t in enumerate(ts):
-                xs[k], vs[k] = self.state(float(t))
-            return xs, vs
         F = np.asarray(self._freqs, dtype=float)
         arg = np.outer(ts, F)
         cs, sn = np.cos(arg), np.sin(arg)
@@ -191,6 +196,26 @@ class History:
             xs[:, j - 1] = c[:, 0] + np.sum(a * cs + b * sn, axis=1)
             vs[:, j - 1] = np.sum(F * (b * cs - a * sn), axis=1)
         return xs, vs
+
+    def _exact_times(self, times: Any) -> list[Fraction]:
+        """``times`` (a number or a sequence of them, mpf included) as exact Fractions in
+        ``[0, t_end]``; the errors name ``times``."""
+        if isinstance(times, (str, bytes)):
+            raise TypeError(f"times must be a number or an array of numbers, got {times!r}")
+        try:
+            flat = list(np.ravel(np.asarray(times, dtype=object)))
+        except (TypeError, ValueError) as exc:
+            raise TypeError(f"times must be a number or an array of numbers ({exc})") from None
+        end = to_rational(self.t_end, "t_end")
+        out = []
+        for t in flat:
+            fr = to_rational(t, "times")
+            if fr is None:
+                raise TypeError(f"times must hold rational or float numbers, got {t!r}")
+            if end is None or not 0 <= fr <= end:
+                raise ValueError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
+            out.append(fr)
+        return out
 
     def gaps(self, t: Any) -> np.ndarray:
         """Gaps ``Delta_i(t)``, ``i = 0..n`` (eq. 21)."""
