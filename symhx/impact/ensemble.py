@@ -18,7 +18,8 @@ never aborts the ensemble.
 
 The stored form is compact: per ``sigma`` the histograms of ``pipes`` and ``sites``, the site hit
 counts and the failures (:meth:`EnsembleResult.as_dict`); every statistic (mean, standard error,
-mode, bootstrap percentile intervals) is computed from the histograms.
+quantiles, mode and its bootstrap probability of being the mode, bootstrap percentile intervals)
+is computed from the histograms.
 
 Reproducibility: run ``k`` at forcing ``sigma`` draws its row from :func:`run_seed`, that is
 ``numpy.random.SeedSequence([seed, 0, key, k])`` with ``key`` the IEEE-754 bit pattern of

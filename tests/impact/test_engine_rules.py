@@ -18,7 +18,13 @@ import pytest
 from symhx.impact import GRAZE, IMPACT, RELEASE, STICK, PipeRow, SimulationError, simulate
 from symhx.impact import fast as fast_mod
 from symhx.impact.engine import Engine, EventLog, FloatContext, MPContext, cascade_bound
-from tests.reference.impact import contact_forces, force_scale, stuck_at
+from tests.reference.impact import (
+    contact_forces,
+    force_scale,
+    ode_free_flight,
+    single_pipe_closed_form,
+    stuck_at,
+)
 
 EPS = 2.0**-52
 TOL = 64   # the engine's documented rounding bound: 64 eps (scale of the evaluated quantity)
@@ -160,16 +166,6 @@ def test_impact_plastic_backstop_only_at_its_instant():
 
 
 # ---------------------------------------------------------------- merges under tension
-def _pipe_after_release(t0, x0, v0, alpha, Omega, t):
-    """x(t) of one free pipe (omega = d = 1) under alpha cos(Omega t) from (x0, v0) at t0, in
-    closed form (mpmath): x = 1 + P cos(t - t0) + Q sin(t - t0) + alpha cos(Omega t) / (1 -
-    Omega^2)."""
-    f = alpha / (1 - Omega**2)
-    P = x0 - 1 - f * mpmath.cos(Omega * t0)
-    Q = v0 + f * Omega * mpmath.sin(Omega * t0)
-    return 1 + P * mpmath.cos(t - t0) + Q * mpmath.sin(t - t0) + f * mpmath.cos(Omega * t)
-
-
 @pytest.mark.parametrize("kw", ENGINES)
 def test_plastic_merge_under_rising_tension_leaves_at_once(kw):
     # issue 28, item 10: one plastic pipe (r = 0) hits the left wall at t0 = 0.158117; at the
@@ -181,14 +177,18 @@ def test_plastic_merge_under_rising_tension_leaves_at_once(kw):
     h = simulate(row, 4.0, **kw)
     assert h.kind_names()[:3] == ["impact", "stick", "release"]
     assert h.times[0] == h.times[1] == h.times[2] and h.sites[:3].tolist() == [0, 0, 0]
+    force = dict(alpha=[0.5], beta=[0.0], Omega=[2.0])
     with mpmath.workdps(40):
         t0 = mpmath.mpf(h.times[0])
         # the impact time from the closed form before it (x0, v0 at t = 0)
-        assert abs(_pipe_after_release(0, mpmath.mpf(0.3), mpmath.mpf(-2), 0.5, 2, t0)) < 1e-12
+        assert abs(single_pipe_closed_form(t0, 0, 0.3, -2.0, **force)[0]) < 1e-12
         for t in (0.5, 1.0, 1.5):
             x, _ = h.state(t)
-            ref = _pipe_after_release(t0, 0, 0, 0.5, 2, mpmath.mpf(t))
+            ref = single_pipe_closed_form(t, t0, 0, 0, **force)[0]   # left at rest from x = 0
             assert abs(float(x[0]) - ref) < 1e-9 and float(x[0]) > 0.05
+    # ... and by integrating the equation of motion from the wall (no closed form)
+    x_ode, _ = ode_free_flight(1.0, float(h.times[0]), 0, 0, dps=20, **force)
+    assert abs(float(h.state(1.0)[0][0]) - x_ode) < 1e-9
     # the pipe does not come back to the wall before t = 4: nothing else happens
     assert len(h) == 3
 

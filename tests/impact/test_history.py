@@ -11,6 +11,7 @@ import pytest
 
 from symhx.impact import IMPACT, STICK, PipeRow, simulate
 from tests.harness.errors import assert_refuses
+from tests.reference.impact import ode_free_flight
 
 SQ2 = (math.sqrt(2),)
 
@@ -62,6 +63,25 @@ def test_states_at_event_times_are_the_states_after_the_events(r, kw):
         assert abs((vel[s + 1] - vel[s]) - float(h.u_after[e])) < 1e-9, (e, h.kind_names()[e])
         checked += 1
     assert checked > 3
+
+
+def test_state_between_events_solves_the_equation_of_motion():
+    # a forced pipe (two frequencies, omega and d not 1): between two events its state is the
+    # solution of eq. 19 from the state after the first one, integrated here by mpmath's ODE
+    # solver (no closed form); both engines
+    row = PipeRow(1, omega=1.3, d=0.8, restitution=0.7, Omega=(0.45, 2.1), alpha=[[0.3, -0.2]],
+                  beta=[[0.1, 0.25]], x0=[0.5], v0=[1.4])
+    force = dict(omega=1.3, d=0.8, alpha=[0.3, -0.2], beta=[0.1, 0.25], Omega=[0.45, 2.1])
+    for kw, tol in (({}, 1e-12), ({"dps": 25}, 1e-18)):
+        h = simulate(row, 12.0, **kw)
+        assert len(h) >= 3
+        ta, tb = h.times[1], h.times[2]     # event times as they are (mpf: exact)
+        x0, v0 = h.state(ta)                 # the state after the event at ta
+        with mpmath.workdps(40):
+            t = (ta + tb) / 2
+        x, v = h.state(t)
+        xr, vr = ode_free_flight(t, ta, x0[0], v0[0], dps=22, **force)
+        assert abs(x[0] - xr) < tol and abs(v[0] - vr) < tol
 
 
 def test_state_continuity_and_energy_single_pipe():

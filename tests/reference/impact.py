@@ -3,6 +3,8 @@
 Nothing here imports ``symhx.impact.engine``: every quantity is written out again from the model
 (Newton's law, the closed-form free flight, Newton's restitution law) in numpy or mpmath.
 
+* :func:`single_pipe_closed_form`, :func:`ode_free_flight`: one pipe in free flight under its
+  forcing, in closed form and by integrating the equation of motion (``mpmath.odefun``);
 * :func:`contact_forces`, :func:`stuck_at`: the contact force of every stuck contact from the
   positions of the pipes and the row's forces (Newton's law of the stuck cluster), and which
   contacts are stuck at given times (from a history's STICK / RELEASE events);
@@ -34,8 +36,8 @@ import numpy as np
 __all__ = ["brute_min_of_gap", "contact_forces", "count_by_hand", "documented_bootstrap",
            "documented_draw", "documented_redraws", "documented_thresholds_estimate",
            "first_root_on_grid", "force_scale", "forced_at_zero", "independent_impacts",
-           "mutual_information_by_definition", "nearest_binary", "sqrt2_rounded", "stuck_at",
-           "trig_root", "trig_value"]
+           "mutual_information_by_definition", "nearest_binary", "ode_free_flight",
+           "single_pipe_closed_form", "sqrt2_rounded", "stuck_at", "trig_root", "trig_value"]
 
 STICK_KIND, RELEASE_KIND = 2, 3   # History.kinds values (documented: impact 0, graze 1, ...)
 
@@ -441,3 +443,50 @@ def mutual_information_by_definition(a: Sequence[int], b: Sequence[int], size: i
                 py = sum(1 for v in b if v == y) / n
                 out += pxy * math.log(pxy / (px * py))
     return out
+
+
+# ----------------------------------------------------------------- one pipe in free flight
+def single_pipe_closed_form(t: Any, t0: Any, x0: Any, v0: Any, *, omega: Any = 1, d: Any = 1,
+                            j: int = 1, alpha: Sequence[Any] = (), beta: Sequence[Any] = (),
+                            Omega: Sequence[Any] = ()) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """Position and velocity at ``t`` of pipe ``j`` in free flight from ``(x0, v0)`` at ``t0``
+    under ``x'' = -omega^2 (x - j d) + sum_i alpha_i cos(Omega_i t) + beta_i sin(Omega_i t)``
+    (eq. 19), in closed form at the current mpmath precision: the free oscillation about
+    ``j d`` plus the forced response ``(alpha cos + beta sin) / (omega^2 - Omega^2)``."""
+    om, dd = mpmath.mpf(omega), mpmath.mpf(d)
+    t, t0 = mpmath.mpf(t), mpmath.mpf(t0)
+
+    def forced(s: Any) -> tuple[Any, Any]:
+        x = v = mpmath.mpf(0)
+        for a, b, w in zip(alpha, beta, Omega, strict=True):
+            a, b, w = mpmath.mpf(a), mpmath.mpf(b), mpmath.mpf(w)
+            den = om**2 - w**2
+            x += (a * mpmath.cos(w * s) + b * mpmath.sin(w * s)) / den
+            v += w * (b * mpmath.cos(w * s) - a * mpmath.sin(w * s)) / den
+        return x, v
+
+    fx0, fv0 = forced(t0)
+    P, Q = mpmath.mpf(x0) - j * dd - fx0, (mpmath.mpf(v0) - fv0) / om
+    c, s = mpmath.cos(om * (t - t0)), mpmath.sin(om * (t - t0))
+    fx, fv = forced(t)
+    return j * dd + P * c + Q * s + fx, om * (Q * c - P * s) + fv
+
+
+def ode_free_flight(t: Any, t0: Any, x0: Any, v0: Any, *, omega: Any = 1, d: Any = 1, j: int = 1,
+                    alpha: Sequence[Any] = (), beta: Sequence[Any] = (),
+                    Omega: Sequence[Any] = (), dps: int = 30) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """The same free flight as :func:`single_pipe_closed_form`, by integrating the equation of
+    motion (eq. 19) with mpmath's Taylor-series ODE solver (``mpmath.odefun``) at ``dps``
+    digits: a check that uses no closed form at all."""
+    with mpmath.workdps(dps):
+        om2, dd = mpmath.mpf(omega) ** 2, mpmath.mpf(d)
+        terms = [(mpmath.mpf(a), mpmath.mpf(b), mpmath.mpf(w))
+                 for a, b, w in zip(alpha, beta, Omega, strict=True)]
+
+        def rhs(s: Any, y: Any) -> list[Any]:
+            force = sum(a * mpmath.cos(w * s) + b * mpmath.sin(w * s) for a, b, w in terms)
+            return [y[1], -om2 * (y[0] - j * dd) + force]
+
+        sol = mpmath.odefun(rhs, mpmath.mpf(t0), [mpmath.mpf(x0), mpmath.mpf(v0)])
+        x, v = sol(mpmath.mpf(t))
+        return +x, +v
