@@ -72,6 +72,7 @@ __all__ = [
     "QUANTILE_LEVELS",
     "EnsembleResult",
     "SigmaStats",
+    "column_stats",
     "describe_histogram",
     "ensemble",
     "free_flight_closure_fraction",
@@ -246,6 +247,22 @@ def describe_histogram(hist: Any, rng: np.random.Generator | None = None,
     out["mode_se"] = float(np.std(bmodes, ddof=1)) if k > 1 else None
     out["mode_prob"] = float(np.mean(bmodes == mode))
     return out
+
+
+def column_stats(pipes_hist: Any, sites_hist: Any, seed: int, sigma: float) -> dict[str, Any]:
+    """The statistics of one ``sigma`` of an ensemble seeded with ``seed``, from its histograms of
+    impacting pipes and of impact sites: :func:`describe_histogram` of each, with the bootstrap
+    stream ``SeedSequence([seed, 1, sigma_key(sigma)])`` (pipes first, then sites).  The stream
+    depends only on ``(seed, sigma)``, so the statistics of a stored column are recomputed from
+    its histograms alone, bit for bit (``scripts/restat_ensembles.py``).
+
+    >>> st = column_stats([0, 0, 3, 1], [0, 3, 1], 0, 0.2)
+    >>> st["pipes"]["mode"], st["sites"]["mode"], st["sites"]["count"]
+    (2, 1, 4)
+    """
+    rng = np.random.default_rng(np.random.SeedSequence([int(seed), 1, sigma_key(sigma)]))
+    return {"pipes": describe_histogram(pipes_hist, rng),
+            "sites": describe_histogram(sites_hist, rng)}
 
 
 @dataclass
@@ -568,11 +585,8 @@ def _combine(sigma: float, parts: list[dict[str, Any]], n: int, seed: int,
                     failures=failures[:20], site_hits=np.asarray(hits, dtype=np.int64),
                     impacts=int(impacts[ok].sum()))
     # the bootstrap stream depends only on (seed, sigma): identical for any executor and grid
-    rng = np.random.default_rng(np.random.SeedSequence([seed, 1, sigma_key(sigma)]))
-    st.stats = {
-        "pipes": describe_histogram(np.bincount(pipes[keep], minlength=n + 1)[: n + 1], rng),
-        "sites": describe_histogram(np.bincount(sites[keep], minlength=n + 2)[: n + 2], rng),
-    }
+    st.stats = column_stats(np.bincount(pipes[keep], minlength=n + 1)[: n + 1],
+                            np.bincount(sites[keep], minlength=n + 2)[: n + 2], seed, sigma)
     return st
 
 
