@@ -70,7 +70,7 @@ def main() -> int:
         try:
             r = subprocess.run(
                 [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider",
-                 "tests/test_impact_ensemble.py", "-k",
+                 "tests/impact/test_ensemble.py", "tests/impact/test_ensemble_statistics.py", "-k",
                  "not dask and not executors and not free_flight"],
                 cwd=ROOT, capture_output=True, text=True, timeout=900,
                 env={**os.environ, "PYTHONPATH": str(ROOT)})

@@ -231,7 +231,9 @@ static int search(Eng *E, const double *g, const double *b, double t0, double th
         double tolA = TOLF * EPS * (M2 + M3 * at), tolJ = TOLF * EPS * (M3 + M4 * at);
         if (first) {
             first = 0;
-            if (D < -tolD && !(V > tolV)) { *te = t; return S_NOW; }   /* overlap, not opening */
+            /* a gap overlapping (by rounding), not opening; a contact force clearly tensile,
+             * rising or not: contact now (a release at once) -- engine.Engine.search */
+            if (D < -tolD && !(is_gap && V > tolV)) { *te = t; return S_NOW; }
             if (D <= tolD) {
                 double h;
                 if (graze_restart && V < 0) V = 0;
@@ -412,8 +414,9 @@ static void gap_poly(const Eng *E, int i, double *out) {
 }
 
 /* ------------------------------------------------------------------ event queue
- * An indexed binary min-heap of the sites keyed by (next event time, site): the earliest event,
- * exact ties to the smallest site (the order of the reference engine's linear scan).  Only the
+ * An indexed binary min-heap of the sites keyed by (next event time, stuck, site): the earliest
+ * event; at one instant the free gaps (impacts) before the stuck ones (releases), then the
+ * smallest site (the key of the reference engine's linear scan, engine.Engine.run).  Only the
  * re-searched sites move in it: O(log n) per event instead of a scan of all n + 1 sites. */
 static inline int hless(const Eng *E, int a, int b) {
     double ta = E->nt[a], tb = E->nt[b];
@@ -747,4 +750,17 @@ static PyMethodDef methods[] = {
 static struct PyModuleDef moddef = {PyModuleDef_HEAD_INIT, "_fast",
                                     "Float64 impact engine (C).", -1, methods};
 
-PyMODINIT_FUNC PyInit__fast(void) { return PyModule_Create(&moddef); }
+/* SHA-256 of this file, passed by setup.py: symhx.impact.fast.source_sha256() reads it and a test
+ * compares it with _fast.c on disk (a stale build is caught, not used) */
+#ifndef SYMHX_FAST_SOURCE_SHA256
+#define SYMHX_FAST_SOURCE_SHA256 "unknown"
+#endif
+
+PyMODINIT_FUNC PyInit__fast(void) {
+    PyObject *m = PyModule_Create(&moddef);
+    if (m && PyModule_AddStringConstant(m, "source_sha256", SYMHX_FAST_SOURCE_SHA256) < 0) {
+        Py_DECREF(m);
+        return NULL;
+    }
+    return m;
+}

@@ -36,7 +36,9 @@ For ``g(t) = c0 + sum_m (a_m cos + b_m sin)`` put ``c_m = |(a_m, b_m)|`` and
   search resumes where it stopped, so no step is repeated).
 * At a contact (``g = 0`` after an impact, graze or release) the search starts one-sidedly from
   the Taylor bound ``V s + g'' s^2/2 - M_3 s^3/6`` (or the next non-vanishing derivative), so it
-  never rediscovers the same root.
+  never rediscovers the same root.  A gap that starts overlapping by more than rounding while
+  opening is such a contact too; a *contact force* that starts below ``-tolD`` is tensile, so
+  its contact releases at once, however fast the force is rising.
 
 Events
 ------
@@ -51,7 +53,9 @@ contact force (itself a trigonometric polynomial with the forcing frequencies on
 Plastic and slow contacts: an impact slower than ``v_stick``, and every impact with ``r = 0``,
 merges the two bodies (``STICK``); the merged body's contact force then decides (``RELEASE`` as
 soon as it is tensile, possibly at the same instant), so an ``r = 0`` cascade through a chain of
-touching pipes is resolved in one merge per contact instead of a velocity halved forever.
+touching pipes is resolved in one merge per contact instead of a velocity halved forever.  A
+stuck contact is therefore compressive (or within rounding of zero) at every time: a merge
+under tension is released at its own instant, even while the tension still grows.
 
 Simultaneous events are processed in increasing time; at one instant the free gaps (impacts)
 before the stuck ones (releases), then in increasing site order, each pairwise; a contact left
@@ -88,6 +92,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from symhx._mpctx import export, is_mpf, mp
 from symhx.impact.model import PipeRow, SimulationError, exact_to_mpf
 from symhx.validation import check_dps
 
@@ -120,7 +125,7 @@ class Outcome(IntEnum):
     NOW = 4     #: at contact and approaching at the start time
 
 
-# private aliases (older names, still imported by symhx.impact.ensemble)
+# short aliases of the outcomes for this module's search and run loop
 _NONE, _CONT, _ROOT, _GRAZE, _NOW = (Outcome.NONE, Outcome.CONT, Outcome.ROOT, Outcome.GRAZE,
                                      Outcome.NOW)
 _TOL = 64  # rounding bound = _TOL * eps * (scale of the evaluated quantity)
@@ -162,8 +167,10 @@ def default_v_stick(row: PipeRow, dps: int | None) -> float | mpmath.mpf:
     dps = check_dps(dps, allow_none=True)
     if dps is None:
         return row.omega * row.d * V_STICK_FLOAT64
-    with mpmath.workdps(20):
-        return mpmath.mpf(row.omega) * row.d * mpmath.power(10, -mpmath.mpf(dps) / 2 - 1)
+    ctx = mp()   # this thread's context: nothing depends on mpmath's global precision
+    with ctx.workdps(20):
+        v = ctx.mpf(row.omega) * row.d * ctx.power(10, -ctx.mpf(dps) / 2 - 1)
+    return export(v)
 
 
 def _cos_sin(x: float) -> tuple[float, float]:
@@ -223,24 +230,41 @@ class FloatContext:
 
 
 class MPContext:
-    """mpmath arithmetic at the current precision (create and use inside ``workdps``); ``num``
-    rounds an exact value (``Fraction``, :data:`~symhx.impact.SQRT2`, ...) correctly."""
+    """mpmath arithmetic in the calling thread's own context (``symhx._mpctx.mp()``), never in
+    mpmath's global one: threads with different precisions do not see each other's.
+
+    Create it in the thread that uses it and compute inside its :meth:`workdps` (the working
+    precision of everything it makes, :attr:`eps` included); ``num`` rounds an exact value
+    (``Fraction``, :data:`~symhx.impact.SQRT2`, ...) correctly at that precision.  Its numbers
+    belong to this thread: pass them through ``symhx._mpctx.export`` before they leave it
+    (:func:`symhx.impact.simulate` does).
+
+    >>> from symhx.impact import SQRT2
+    >>> mc = MPContext()
+    >>> with mc.workdps(30):
+    ...     print(mc.num(SQRT2), mc.eps == mc.num(2) ** -mc.mp.prec)
+    1.41421356237309504880168872421 True
+    """
 
     is_mp = True
 
-    def __init__(self) -> None:  # call inside workdps
-        self.eps = mpmath.mpf(2) ** (-mpmath.mp.prec)
-        self.inf = mpmath.inf
+    def __init__(self) -> None:
+        ctx = self.mp = mp()
+        self.inf = ctx.inf
+        self.cos = ctx.cos
+        self.sin = ctx.sin
+        self.sqrt = ctx.sqrt
+        self.cos_sin = ctx.cos_sin
+        self.workdps = ctx.workdps
+        self.workprec = ctx.workprec
 
-    @staticmethod
-    def num(x: Any) -> mpmath.mpf:
-        return exact_to_mpf(x)
+    @property
+    def eps(self) -> Any:
+        """``2**-prec`` at the context's current precision."""
+        return self.mp.ldexp(self.mp.mpf(1), -self.mp.prec)
 
-    cos = staticmethod(mpmath.cos)
-    sin = staticmethod(mpmath.sin)
-    sqrt = staticmethod(mpmath.sqrt)
-    cos_sin = staticmethod(mpmath.cos_sin)
-
+    def num(self, x: Any) -> Any:
+        return exact_to_mpf(x, self.mp)
 
 
 
@@ -264,7 +288,7 @@ class RowArrays:
 def row_arrays(row: PipeRow, ctx: Any) -> RowArrays:
     """Closed-form arrays of ``row`` in the arithmetic ``ctx`` (float64 arrays for
     :class:`FloatContext`; object arrays of mpf from the row's *exact* inputs for
-    :class:`MPContext`, inside the caller's ``workdps``).
+    :class:`MPContext`, inside its ``workdps``).
 
     Both engines use it: the float64 arrays are bit-identical whatever engine asks.
 
@@ -325,9 +349,9 @@ EVENT_DTYPE = np.dtype({"names": ["t", "site", "kind", "u0", "u1", "aux"],
 
 
 class EventLog:
-    """The typed record of one run, filled by either engine through :meth:`add_event`,
-    :meth:`add_update` (one at a time, the Python engines) or :meth:`extend` (the arrays of the C
-    engine, kept as they are: no per-event Python work).
+    """The typed record of one run, filled by either engine: through :meth:`add_event` and
+    :meth:`add_update` (one at a time, the Python engines) or built by :meth:`from_buffers` (the
+    buffers of the C engine, kept as they are: no per-event Python work).
 
     :meth:`event_arrays` gives ``times, sites, kinds, u_before, u_after, aux`` (one entry per
     event; ``kinds`` are :class:`EventKind` values); :meth:`updates` gives, per pipe ``j``, the
@@ -394,6 +418,19 @@ class EventLog:
         return (np.array(cols[0], dtype=dtype), np.array(cols[1], dtype=np.int64),
                 np.array(cols[2], dtype=np.int8), np.array(cols[3], dtype=dtype),
                 np.array(cols[4], dtype=dtype), np.array(cols[5], dtype=dtype))
+
+    def exported(self) -> EventLog:
+        """This log with every mpf turned into mpmath's global type, bit for bit
+        (``symhx._mpctx.export``): the record of a run of the mpmath engine, made in one thread's
+        own context, safe to keep and to read in any thread.  Float logs come back as they are.
+        """
+        if self._ev_arr is not None or not is_mpf(self._coef0_rows()[0][0]):
+            return self   # a float log (the C or the Python float64 engine)
+        out = EventLog(export([list(c) for c in self._coef0_rows()]))
+        out._events = [export(e) for e in self._events]
+        if self._upd_t is not None:
+            out._upd_t, out._upd_c = export(self._upd_t), export(self._upd_c)
+        return out
 
     def updates(self) -> tuple[list[list[Any]], list[Any]]:
         """``(upd_t, upd_c)``: per pipe ``j = 0..n+1`` the start times and coefficient vectors
@@ -523,7 +560,9 @@ class Engine:
             tolJ = _TOL * eps * (M3 + M4 * at)
             if first:
                 first = False
-                if D < -tolD and not V > tolV:   # overlapping (by rounding) and not opening
+                # a gap overlapping (by rounding) and not opening, or a contact force clearly
+                # tensile, rising or not: contact now (a release at once for a stuck contact)
+                if D < -tolD and not (is_gap and V > tolV):
                     return t, _NOW
                 if D <= tolD:  # at contact: one-sided start
                     if graze_restart and V < 0:

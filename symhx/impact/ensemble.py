@@ -18,7 +18,8 @@ never aborts the ensemble.
 
 The stored form is compact: per ``sigma`` the histograms of ``pipes`` and ``sites``, the site hit
 counts and the failures (:meth:`EnsembleResult.as_dict`); every statistic (mean, standard error,
-mode, bootstrap percentile intervals) is computed from the histograms.
+quantiles, mode and its bootstrap probability of being the mode, bootstrap percentile intervals)
+is computed from the histograms.
 
 Reproducibility: run ``k`` at forcing ``sigma`` draws its row from :func:`run_seed`, that is
 ``numpy.random.SeedSequence([seed, 0, key, k])`` with ``key`` the IEEE-754 bit pattern of
@@ -31,6 +32,7 @@ any grid), nor on the executor, the chunking or the order of completion.  Any
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
@@ -67,8 +69,10 @@ __all__ = [
     "MAX_GAPS",
     "MAX_RUNS",
     "MAX_TOTAL_RUNS",
+    "QUANTILE_LEVELS",
     "EnsembleResult",
     "SigmaStats",
+    "column_stats",
     "describe_histogram",
     "ensemble",
     "free_flight_closure_fraction",
@@ -193,33 +197,47 @@ def run_chunk(sigma: float, runs: Sequence[int], n: int, t_transient: float,
 
 
 # --------------------------------------------------------------------------- statistics
+#: the quantile levels of :func:`describe_histogram`'s ``quantiles``
+QUANTILE_LEVELS = (0.1, 0.25, 0.5, 0.75, 0.9)
+
+
 def describe_histogram(hist: Any, rng: np.random.Generator | None = None,
                        boot: int = BOOTSTRAP) -> dict[str, Any]:
-    """Mean, standard error, mode and bootstrap percentile intervals from a histogram
+    """Mean, standard error, quantiles, mode and bootstrap statistics from a histogram
     (``hist[v]`` = number of runs with value ``v``).
 
     ``mean_ci``/``mode_ci``: 2.5 and 97.5 percentiles of ``boot`` multinomial resamples of the
     histogram (they never leave the observed range, so never go below 0); ``mode_se``: the
-    standard deviation of the resampled modes.  ``mode`` is the smallest most frequent value.
-    Undefined statistics are ``None``, never NaN: all of them for an empty histogram (no run
-    kept), ``se`` and ``mode_se`` for a single run.
+    standard deviation of the resampled modes.  ``mode`` is the smallest most frequent value;
+    ``mode_prob`` the fraction of the resamples whose (smallest) most frequent value is that
+    mode: its bootstrap probability of being the mode (a near-tie between two values gives
+    about 1/2, a clear mode 1) -- report a mode with it.  ``quantiles``: the values at the levels
+    :data:`QUANTILE_LEVELS` (the smallest ``v`` whose cumulative share reaches the level), stable
+    where the mode is not.  Undefined statistics are ``None``, never NaN: all of them for an
+    empty histogram (no run kept), ``se`` and ``mode_se`` for a single run.  The resamples come
+    from ``rng`` (default ``numpy.random.default_rng(0)``): seeded, reproducible.
 
     >>> st = describe_histogram([0, 3, 1], np.random.default_rng(0))
-    >>> st["mean"], st["mode"], st["count"]
-    (1.25, 1, 4)
+    >>> st["mean"], st["mode"], st["count"], st["quantiles"]
+    (1.25, 1, 4, [1, 1, 1, 1, 2])
+    >>> describe_histogram([0, 3, 1], np.random.default_rng(0))["mode_prob"] > 0.5
+    True
     """
     h = np.asarray(hist, dtype=np.int64)
     k = int(h.sum())
     out: dict[str, Any] = {"count": k, "hist": h.tolist()}
     if k == 0:   # no run kept (e.g. no impact in any window): every statistic is undefined
         out.update(mean=None, se=None, mode=None, mode_se=None, mean_ci=[None, None],
-                   mode_ci=[None, None])
+                   mode_ci=[None, None], mode_prob=None,
+                   quantiles=[None] * len(QUANTILE_LEVELS))
         return out
     v = np.arange(len(h), dtype=float)
     mean = float((h * v).sum() / k)
     var = float((h * (v - mean) ** 2).sum() / (k - 1)) if k > 1 else None
-    out.update(mean=mean, se=math.sqrt(var / k) if var is not None else None,
-               mode=int(np.argmax(h)))
+    mode = int(np.argmax(h))
+    cum = np.cumsum(h)
+    out.update(mean=mean, se=math.sqrt(var / k) if var is not None else None, mode=mode,
+               quantiles=[int(np.searchsorted(cum, q * k - 1e-9 * k)) for q in QUANTILE_LEVELS])
     rng = rng if rng is not None else np.random.default_rng(0)
     samples = rng.multinomial(k, h / k, size=boot)
     bmeans = samples @ v / k
@@ -227,7 +245,24 @@ def describe_histogram(hist: Any, rng: np.random.Generator | None = None,
     out["mean_ci"] = [float(x) for x in np.percentile(bmeans, [2.5, 97.5])]
     out["mode_ci"] = [int(x) for x in np.percentile(bmodes, [2.5, 97.5], method="nearest")]
     out["mode_se"] = float(np.std(bmodes, ddof=1)) if k > 1 else None
+    out["mode_prob"] = float(np.mean(bmodes == mode))
     return out
+
+
+def column_stats(pipes_hist: Any, sites_hist: Any, seed: int, sigma: float) -> dict[str, Any]:
+    """The statistics of one ``sigma`` of an ensemble seeded with ``seed``, from its histograms of
+    impacting pipes and of impact sites: :func:`describe_histogram` of each, with the bootstrap
+    stream ``SeedSequence([seed, 1, sigma_key(sigma)])`` (pipes first, then sites).  The stream
+    depends only on ``(seed, sigma)``, so the statistics of a stored column are recomputed from
+    its histograms alone, bit for bit (``scripts/restat_ensembles.py``).
+
+    >>> st = column_stats([0, 0, 3, 1], [0, 3, 1], 0, 0.2)
+    >>> st["pipes"]["mode"], st["sites"]["mode"], st["sites"]["count"]
+    (2, 1, 4)
+    """
+    rng = np.random.default_rng(np.random.SeedSequence([int(seed), 1, sigma_key(sigma)]))
+    return {"pipes": describe_histogram(pipes_hist, rng),
+            "sites": describe_histogram(sites_hist, rng)}
 
 
 @dataclass
@@ -550,11 +585,8 @@ def _combine(sigma: float, parts: list[dict[str, Any]], n: int, seed: int,
                     failures=failures[:20], site_hits=np.asarray(hits, dtype=np.int64),
                     impacts=int(impacts[ok].sum()))
     # the bootstrap stream depends only on (seed, sigma): identical for any executor and grid
-    rng = np.random.default_rng(np.random.SeedSequence([seed, 1, sigma_key(sigma)]))
-    st.stats = {
-        "pipes": describe_histogram(np.bincount(pipes[keep], minlength=n + 1)[: n + 1], rng),
-        "sites": describe_histogram(np.bincount(sites[keep], minlength=n + 2)[: n + 2], rng),
-    }
+    st.stats = column_stats(np.bincount(pipes[keep], minlength=n + 1)[: n + 1],
+                            np.bincount(sites[keep], minlength=n + 2)[: n + 2], seed, sigma)
     return st
 
 
@@ -567,15 +599,19 @@ def _c_available() -> bool:
 # --------------------------------------------------------------------------- thresholds
 def thresholds(res: EnsembleResult, *, level: int = 10, min_kept: int = 20, boot: int = 400,
                seed: int = 0) -> dict[str, list[float]]:
-    """The simulated threshold of an ensemble, two ways, with bootstrap 16-84 % intervals.
+    """The simulated threshold of an ensemble, three ways, with bootstrap 16-84 % intervals.
 
     Only sigmas with at least ``min_kept`` runs with an impact are used (the statistics of the
     paper's figures 7 and 8 exclude runs without impact).
 
     * ``mode``: the smallest sigma of the grid from which on the mode of the number of impacting
-      pipes is ``>= level`` (the mode has left small values);
+      pipes is ``>= level`` (the mode has left small values).  Near the jump the histogram is
+      bimodal and its mode can tie: prefer the two below;
+    * ``half``: where the mean number of impacting pipes (figure 8) first reaches half the
+      row, ``n / 2`` (linear interpolation between the two grid points around it; NaN if it
+      never does or already does at the first usable sigma): stable where the mode is not;
     * ``steep``: the midpoint of the grid interval where the mean number of impacting pipes
-      (figure 8) rises steepest (largest difference quotient).
+      rises steepest (largest difference quotient).
 
     Each is ``[estimate, low, high]``; the interval comes from ``boot`` multinomial resamples of
     every sigma's histogram (the grid spacing is a further resolution limit).
@@ -588,7 +624,16 @@ def thresholds(res: EnsembleResult, *, level: int = 10, min_kept: int = 20, boot
     hists = [np.array(s.stats["pipes"]["hist"], dtype=float) for s in res.per_sigma]
     rng = np.random.default_rng(seed)
 
-    def est(hs: list[np.ndarray]) -> tuple[float, float]:
+    def half_row(means: np.ndarray) -> float:
+        target = (len(hists[0]) - 1) / 2 if hists else math.nan   # n / 2 (hist: 0..n pipes)
+        usable = [j for j in range(len(sig)) if not np.isnan(means[j])]
+        for a, b in itertools.pairwise(usable):
+            if means[a] < target <= means[b]:
+                return float(sig[a] + (target - means[a]) * (sig[b] - sig[a])
+                             / (means[b] - means[a]))
+        return math.nan
+
+    def est(hs: list[np.ndarray]) -> tuple[float, float, float]:
         ok = [h.sum() >= min_kept for h in hs]
         m = math.nan
         for j in range(len(sig) - 1, -1, -1):
@@ -597,26 +642,28 @@ def thresholds(res: EnsembleResult, *, level: int = 10, min_kept: int = 20, boot
             m = float(sig[j])
         means = np.array([(h * np.arange(len(h))).sum() / h.sum() if k else np.nan
                           for h, k in zip(hs, ok, strict=True)])
+        half = half_row(means)
         diffs = np.diff(means) / np.diff(sig)      # slopes: the grid need not be uniform
         if len(diffs) == 0 or np.all(np.isnan(diffs)):
-            return m, math.nan
+            return m, half, math.nan
         k = int(np.nanargmax(diffs))
-        return m, float((sig[k] + sig[k + 1]) / 2)
+        return m, half, float((sig[k] + sig[k + 1]) / 2)
 
-    m0, s0 = est(hists)
-    bm, bs = [], []
+    m0, md0, s0 = est(hists)
+    bm, bmd, bs = [], [], []
     for _ in range(boot):
         hb = [rng.multinomial(int(h.sum()), h / h.sum()).astype(float) if h.sum() else h
               for h in hists]
-        a, b = est(hb)
+        a, b, c = est(hb)
         bm.append(a)
-        bs.append(b)
+        bmd.append(b)
+        bs.append(c)
 
     def q(x: list[float]) -> list[float]:
         x = [v for v in x if not math.isnan(v)]
         return [float(v) for v in np.percentile(x, [16, 84])] if x else [math.nan, math.nan]
 
-    return {"mode": [m0, *q(bm)], "steep": [s0, *q(bs)]}
+    return {"mode": [m0, *q(bm)], "half": [md0, *q(bmd)], "steep": [s0, *q(bs)]}
 
 
 # --------------------------------------------------------------------------- assumptions

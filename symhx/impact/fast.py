@@ -15,7 +15,7 @@ from symhx.impact.engine import Engine, EventLog, FloatContext, default_v_stick
 from symhx.impact.history import History
 from symhx.impact.model import PipeRow, SimulationError
 
-__all__ = ["available", "count_impacts", "simulate_c", "simulate_python"]
+__all__ = ["available", "count_impacts", "simulate_c", "simulate_python", "source_sha256"]
 
 try:
     from symhx.impact import _fast
@@ -30,6 +30,18 @@ def available() -> bool:
     True
     """
     return _fast is not None
+
+
+def source_sha256() -> str | None:
+    """The SHA-256 (hex) of the ``_fast.c`` the loaded C extension was built from (compiled in by
+    ``setup.py``), or None when the extension is not built.  The tests compare it with the file
+    on disk: a stale extension is reported, never used unnoticed.
+
+    >>> h = source_sha256()
+    >>> h is None or len(h) == 64
+    True
+    """
+    return None if _fast is None else str(_fast.source_sha256)
 
 
 def _call(row: PipeRow, t_end: float, t_from: float, v_stick: float, record: bool,

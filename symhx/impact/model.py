@@ -28,7 +28,9 @@ from typing import Any
 
 import mpmath
 import numpy as np
+from mpmath import libmp
 
+from symhx._mpctx import is_mpf
 from symhx.validation import check_int, check_real, check_seed, to_rational
 
 __all__ = ["MAX_EVENTS", "MAX_HORIZON", "MAX_PIPES", "MAX_SCALE", "SQRT2", "PipeRow",
@@ -50,8 +52,11 @@ MAX_EVENTS = 10**8
 #: (a row scaled by 1e160 or 1e-200 silently lost all its impacts before this check).
 MAX_SCALE = 1e100
 #: draws of free-oscillation coefficients :meth:`PipeRow.random` may spend per pipe (in total,
-#: over all redraws of the forcing) before it gives up with a ``ValueError``.
+#: over all redraws of the forcing) before it gives up with a ``ValueError``; each forcing gets
+#: an equal share of them (``_DRAWS_PER_PIPE n / _FORCINGS``).
 _DRAWS_PER_PIPE = 4_000
+#: forcings :meth:`PipeRow.random` draws at most (the first one and up to 9 redraws).
+_FORCINGS = 10
 
 
 class _Sqrt2:
@@ -68,10 +73,10 @@ class _Sqrt2:
         return math.sqrt(2.0)
 
     def _mpmath_(self, prec: int, rounding: str) -> mpmath.mpf:
-        # correctly rounded at ``prec`` bits (a square root at more bits rounded again to
-        # ``prec`` is a double rounding: wrong in the last bit at 1401 bits, for instance)
-        with mpmath.workprec(prec):
-            return mpmath.sqrt(2)
+        # correctly rounded at ``prec`` bits by libmp with an explicit precision (thread-safe:
+        # no context's precision is read or set; a square root at more bits rounded again to
+        # ``prec`` would be a double rounding: wrong in the last bit at 1401 bits, for instance)
+        return mpmath.mp.make_mpf(libmp.mpf_sqrt(libmp.from_int(2), prec, rounding))
 
     def __repr__(self) -> str:
         return "sqrt(2)"
@@ -154,23 +159,29 @@ def _scalar(value: Any, name: str) -> tuple[float, Any]:
     return f, fr
 
 
-def exact_to_mpf(x: Any) -> mpmath.mpf:
-    """An exact value (``Fraction``, float, int, :data:`SQRT2`, sympy number) as an mpf correctly
-    rounded at the current mpmath precision (call inside ``workdps``).
+def exact_to_mpf(x: Any, ctx: Any = None) -> mpmath.mpf:
+    """An exact value (``Fraction``, float, int, mpf, :data:`SQRT2`, sympy number) as an mpf of
+    the mpmath context ``ctx``, correctly rounded at that context's current precision.
+
+    symhx passes its thread's own context (``symhx._mpctx.mp()``, inside its ``workdps``), so
+    the engines never read mpmath's global precision; ``ctx=None`` means mpmath's global
+    context ``mpmath.mp``, for interactive use.
 
     >>> from fractions import Fraction
     >>> with mpmath.workdps(30):
     ...     print(exact_to_mpf(Fraction(1, 3)))
     0.333333333333333333333333333333
     """
+    if ctx is None:
+        ctx = mpmath.mp
     if isinstance(x, Fraction):   # one rounding (numerator and denominator may be huge)
-        return mpmath.mpf(mpmath.libmp.from_rational(x.numerator, x.denominator, mpmath.mp.prec,
-                                                     mpmath.libmp.round_nearest))
-    if isinstance(x, (float, int, mpmath.mpf)) or hasattr(x, "_mpmath_"):
-        return mpmath.mpf(x)
+        return ctx.make_mpf(libmp.from_rational(x.numerator, x.denominator, ctx.prec,
+                                                libmp.round_nearest))
+    if isinstance(x, (float, int)) or is_mpf(x) or hasattr(x, "_mpmath_"):
+        return ctx.mpf(x)
     if hasattr(x, "evalf"):   # a sympy number (kept as the user gave it)
-        return +mpmath.mpf(x.evalf(mpmath.mp.dps + 10))
-    return mpmath.mpf(x)
+        return +ctx.mpf(x.evalf(ctx.dps + 10))
+    return ctx.mpf(x)
 
 
 def _array(value: Any, name: str, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray | None]:
@@ -370,11 +381,14 @@ class PipeRow:
         forced_j(0)``, ``v_j(0) = omega beta_0j + forced_j'(0)``.
 
         Non-overlap rule (documented choice; the paper does not say): the forcing is drawn once;
-        then pipe by pipe from the left, pipe ``j``'s ``(alpha_0j, beta_0j)`` are redrawn until
-        ``x_{j-1}(0) < x_j(0) < (n + 1) d`` (the last pipe also needs room before the right wall).
-        Only when that fails (100 passes or ``20 max_redraws`` draws in all: the forced
-        displacements alone overlap, e.g. near resonance) is the forcing drawn again, at most 10
-        times; then a ``ValueError`` says so (bounded work: about a second at worst).
+        then, in passes over the pipes from the left, pipe ``j``'s ``(alpha_0j, beta_0j)`` are
+        redrawn (at most ``max_redraws`` times per pass) until ``x_{j-1}(0) < x_j(0) < (n + 1) d``
+        (the last pipe also needs room before the right wall); a pipe that gets no place ends
+        the pass and the next pass starts again from the left.  A forcing is given up after 100
+        passes or ``min(20 max_redraws, 400 n)`` draws (its equal share of the ``4000 n`` draws
+        in all; e.g. the forced displacements alone overlap near resonance), and the forcing is
+        then drawn again: at most 10 forcings, then a ``ValueError`` says so (bounded work:
+        about a second at worst).
         The draw is a pure function of ``seed`` (anything ``numpy.random.default_rng`` accepts).
 
         Parameters
@@ -447,9 +461,11 @@ class PipeRow:
         k = len(Omega)
         x0 = np.empty(n)
         v0 = np.empty(n)
-        total = _DRAWS_PER_PIPE * n   # all draws of all forcings: bounded work on failure
+        # every forcing gets an equal share of the 4000 n draws: the redraws of the forcing that
+        # the docstring promises do happen (a first forcing used to spend them all)
+        share = min(20 * max_redraws, _DRAWS_PER_PIPE * n // _FORCINGS)
         ok = False
-        for _forcing in range(10):
+        for _forcing in range(_FORCINGS):
             alpha = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
             beta = rng.normal(0.0, sig, size=(n, k)) if sig > 0 else np.zeros((n, k))
             f0 = (alpha / den).sum(axis=1)            # forced part at t = 0
@@ -457,15 +473,14 @@ class PipeRow:
             if not (np.all(np.isfinite(f0)) and np.all(np.isfinite(fv0))):
                 raise too_large(scale)
             ok = False
-            budget = 20 * max_redraws   # draws per forcing: bounded work (~0.2 s) on failure
+            budget = share   # draws of this forcing: bounded work (~0.1 s) on failure
             for _attempt in range(100):
                 prev = 0.0
                 ok = True
                 for j in range(n):
-                    tries = min(max_redraws, budget, total) if sig0 > 0 else min(1, total)
+                    tries = min(max_redraws if sig0 > 0 else 1, budget)
                     for _ in range(tries):
                         budget -= 1
-                        total -= 1
                         a0, b0 = (rng.normal(0.0, sig0, size=2) if sig0 > 0 else (0.0, 0.0))
                         xj = (j + 1) * d_f + a0 + f0[j]
                         if prev < xj < right:
@@ -476,9 +491,9 @@ class PipeRow:
                     x0[j] = xj
                     v0[j] = om * b0 + fv0[j]
                     prev = xj
-                if ok or total <= 0:
+                if ok or budget <= 0:
                     break
-            if ok or total <= 0:
+            if ok:
                 break
         if not ok:
             raise too_large(scale)

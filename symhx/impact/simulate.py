@@ -5,19 +5,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import mpmath
-
+from symhx._mpctx import export
 from symhx.impact import fast
 from symhx.impact.engine import V_STICK_FLOAT64, Engine, MPContext, default_v_stick, work_dps
 from symhx.impact.history import History
-from symhx.impact.model import (
-    MAX_EVENTS,
-    MAX_HORIZON,
-    PipeRow,
-    SimulationError,
-    check_horizon,
-    exact_to_mpf,
-)
+from symhx.impact.model import MAX_EVENTS, MAX_HORIZON, PipeRow, SimulationError, check_horizon
 from symhx.validation import check_choice, check_dps, check_int, check_real
 
 __all__ = ["default_v_stick", "simulate", "work_dps"]
@@ -68,6 +60,7 @@ def simulate(
     A single elastic pipe with no force: ``x = 1 + 2 sin t`` reaches the right wall ``x = 2``
     at ``t = pi/6`` exactly.
 
+    >>> import mpmath
     >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
     >>> h = simulate(row, 1.0, dps=30)
     >>> h.sites.tolist(), h.kind_names(), mpmath.nstr(h.times[0], 20)
@@ -124,8 +117,10 @@ def simulate(
                 raise SimulationError("the C extension symhx.impact._fast is not built")
         return fast.simulate_python(row, t_end_f, v_stick=vs, max_events=max_events)
     wdps = work_dps(dps)
-    with mpmath.workdps(wdps):
-        eng = Engine(row, MPContext(), v_stick=exact_to_mpf(vs_x))
-        te = mpmath.mpf(t_end_x.numerator) / t_end_x.denominator
+    mc = MPContext()   # this thread's own mpmath context: threads never share a precision
+    with mc.workdps(wdps):
+        eng = Engine(row, mc, v_stick=mc.num(vs_x))
+        te = mc.num(t_end_x)
         eng.run(te, max_events=max_events)
-        return History.from_log(row, te, dps, eng.log, eng.F, wdps)
+    # the history leaves the call: its numbers become mpmath's global type (bit for bit)
+    return History.from_log(row, export(te), dps, eng.log.exported(), export(eng.F), wdps)

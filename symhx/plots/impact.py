@@ -39,19 +39,34 @@ def _yerr(res: Any, what: str, stat: str) -> tuple[np.ndarray, np.ndarray]:
     return centre, np.vstack([centre - ci[:, 0], ci[:, 1] - centre])
 
 
+def _few(res: Any, what: str, min_count: int) -> np.ndarray:
+    """The values of σ resting on fewer than ``min_count`` runs with an impact."""
+    return res.column(what, "count") < min_count
+
+
+def _mark_few(ax: Any, s: np.ndarray, y: np.ndarray, few: np.ndarray, min_count: int) -> None:
+    if np.any(few & np.isfinite(y)):
+        ax.plot(s[few], y[few], "o", mfc="none", color="0.5", ms=5,
+                label=f"fewer than {min_count} runs with an impact\n(not reliable)")
+
+
 @styled
-def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
+def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", min_count: int = 100,
+                       ax: Any = None) -> Any:
     """Figure 7: most likely number of impacting pipes (or sites) against σ.
 
     Error bars: 95 % bootstrap percentile interval of the mode (resampling the runs; they stay
-    inside the observed values, never below 0).  ``res``: an
+    inside the observed values, never below 0).  Values of σ with fewer than ``min_count`` runs
+    with an impact are only marked (open grey circles), not joined.  ``res``: an
     :class:`symhx.impact.EnsembleResult`.  Returns the Figure.
     """
     fig, ax = _ax(ax)
     s = res.sigmas
     mode, err = _yerr(res, what, "mode")
-    ax.errorbar(s, mode, yerr=err, fmt="o-", ms=4, capsize=2,
+    few = _few(res, what, min_count)
+    ax.errorbar(s[~few], mode[~few], yerr=err[:, ~few], fmt="o-", ms=4, capsize=2,
                 label=f"mode of impacting {what}\n(95 % bootstrap interval)")
+    _mark_few(ax, s, mode, few, min_count)
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
     ax.set_ylabel(f"most likely number of\nimpacting {what}")
     ax.set_title(_short_title(res, "Fig. 7"))
@@ -62,17 +77,21 @@ def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
 
 
 @styled
-def plot_mean_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
+def plot_mean_vs_sigma(res: Any, *, what: str = "pipes", min_count: int = 100,
+                       ax: Any = None) -> Any:
     """Figure 8: expected number of impacting pipes (or sites) against σ, runs without impact
-    excluded; error bars: 95 % bootstrap percentile interval of the mean.
+    excluded; error bars: 95 % bootstrap percentile interval of the mean.  Values of σ with
+    fewer than ``min_count`` runs with an impact are only marked (open grey circles).
 
     ``res``: an :class:`symhx.impact.EnsembleResult`.  Returns the Figure.
     """
     fig, ax = _ax(ax)
     s = res.sigmas
     mean, err = _yerr(res, what, "mean")
-    ax.errorbar(s, mean, yerr=err, fmt="s-", ms=4, capsize=2,
+    few = _few(res, what, min_count)
+    ax.errorbar(s[~few], mean[~few], yerr=err[:, ~few], fmt="s-", ms=4, capsize=2,
                 label=f"mean impacting {what}\n(95 % bootstrap interval)")
+    _mark_few(ax, s, mean, few, min_count)
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
     ax.set_ylabel(f"expected number of\nimpacting {what}")
     ax.set_title(_short_title(res, "Fig. 8"))

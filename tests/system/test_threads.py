@@ -10,8 +10,8 @@ dask's threaded scheduler; every result must be bit-identical to the serial one 
 tuples, exact ints and Fractions).
 
 Routes whose modules are converted to thread contexts in other branches (the frozen
-distribution in ``symhx/distribution.py``, ``symhx.impact``) are marked
-``xfail(strict=False)`` until those branches are merged.
+distribution in ``symhx/distribution.py``) are marked ``xfail(strict=False)`` until those
+branches are merged; forcing and the mpmath impact engine run in the thread's context.
 """
 
 from __future__ import annotations
@@ -42,7 +42,6 @@ THREADS = 8
 REPEATS = 4  # each case is called this many times concurrently (after the serial reference)
 
 DIST_BRANCH = "symhx/distribution.py is converted to thread contexts in its own branch"
-IMPACT_BRANCH = "symhx.impact is converted to thread contexts in the impact branch"
 
 
 def bits(x: Any) -> Any:
@@ -58,13 +57,14 @@ def bits(x: Any) -> Any:
         return tuple(bits(v) for v in x)
     if isinstance(x, dict):
         return tuple((k, bits(v)) for k, v in x.items())
+    if hasattr(x, "times") and hasattr(x, "sites"):  # an impact History
+        return ("history", bits(x.times), bits(x.sites), bits(x.kinds), bits(x.u_before),
+                bits(x.u_after), bits(x.state(x.t_end / 2)))
     if dataclasses.is_dataclass(x) and not isinstance(x, type):
         return (type(x).__name__,
                 tuple((f.name, bits(getattr(x, f.name))) for f in dataclasses.fields(x)))
     if isinstance(x, (int, float, str, Fraction, type(None))):
         return x
-    if hasattr(x, "times") and hasattr(x, "sites"):  # an impact History
-        return ("history", bits(x.times), bits(x.sites))
     if hasattr(x, "mid") and hasattr(x, "rad"):  # an arb ball
         with symhx.certify.arb_prec(64):
             return ("arb", x.mid().man_exp(), x.rad().man_exp())
@@ -228,7 +228,7 @@ GROUPS: dict[str, Callable[[], list[Case]]] = {
     "forcing": _forcing_cases,
     "impact": _impact_cases,
 }
-XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH, "impact": IMPACT_BRANCH}
+XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH}
 
 
 def _params() -> list[Any]:

@@ -1,4 +1,7 @@
-"""Reference (mpmath) impact engine: closed forms, grazing, simultaneity, chatter, energy, dps."""
+"""The mechanics of whole runs against closed forms: single pipes in free flight, grazing,
+exactly and nearly simultaneous impacts, chatter to sticking and release when the force
+reverses, energy conservation over a thousand elastic impacts, and a brute-force scan for missed
+contacts (mostly the mpmath reference engine, the float64 engine beside it)."""
 
 from __future__ import annotations
 
@@ -26,10 +29,9 @@ def free_row(x0, v0, r=1.0):
 # ------------------------------------------------------------------ closed forms
 @pytest.mark.parametrize("dps", [20, 40])
 def test_single_elastic_pipe_closed_form(dps):
-    # x = 1 + 2 sin t: hits x = 2 at pi/6, then (mirror motion) the walls alternately every
-    # 2 pi/3 or pi/3: check against pi computed independently at higher precision.
-    # x = 1 + 2 sin t hits the right wall at pi/6 with speed sqrt(3); after an elastic bounce
-    # x - 1 = 2 cos(s + pi/3) reaches the left wall after pi/3, and so on by symmetry.
+    # x = 1 + 2 sin t hits the right wall x = 2 at pi/6 with speed sqrt(3); after an elastic
+    # bounce x - 1 = 2 cos(s + pi/3) reaches the left wall after pi/3, and so on by symmetry:
+    # impacts at pi/6 + k pi/3, against pi computed independently at higher precision
     h = simulate(one_pipe(1.0, 2.0), 10.0, dps=dps)
     with mpmath.workdps(dps + 20):
         pi = mpmath.pi
@@ -41,15 +43,6 @@ def test_single_elastic_pipe_closed_form(dps):
     # elastic: relative speed is sqrt(3) at every impact, reversed
     with mpmath.workdps(dps):
         assert all(abs(abs(u) - mpmath.sqrt(3)) < mpmath.mpf(10) ** (-dps + 2) for u in h.u_before)
-
-
-def test_state_continuity_and_energy_single_pipe():
-    h = simulate(one_pipe(1.0, 2.0), 10.0, dps=25)
-    for t in h.times:
-        x, _v = h.state(t)
-        assert min(abs(x[0]), abs(x[0] - 2)) < mpmath.mpf(10) ** -25
-    e0 = h.energy(0)
-    assert abs(h.energy(9.9) - e0) < mpmath.mpf(10) ** -25
 
 
 # ------------------------------------------------------------------ grazing
@@ -178,7 +171,7 @@ def test_chatter_never_hangs_on_random_rows(r):
         assert np.all(h.gaps(t) > -1e-9)
 
 
-# ------------------------------------------------------------------ energy, precision, no misses
+# ------------------------------------------------------------------ energy and no misses
 def test_elastic_unforced_energy_conserved_1000_impacts():
     rng = np.random.default_rng(7)
     n = 5
@@ -195,16 +188,6 @@ def test_elastic_unforced_energy_conserved_1000_impacts():
     assert abs(hf.energy(float(t_last)) - float(e0)) / float(e0) < 1e-10
 
 
-def test_dps_convergence_10_pipes():
-    row = PipeRow.random(10, 0.3, seed=11, restitution=1.0)
-    h30 = simulate(row, 60.0, dps=30)
-    h60 = simulate(row, 60.0, dps=60)
-    k = min(100, len(h30))
-    assert k >= 100
-    assert list(h30.sites[:k]) == list(h60.sites[:k])
-    assert max(abs(a - b) for a, b in zip(h30.times[:k], h60.times[:k], strict=False)) < 1e-25
-
-
 @pytest.mark.parametrize("dps", [None, 20])
 def test_no_missed_contact_brute_force_scan(dps):
     # between consecutive events every gap stays positive (fine grid of the closed-form state),
@@ -217,46 +200,3 @@ def test_no_missed_contact_brute_force_scan(dps):
         assert np.min(h.gaps(t).astype(float)) > -1e-9
     for t, s in zip(h.times, h.sites, strict=False):
         assert abs(float(h.gaps(t)[s])) < 1e-9
-
-
-# ------------------------------------------------------------------ bad input
-@pytest.mark.parametrize(
-    "kwargs, name",
-    [
-        (dict(Omega=(1.0,)), "Omega"),
-        (dict(restitution=1.5), "restitution"),
-        (dict(restitution=-0.1), "restitution"),
-        (dict(x0=[2.0, 1.5]), "x0"),
-        (dict(x0=[0.0, 1.5]), "x0"),
-        (dict(x0=[1.0, float("nan")]), "x0"),
-        (dict(v0=[1.0, float("inf")]), "v0"),
-        (dict(alpha=[[1.0], [float("nan")]]), "alpha"),
-        (dict(beta=[[1.0]]), "beta"),
-        (dict(omega=0.0), "omega"),
-        (dict(d=-1.0), "d"),
-    ],
-)
-def test_bad_input(kwargs, name):
-    base = dict(restitution=1.0, alpha=[[0.0], [0.0]], beta=[[0.0], [0.0]], x0=[1.0, 2.0],
-                v0=[0.0, 0.0])
-    base.update(kwargs)
-    with pytest.raises(ValueError, match=name):
-        PipeRow(2, **base)
-
-
-def test_bad_n_and_t_end():
-    with pytest.raises(ValueError, match="n"):
-        PipeRow(0, restitution=1, alpha=[], beta=[], x0=[], v0=[])
-    row = PipeRow.random(2, 0.1, seed=0)
-    with pytest.raises(ValueError, match="t_end"):
-        simulate(row, float("nan"))
-    with pytest.raises(ValueError, match="dps"):
-        simulate(row, 1.0, dps=0)
-
-
-def test_random_rows_reproducible_and_valid():
-    a = PipeRow.random(50, 0.5, seed=42)
-    b = PipeRow.random(50, 0.5, seed=42)
-    assert np.array_equal(a.x0, b.x0) and np.array_equal(a.alpha, b.alpha)
-    assert np.all(a.gap0() > 0)
-    assert not np.array_equal(a.x0, PipeRow.random(50, 0.5, seed=43).x0)

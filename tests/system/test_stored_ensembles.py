@@ -14,7 +14,13 @@ from importlib import resources
 import pytest
 
 from symhx.impact import EnsembleResult
-from symhx.impact.ensemble import ensemble, sigma_key, site_transitions, transition_dependence
+from symhx.impact.ensemble import (
+    column_stats,
+    ensemble,
+    sigma_key,
+    site_transitions,
+    transition_dependence,
+)
 from symhx.impact.model import SQRT2
 
 
@@ -50,6 +56,19 @@ def test_calibration_columns_are_reproduced(label, sigma):
     i = next(i for i, s in enumerate(res.per_sigma) if s.sigma == sigma)
     s0 = d["params"]["sigma0"]
     _same(res.per_sigma[i], _recompute(d["params"], sigma, None if s0 == "sigma" else s0[i]))
+
+
+@pytest.mark.parametrize("name", ["ensemble_fig7_8.json", "ensemble_calibration.json"])
+def test_stored_statistics_are_those_of_the_stored_histograms(name):
+    # every column of every stored ensemble: mean, quantiles, mode, mode_prob and the bootstrap
+    # intervals are what the ensemble computes from the column's two histograms and (seed, sigma)
+    data = _load(name)
+    for ens in data["configs"].values() if "configs" in data else [data]:
+        for col in ens["per_sigma"]:
+            got = column_stats(col["pipes"]["hist"], col["sites"]["hist"], ens["params"]["seed"],
+                               col["sigma"])
+            assert json.loads(json.dumps(got)) == {"pipes": col["pipes"], "sites": col["sites"]}
+            assert set(col["pipes"]) >= {"mode_prob", "quantiles"}
 
 
 def test_production_column_is_reproduced():
