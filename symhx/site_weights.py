@@ -77,6 +77,7 @@ __all__ = [
     "PatternSpace",
     "ball_weights",
     "binomial_product_balls",
+    "elementary_ball",
     "elementary_exact",
     "exact_table_bits",
     "exact_weights",
@@ -293,7 +294,7 @@ def _short_polys(space: Any, classes: Classes) -> tuple[list[int], dict[int, lis
             for (_, q), ri, Ri in zip(classes, r, Rs, strict=True):
                 for _ in range(Ri - ri):
                     part = [a + (q * part[i - 1] if i else 0) for i, a in
-                            enumerate(part + [Fraction(0)])]
+                            enumerate([*part, Fraction(0)])]
             shift = sum(r)
             for i, a in enumerate(part):
                 poly[shift + i] += factor * a
@@ -346,15 +347,16 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
         den_b *= b**m
     B = [int(x) for x in base.coeffs()]
     den_n = 1
-    for poly in npolys.values():
-        for x in poly:
-            den_n = math.lcm(den_n, x.denominator)
-    nint = {e: [int(x * den_n) for x in poly] for e, poly in npolys.items()}
+    for fpoly in npolys.values():
+        for fx in fpoly:
+            den_n = math.lcm(den_n, fx.denominator)
+    nint: dict[int, list[int]] = {e: [int(x * den_n) for x in poly]
+                                  for e, poly in npolys.items()}
     den = den_n * den_b
     nums: list[int] = []
     bound: dict[int, Fraction] = {k: _boundary_weight(space, classes, k)
                                   for k in range(1, min(R, N) + 1)}
-    for k, w in bound.items():
+    for w in bound.values():
         den = math.lcm(den, w.denominator)
     scale = den // (den_n * den_b)
     fact = 1  # (k - 1)!
@@ -362,16 +364,16 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
         if k > 1:
             fact *= k - 1
         if k in bound:
-            w = bound[k]
-            nums.append(w.numerator * (den // w.denominator))
+            wk = bound[k]
+            nums.append(wk.numerator * (den // wk.denominator))
             continue
         total = 0
-        for e, poly in nint.items():
+        for e, ipoly in nint.items():
             rise = fact
             for i in range(e):
                 rise *= k + i
             s = 0
-            for j, cj in enumerate(poly):
+            for j, cj in enumerate(ipoly):
                 if cj and 0 <= k - j < len(B):
                     s += cj * B[k - j]
             total += rise * s
@@ -401,7 +403,8 @@ def _tilt_pmf(m: int, rho: Fraction, F: int) -> tuple[int, list[int]]:
                   + j0 * to_arb(rho).log() - m * to_arb(1 + rho).log())
             x = lb.exp() * arb(2) ** scale
             ok = x.rad() < arb(1) / 4
-            v0 = int(x.mid().floor().unique_fmpz()) if ok else 0
+            z = x.mid().floor().unique_fmpz() if ok else None
+            v0 = int(z) if z is not None else 0
         if ok:
             break
         wp *= 2  # pragma: no cover - the working precision above is ample
@@ -522,8 +525,9 @@ def binomial_product_balls(parts: Sequence[tuple[int, Fraction]], prec: int) -> 
 
 
 def _tilt_apply(parts: Classes, xn: int, xe: int, F: int, err: int, need: int,
-                out: list[arb | None], wp: int) -> int:
-    """One tilt: fill every ``out[t]`` whose fixed-point product is accurate enough."""
+                out: list[arb | None], wp: int, only: int | None = None) -> int:
+    """One tilt: fill every ``out[t]`` (or only ``out[only]``) whose fixed-point product is
+    accurate enough."""
     x = Fraction(xn) * Fraction(2) ** xe
     prod = fmpz_poly([1])
     lo = 0
@@ -542,7 +546,7 @@ def _tilt_apply(parts: Classes, xn: int, xe: int, F: int, err: int, need: int,
         scale = None
         for i, R in enumerate(coeffs):
             t = lo + i
-            if out[t] is not None or R <= need:
+            if out[t] is not None or R <= need or (only is not None and t != only):
                 continue
             if scale is None or scale[0] != t - 1:
                 fac = (logZ - t * logx).exp() * two
@@ -552,6 +556,41 @@ def _tilt_apply(parts: Classes, xn: int, xe: int, F: int, err: int, need: int,
             out[t] = arb(fmpz(R), fmpz(err)) * fac
             done += 1
     return done
+
+
+def elementary_ball(parts: Sequence[tuple[int, Fraction]], t: int, prec: int) -> arb:
+    """``e_t = [z**t] prod_i (1 + q_i z)**m_i`` as one Arb ball of relative radius below
+    ``2**-prec``: a single tilt centred on ``t`` (the whole table only if that misses).
+
+    >>> x = elementary_ball([(3, Fraction(1, 2)), (2, Fraction(1, 3))], 2, 60)
+    >>> x.mid().str(5, radius=False)      # 67/36
+    '1.8611'
+    """
+    parts = [(int(m), Fraction(q)) for m, q in parts if m > 0]
+    M = sum(m for m, _ in parts)
+    if t < 0 or t > M:
+        return arb(0)
+    if len(parts) <= 1 or t == 0:
+        if not parts or t == 0:
+            return arb(1)
+        (m, q), = parts
+        wp = prec + 2 * _bits(m) + 30
+        with arb_prec(wp):
+            return (to_arb(m + 1).lgamma() - to_arb(t + 1).lgamma() - to_arb(m - t + 1).lgamma()
+                    + t * to_arb(q).log()).exp()
+    c = len(parts)
+    G = max(64, prec)
+    F = prec + G + _bits(c) + _bits(M) + 8
+    err = c << ((c - 1) * F + 1)
+    need = err << (prec + 2)
+    wp = prec + 2 * _bits(M) + 30
+    xn, xe = _tilt_for_mean(parts, max(0.5, min(M - 0.5, t)))
+    out: list[arb | None] = [None] * (M + 1)
+    _tilt_apply(parts, xn, xe, F, err, need, out, wp, only=t)
+    x = out[t]
+    if x is None:  # pragma: no cover - the central term of a tilt is far above 2**-G
+        return binomial_product_balls(parts, prec)[t]
+    return x
 
 
 def short_sum_split(sc: SiteClasses) -> tuple[tuple[int, Fraction], Classes] | None:
