@@ -255,13 +255,14 @@ class SiteClasses:
         >>> SiteClasses.from_sites([0.25, "1/4", 0.5]).sizes
         (2, 1)
         """
+        size = len(probabilities) if hasattr(probabilities, "__len__") else None
+        if size is not None and size > MAX_SITE_SEQUENCE:
+            raise ValueError(f"{name} has {size} entries, more than "
+                             f"symhx.sites.MAX_SITE_SEQUENCE = {MAX_SITE_SEQUENCE}; give "
+                             f"SiteClasses(sizes, probabilities) instead")
         seq = cls._sequence(probabilities, name, "a sequence of one probability per site")
         if not seq:
             raise ValueError(f"{name} must hold at least one probability, got an empty sequence")
-        if len(seq) > MAX_SITE_SEQUENCE:
-            raise ValueError(f"{name} has {len(seq)} entries, more than "
-                             f"symhx.sites.MAX_SITE_SEQUENCE = {MAX_SITE_SEQUENCE}; give "
-                             f"SiteClasses(sizes, probabilities) instead")
         order: dict[Fraction, list[Any]] = {}
         for i, p in enumerate(seq):
             fr, _ = check_p(p, f"{name}[{i}]")
