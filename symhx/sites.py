@@ -278,6 +278,35 @@ class SiteClasses:
                     slot[1] = p  # one binary entry makes the class binary
         return cls([c for c, _ in order.values()], [p for _, p in order.values()])
 
+    @classmethod
+    def parse(cls, text: str, name: str = "--sites") -> SiteClasses:
+        """Classes from the command-line form ``"2:0.01,99:0.02"`` (``size:probability``, comma
+        separated; ``"wall=2:0.01,pipe=99:0.02"`` names them).  Probabilities are read as
+        exact decimal strings, as ``p`` is on the command line.
+
+        >>> SiteClasses.parse("wall=2:0.01,pipe=99:1/50")
+        SiteClasses(sizes=(2, 99), probabilities=('0.01', '1/50'), names=('wall', 'pipe'))
+        """
+        if not isinstance(text, str):
+            raise TypeError(f"{name} must be a str such as '2:0.01,99:0.02', got "
+                            f"{type(text).__name__} {text!r}")
+        sizes, probs, names = [], [], []
+        items = [x.strip() for x in text.split(",")]
+        for i, item in enumerate(items):
+            label, eq, rest = item.rpartition("=") if "=" in item else ("", "", item)
+            size, colon, prob = rest.partition(":")
+            if not colon or not size.strip() or not prob.strip() or (eq and not label.strip()):
+                raise ValueError(f"{name} must be size:probability pairs separated by commas, "
+                                 f"optionally named (name=size:probability), such as "
+                                 f"'2:0.01,99:0.02'; item {i} is {item!r}")
+            sizes.append(check_int(size.strip(), f"{name} item {i} size", minimum=1))
+            check_p(prob.strip(), f"{name} item {i} probability")
+            probs.append(prob.strip())
+            names.append(label.strip())
+        if any(names) and not all(names):
+            raise ValueError(f"{name} must name every class or none, got {text!r}")
+        return cls(sizes, probs, names if all(names) else None)
+
     def merged(self) -> SiteClasses:
         """Classes of equal exact value merged (names dropped when anything merges); a merged
         class is exact only when all its parts are.

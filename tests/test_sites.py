@@ -143,3 +143,22 @@ def test_the_per_site_sequence_cap_is_checked_before_any_work():
 
     with pytest.raises(ValueError, match="MAX_SITE_SEQUENCE"):
         SiteClasses.from_sites(Long())
+
+
+def test_command_line_form_parses_exactly():
+    s = SiteClasses.parse("wall=2:0.01, pipe=99:1/50")
+    assert s == SiteClasses((2, 99), ("0.01", Fraction(1, 50)), names=("wall", "pipe"))
+    assert s.exact and SiteClasses.parse("3:1e-3").values == (Fraction(1, 1000),)
+
+
+@pytest.mark.parametrize("text, value, allowed", [
+    ("2:0.1,", "item 1 is ''", "size:probability"),
+    ("x", "'x'", "size:probability"),
+    ("=2:1", "'=2:1'", "name=size:probability"),
+    ("a=2:1,3:1", "'a=2:1,3:1'", "every class or none"),
+    ("0:1", "0", ">= 1"),
+    ("2:-1", "'-1'", "> 0"),
+    ("2:abc", "'abc'", "a number"),
+])
+def test_command_line_form_refusals(text, value, allowed):
+    assert_refuses(SiteClasses.parse, text, arg="--sites", value=value, allowed=allowed)
