@@ -22,12 +22,12 @@ from pathlib import Path
 import mpmath
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _common import best_time, write  # noqa: E402
+from _common import best_time, write
 
-from symhx.critical import critical_point  # noqa: E402
-from symhx.critical_sites import direction_critical_point  # noqa: E402
-from symhx.site_distribution import SitesDistribution  # noqa: E402
-from symhx.sites import SiteClasses  # noqa: E402
+from symhx.critical import critical_point
+from symhx.critical_sites import direction_critical_point
+from symhx.site_distribution import SitesDistribution
+from symhx.sites import SiteClasses
 
 DPS = 50
 WEIGHTS = [("1/2", 1), (3, 1)]
