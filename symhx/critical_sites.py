@@ -130,7 +130,7 @@ class DirectionCriticalPoint(CriticalPoint):
         return self.weights.scaled(t)
 
     def _show(self, x: Any) -> str:
-        return "None" if x is None else mpmath.nstr(x, self.dps)
+        return "None" if x is None else str(mp().nstr(x, self.dps))
 
     def __repr__(self) -> str:
         lo, hi = self.p_bounds

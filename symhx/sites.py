@@ -53,8 +53,7 @@ def _show_int(n: int) -> str:
         e += 1
     if n == 10**e:
         return f"10**{e}"
-    with mpmath.workprec(60):
-        lead = mpmath.nstr(mpmath.mpf(n), 6)
+    lead = mpmath.libmp.to_str(mpmath.libmp.from_int(n, 60, "n"), 6)  # no mpmath context
     return f"~{lead}"
 
 
