@@ -74,6 +74,7 @@ __all__ = [
     "EXACT_TABLE_BITS_LIMIT",
     "MAX_SMALL_SITES",
     "SIMPLE",
+    "SITE_PATTERN_LIMIT",
     "PatternSpace",
     "ball_weights",
     "binomial_product_balls",
@@ -82,6 +83,7 @@ __all__ = [
     "exact_table_bits",
     "exact_weights",
     "pattern_terms",
+    "pattern_work",
     "short_sum_split",
 ]
 
@@ -92,6 +94,10 @@ EXACT_TABLE_BITS_LIMIT = 200_000_000
 #: the ball path tabulates every ``k = 1..N`` (a few ``sqrt(N)`` fixed-point products of
 #: length ``~sqrt(N)``): 1e4 sites take ~0.1 s, 1e5 a few seconds.
 BALL_TABLE_N_LIMIT = 100_000
+#: a higher-order space with several site classes enumerates every (class of the space,
+#: distribution of its parts among the site classes) pair once: refused beyond this many
+#: (``excess<=16`` with 3 site classes is 146095 pairs, ~10 s; ``excess<=25`` with 2 is 456286)
+SITE_PATTERN_LIMIT = 200_000
 #: the short-sum representation (any N) needs all classes but the largest to hold at most this
 #: many sites in all: ``e_k`` is then a sum of at most ``MAX_SMALL_SITES + 1`` binomial terms.
 MAX_SMALL_SITES = 64
@@ -188,6 +194,17 @@ def _pattern_terms_cached(name: str, shapes: tuple[tuple[int, ...], ...], weight
     return out
 
 
+def pattern_work(space: Any, c: int) -> int:
+    """The number of (class of the space, distribution of its parts among ``c`` site classes)
+    pairs that :func:`pattern_terms` enumerates, counted without enumerating them.
+
+    >>> pattern_work(SIMPLE, 3)
+    1
+    """
+    return sum(math.prod(math.comb(m + c - 1, c - 1) for m in Counter(s).values())
+               for s in space.shapes)
+
+
 def pattern_terms(space: Any, c: int) -> dict[int, dict[tuple[tuple[int, ...], tuple[int, ...]],
                                                         Fraction]]:
     """For ``k > max_parts``: ``{e: {(r, w): coefficient}}`` with ``W(k) = sum_e (k+e-1)!
@@ -200,6 +217,13 @@ def pattern_terms(space: Any, c: int) -> dict[int, dict[tuple[tuple[int, ...], t
     >>> pattern_terms(SIMPLE, 2)
     {0: {((0, 0), (0, 0)): Fraction(1, 1)}}
     """
+    work = pattern_work(space, c)
+    if work > SITE_PATTERN_LIMIT:
+        raise ValueError(
+            f"space {space.name!r} with {c} site classes: its classes and their distributions "
+            f"among the site classes make {work} pairs, more than the documented work limit "
+            f"symhx.site_weights.SITE_PATTERN_LIMIT = {SITE_PATTERN_LIMIT} (a smaller excess "
+            f"or fewer site classes fit)")
     return _pattern_terms_cached(space.name, tuple(space.shapes), space.weighting, c)
 
 
@@ -247,20 +271,25 @@ def _class_list(sc: SiteClasses) -> Classes:
     return list(zip(m.sizes, m.values, strict=True))
 
 
-def _boundary_weight(space: Any, classes: Classes, k: int) -> Fraction:
-    """``W(k)`` exactly for ``k <= max_parts`` (class by class, with the space's own counts at
-    ``k = r_s``)."""
+def _boundary_corrections(space: Any, classes: Classes) -> dict[int, Fraction]:
+    """``{k: W(k) - generic(k)}`` for ``k <= max_parts``: the generic formula counts
+    ``(L - 1)!/prod s_i!`` circuits per assignment for every class ``s`` (words / L); at
+    ``k = r_s`` (no site visited once) the space's own count differs (Burnside's necklace count
+    when the parts share a divisor, or the paper's printed value), and only those classes are
+    summed, each over the distributions of its parts among the site classes."""
     c = len(classes)
-    total = Fraction(0)
+    out: dict[int, Fraction] = {}
     for s in space.shapes:
         r_s = len(s)
-        if r_s > k:
-            continue
-        ratio = space.ratio(s, k)
-        if not ratio:
+        if r_s == 0:
             continue
         C_s = _multiset_factorials(s)
-        a = ratio * C_s * math.factorial(k - r_s) / k  # circuits per assignment of the sites
+        S_s = math.prod(math.factorial(x) for x in s)
+        L = sum(s)
+        delta = space.ratio(s, r_s) * Fraction(C_s, r_s) - Fraction(math.factorial(L - 1), S_s)
+        if not delta:
+            continue
+        total = Fraction(0)
         for sig in distributions(s, c):
             w = Fraction(1)
             for (n, q), part in zip(classes, sig, strict=True):
@@ -269,32 +298,53 @@ def _boundary_weight(space: Any, classes: Classes, k: int) -> Fraction:
                     break
                 expo = sum(part) if space.weighting == "length" else len(part)
                 w *= Fraction(_falling(n, len(part)), _multiset_factorials(part)) * q**expo
-            if w:
-                r = tuple(len(part) for part in sig)
-                total += a * w * elementary_exact(_removed(classes, r), k - r_s)
-    return total
+            total += w
+        if total:
+            out[r_s] = out.get(r_s, Fraction(0)) + delta * total
+    return out
 
 
 def _short_polys(space: Any, classes: Classes) -> tuple[list[int], dict[int, list[Fraction]]]:
-    """``(R_i, {e: coefficients of N_e})`` exactly (see the module docstring)."""
+    """``(R_i, {e: coefficients of N_e})`` exactly (see the module docstring): the scalar
+    coefficients are gathered per ``(e, r)`` first, so each ``prod_i (1 + q_i z)**(R_i - r_i)``
+    is built once per ``r``."""
     c = len(classes)
-    R = space.max_parts
     Rs = [min(n, R) for n, _ in classes]
-    out: dict[int, list[Fraction]] = {}
+    scal: dict[int, dict[tuple[int, ...], Fraction]] = {}
     for e, level in pattern_terms(space, c).items():
-        poly = [Fraction(0)] * (sum(Rs) + 1)
+        acc = scal.setdefault(e, {})
         for (r, w), coef in level.items():
             if any(ri > n for ri, (n, _) in zip(r, classes, strict=True)):
                 continue
             factor = coef
             for (n, q), ri, wi in zip(classes, r, w, strict=True):
                 factor *= _falling(n, ri) * q**wi
-            # z**|r| prod_i (1 + q_i z)**(R_i - r_i)
-            part = [Fraction(1)]
-            for (_, q), ri, Ri in zip(classes, r, Rs, strict=True):
-                for _ in range(Ri - ri):
-                    part = [a + (q * part[i - 1] if i else 0) for i, a in
-                            enumerate([*part, Fraction(0)])]
+            acc[r] = acc.get(r, Fraction(0)) + factor
+    powers: list[list[list[Fraction]]] = []  # powers[i][j] = coefficients of (1 + q_i z)**j
+    for (_, q), Ri in zip(classes, Rs, strict=True):
+        row = [[Fraction(1)]]
+        for _ in range(Ri):
+            prev = row[-1]
+            row.append([a + (q * prev[i - 1] if i else 0) for i, a in
+                        enumerate([*prev, Fraction(0)])])
+        powers.append(row)
+    products: dict[tuple[int, ...], list[Fraction]] = {}
+    out: dict[int, list[Fraction]] = {}
+    for e, acc in scal.items():
+        poly = [Fraction(0)] * (sum(Rs) + 1)
+        for r, factor in acc.items():
+            part = products.get(r)
+            if part is None:
+                part = [Fraction(1)]
+                for i, (ri, Ri) in enumerate(zip(r, Rs, strict=True)):
+                    f = powers[i][Ri - ri]
+                    new = [Fraction(0)] * (len(part) + len(f) - 1)
+                    for a_i, a in enumerate(part):
+                        if a:
+                            for b_i, b in enumerate(f):
+                                new[a_i + b_i] += a * b
+                    part = new
+                products[r] = part
             shift = sum(r)
             for i, a in enumerate(part):
                 poly[shift + i] += factor * a
@@ -329,7 +379,6 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
             f"mpmath path, or dps=None for float64")
     classes = _class_list(sc)
     N = sc.N
-    R = space.max_parts
     Rs, npolys = _short_polys(space, classes)
     # base B(z) = prod (b + a z)**m / prod b**m, m = n - R_i
     base = fmpz_poly([1])
@@ -354,19 +403,14 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
                                   for e, poly in npolys.items()}
     den = den_n * den_b
     nums: list[int] = []
-    bound: dict[int, Fraction] = {k: _boundary_weight(space, classes, k)
-                                  for k in range(1, min(R, N) + 1)}
-    for w in bound.values():
+    corr = _boundary_corrections(space, classes)
+    for w in corr.values():
         den = math.lcm(den, w.denominator)
     scale = den // (den_n * den_b)
     fact = 1  # (k - 1)!
     for k in range(1, N + 1):
         if k > 1:
             fact *= k - 1
-        if k in bound:
-            wk = bound[k]
-            nums.append(wk.numerator * (den // wk.denominator))
-            continue
         total = 0
         for e, ipoly in nint.items():
             rise = fact
@@ -377,7 +421,8 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
                 if cj and 0 <= k - j < len(B):
                     s += cj * B[k - j]
             total += rise * s
-        nums.append(total * scale)
+        wk = corr.get(k)
+        nums.append(total * scale + (wk.numerator * (den // wk.denominator) if wk else 0))
     return nums, den
 
 
@@ -618,7 +663,6 @@ def ball_weights(sc: SiteClasses, space: Any = SIMPLE, prec: int = 128) -> list[
             f"weights with site classes tabulate every k; N={N} is above the documented work "
             f"limit symhx.site_weights.BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}")
     classes = _class_list(sc)
-    R = space.max_parts
     Rs, npolys = _short_polys(space, classes)
     deg = max(len(p) for p in npolys.values())
     inner = prec + 2 * _bits(N) + 2 * _bits(deg) + 16
@@ -628,14 +672,12 @@ def ball_weights(sc: SiteClasses, space: Any = SIMPLE, prec: int = 128) -> list[
     out: list[arb] = []
     with arb_prec(wp):
         polys = {e: [to_arb(x) for x in poly] for e, poly in npolys.items()}
+        corr = _boundary_corrections(space, classes)
         fact = arb(1)
         for k in range(1, N + 1):
             if k > 1:
                 fact = fact * (k - 1)
-            if k <= R:
-                out.append(to_arb(_boundary_weight(space, classes, k)))
-                continue
-            total = arb(0)
+            total = to_arb(corr[k]) if k in corr else arb(0)
             for e, poly in polys.items():
                 s = arb(0)
                 for j, cj in enumerate(poly):

@@ -16,6 +16,7 @@ from symhx.site_weights import (
     BALL_TABLE_N_LIMIT,
     EXACT_TABLE_BITS_LIMIT,
     SIMPLE,
+    SITE_PATTERN_LIMIT,
     ball_weights,
     binomial_product_balls,
     distributions,
@@ -23,6 +24,7 @@ from symhx.site_weights import (
     elementary_exact,
     exact_weights,
     pattern_terms,
+    pattern_work,
     short_sum_split,
 )
 from symhx.sites import SiteClasses
@@ -182,6 +184,14 @@ def test_work_limits_are_checked_before_any_work():
     huge = SiteClasses((BALL_TABLE_N_LIMIT, 1), (0.5, 0.25))
     assert_refuses(ball_weights, huge, arg="N", value=f"N={BALL_TABLE_N_LIMIT + 1}",
                    allowed=["BALL_TABLE_N_LIMIT", str(BALL_TABLE_N_LIMIT)])
+
+
+def test_pattern_work_limit_is_checked_before_enumerating():
+    sc = SiteClasses((5, 5, 5), (1, 2, 3))
+    assert pattern_work(parse_space("excess<=25"), 3) > SITE_PATTERN_LIMIT
+    assert_refuses(exact_weights, sc, parse_space("excess<=25"), arg="space",
+                   value="'excess<=25'", allowed="SITE_PATTERN_LIMIT")
+    assert pattern_work(parse_space("eq41"), 3) == 1 + 3 + 3 + 6 + 3
 
 
 def test_ball_balls_are_arb():
