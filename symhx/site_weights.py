@@ -309,6 +309,7 @@ def _short_polys(space: Any, classes: Classes) -> tuple[list[int], dict[int, lis
     coefficients are gathered per ``(e, r)`` first, so each ``prod_i (1 + q_i z)**(R_i - r_i)``
     is built once per ``r``."""
     c = len(classes)
+    R = space.max_parts
     Rs = [min(n, R) for n, _ in classes]
     scal: dict[int, dict[tuple[int, ...], Fraction]] = {}
     for e, level in pattern_terms(space, c).items():
