@@ -35,8 +35,8 @@ array([0.0298, 0.0402, 0.0644])
 >>> mean(3, "1/2")
 Fraction(3, 2)
 >>> from symhx.sites import SiteClasses
->>> modes(101, SiteClasses((2, 99), ("0.01", "0.02")))
-(49,)
+>>> modes(101, SiteClasses((2, 99), ("0.01", "0.02")))   # walls at 0.01, pipe pairs 0.02
+(50,)
 """
 
 from __future__ import annotations
@@ -469,8 +469,9 @@ def critical_point(N: Any, *, weights: Any = None, space: SpaceLike = DEFAULT_SP
     >>> cp.k_before, cp.k_after
     (1, 20)
     >>> from symhx.sites import SiteClasses
-    >>> critical_point(101, weights=SiteClasses((2, 99), ("1/2", 1)), dps=20).k_after
-    19
+    >>> cp = critical_point(101, weights=SiteClasses((2, 99), (3, 1)), dps=20)
+    >>> cp.k_after, cp.method            # walls 3x as likely as pipe pairs: jumps to 19
+    (19, 'table')
     """
     sp = _space(space)
     N = check_N(N)

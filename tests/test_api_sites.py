@@ -178,3 +178,36 @@ def test_one_class_is_the_scalar_on_a_grid(N_):
                 ref = getattr(symhx, name)(N_, p, dps=dps)
                 assert all(same(getattr(symhx, name)(N_, f, dps=dps), ref) for f in forms), name
         assert all(symhx.modes(N_, f) == symhx.modes(N_, p) for f in forms)
+
+
+def test_work_limits_are_refused_before_any_work():
+    """The documented caps of the class paths, the same through every public route."""
+    import time
+
+    from symhx.site_weights import (
+        BALL_TABLE_N_LIMIT,
+        EXACT_TABLE_BITS_LIMIT,
+        SITE_PATTERN_LIMIT,
+    )
+    from symhx.sites import MAX_SITE_SEQUENCE
+
+    big = BALL_TABLE_N_LIMIT * 10
+    row = SiteClasses((2, big - 2), (0.5, 0.02))
+    start = time.perf_counter()
+    for fn in (symhx.distribution_of, symhx.mean, symhx.modes):
+        assert_refuses(fn, big, row, arg="N", value=f"N={big}",
+                       allowed=f"BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}")
+    n = 20_000
+    assert_refuses(symhx.distribution_of, n, SiteClasses((2, n - 2), ("0.5", "0.02")),
+                   arg="N", value=f"N={n}", allowed="EXACT_TABLE_BITS_LIMIT")
+    assert EXACT_TABLE_BITS_LIMIT < 5e9  # the table above would hold ~5e9 bits
+    assert_refuses(symhx.pmf, 40, SiteClasses((10,) * 4, ("0.1", "0.2", "0.3", "0.4")), 3,
+                   space="excess<=20", arg="space", value="'excess<=20'",
+                   allowed=f"SITE_PATTERN_LIMIT = {SITE_PATTERN_LIMIT}")
+    assert_refuses(symhx.critical_point, big, weights=SiteClasses((big // 2, big // 2), (1, 2)),
+                   arg="N", value=f"N={big}", allowed="BALL_TABLE_N_LIMIT")
+    huge = np.broadcast_to(0.5, (MAX_SITE_SEQUENCE + 1,))  # no memory: a view
+    assert_refuses(symhx.distribution_of, MAX_SITE_SEQUENCE + 1, huge, arg="p",
+                   value=f"{MAX_SITE_SEQUENCE + 1} entries",
+                   allowed=f"MAX_SITE_SEQUENCE = {MAX_SITE_SEQUENCE}")
+    assert time.perf_counter() - start < 5  # refused before the tables, not after

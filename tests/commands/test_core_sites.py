@@ -81,3 +81,14 @@ def test_bad_sites_are_one_line_errors(capsys):
         rc, out, err = run(capsys, *argv)
         assert rc == 2 and out == "" and len(err.strip().splitlines()) == 1, argv
         assert "error" in err and "Traceback" not in err
+
+
+def test_sites_work_limits_are_the_api_limits(capsys):
+    from symhx.site_weights import BALL_TABLE_N_LIMIT
+
+    big = 10 * BALL_TABLE_N_LIMIT
+    for argv in (["distribution", str(big), "--sites", f"2:0.5,{big - 2}:0.02", "--float"],
+                 ["critical", str(big), "--sites", f"{big // 2}:1,{big // 2}:2"]):
+        rc, out, err = run(capsys, *argv)
+        assert rc == 2 and out == "" and len(err.strip().splitlines()) == 1, argv
+        assert f"BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}" in err
