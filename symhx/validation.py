@@ -78,6 +78,7 @@ __all__ = [
     "is_exact_type",
     "mpf_to_fraction",
     "short_value",
+    "show_exact",
     "to_rational",
 ]
 
@@ -109,6 +110,20 @@ def short_value(fr: Fraction) -> str:
     """
     return str(libmp.to_str(libmp.from_rational(fr.numerator, fr.denominator, 53,
                                                  libmp.round_nearest), 5))
+
+
+def show_exact(x: int | Fraction) -> str:
+    """An exact int or Fraction for an error message: as it is when short (``101``, ``1/50``),
+    else in 5 significant digits (``1.0e+400``) -- never thousands of digits, and never Python's
+    4300-digit ``str`` limit.
+
+    >>> show_exact(101), show_exact(Fraction(1, 50)), show_exact(Fraction(1, 10**5000))
+    ('101', '1/50', '1.0e-5000')
+    """
+    fr = Fraction(x)
+    if fr.numerator.bit_length() + fr.denominator.bit_length() <= 128:
+        return str(x)
+    return short_value(fr)
 
 
 def _show(x: Any) -> str:

@@ -35,6 +35,9 @@ TABLE_NS = (2, 3, 4, 5, 6, 7, 8, 10, 20, 50, 100, 101, 1000, 10**4, 10**6, 10**1
 MAX_CIRCUIT_LENGTH = 40
 #: ``circuits N`` (the table of phi_N(k), k = 1..N) is refused above this N
 MAX_PHI_TABLE_N = 2000
+#: ``distribution N p --table`` (one row P(X = k) per k = 1..N) is refused above this N, before
+#: any work (a row limit: N = 10**4 rows print in ~1 s; a huge N would run for ever)
+MAX_PMF_TABLE_N = 10_000
 
 N_HELP = "number of vertices N = pipes + 1 (exact integer: 101, 1e100 or 10**100)"
 P_HELP = "impact probability p > 0, exact: 0.02, 2e-2 and 1/50 are all exactly 1/50"
@@ -77,14 +80,16 @@ def register(sub: Any) -> None:
     d = sub.add_parser("distribution", help="distribution of X: mean, variance, modes, pmf",
                        description="The distribution of X, the number of distinct impacts "
                        "(eq. 7), exactly (rational p) or with mpmath (--float).")
-    d.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
+    d.add_argument("N", type=int_arg("N", minimum=1),
+                   help=N_HELP + "; N >= 1 as in the API (N = 1: X = 1 with certainty)")
     d.add_argument("p", type=rational_arg("p"), help=P_HELP)
     add_dps(d, help_text="significant digits shown (and of the mpmath values with --float)")
     d.add_argument("--space", default=DEFAULT_SPACE,
                    help="sample space: simple, eq41, eq41-printed or excess<=m")
     d.add_argument("--float", action="store_true",
                    help="evaluate with mpmath at --dps instead of exactly")
-    d.add_argument("--table", action="store_true", help="include P(X=k) for every k")
+    d.add_argument("--table", action="store_true",
+                   help=f"include P(X=k) for every k (N <= {MAX_PMF_TABLE_N}, a row limit)")
     add_json(d)
     d.set_defaults(func=cmd_distribution)
 
@@ -129,7 +134,7 @@ def cmd_critical(args: argparse.Namespace) -> int:
     cp = critical_point(args.N, dps=args.dps)
     q_d = discriminant_root_q(args.N, dps=args.dps)
     if args.json:
-        print(dump_json({**cp.as_dict(), "N_p_d_minus_1": q_d}))
+        print(dump_json({**cp.as_dict(), "N_p_d_minus_1": q_d}, args.dps))
         return 0
     dps = args.dps
     pc = mpstr(cp.p_exact, dps) if cp.p_exact is not None else mpstr(cp.p, dps)
@@ -147,6 +152,10 @@ def cmd_critical(args: argparse.Namespace) -> int:
 def cmd_distribution(args: argparse.Namespace) -> int:
     from symhx.api import distribution_of
 
+    if args.table and args.N > MAX_PMF_TABLE_N:
+        raise ValueError(f"--table lists one row per k: N={int_show(args.N)} is beyond the "
+                         f"documented row limit N <= {MAX_PMF_TABLE_N} "
+                         f"(symhx.commands.core.MAX_PMF_TABLE_N); omit --table")
     p: Any = args.p
     if args.float:
         ctx = mp()
@@ -159,7 +168,7 @@ def cmd_distribution(args: argparse.Namespace) -> int:
     if args.table:
         out["pmf"] = {k: d.pmf(k) for k in range(1, d.N + 1)}
     if args.json:
-        print(dump_json(out))
+        print(dump_json(out, args.dps))
         return 0
     how = "exact rational arithmetic" if d.exact else f"mpmath, {args.dps} significant digits"
     print(f"distribution of X for N = {int_show(args.N)}, p = {mpstr(args.p, args.dps)} "
@@ -231,7 +240,7 @@ def cmd_mode_path(args: argparse.Namespace) -> int:
     path = mode_path(args.N, p_max=args.p_max, dps=args.dps)
     rows = path.as_rows()
     if args.json:
-        print(dump_json({"N": args.N, "p_max": args.p_max, "breakpoints": rows}))
+        print(dump_json({"N": args.N, "p_max": args.p_max, "breakpoints": rows}, args.dps))
         return 0
     print(f"mode k*(p) of X for N = {int_show(args.N)} on (0, {mpstr(args.p_max, 17)}]: "
           f"{len(rows)} breakpoints (k* = 1 up to the first)")

@@ -104,7 +104,7 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
     if args.table:
         rows = error_table(dps=max(args.dps, 120), orders=orders)
         if args.json:
-            print(dump_json(rows))
+            print(dump_json(rows, args.dps))
         else:
             from symhx.asymptotics import format_error_table
 
@@ -134,7 +134,7 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
                 row["q_rel_error"] = rel_error(r.q)
                 row["k_exact"] = exact.k_after
             out.append(row)
-        print(dump_json(out))
+        print(dump_json(out, args.dps))
         return 0
     print(f"N = {args.N}: large-N approximations of q = N p_c - 1 and k_jump")
     for r in res:

@@ -10,16 +10,17 @@ from typing import Any
 
 from symhx.commands._common import dump_json, int_arg, int_show, mpstr, rational_arg
 from symhx.commands.core import DPS_HELP, N_HELP, P_HELP, add_dps, add_json, write_csv
-from symhx.spaces import MAX_EXCESS
+from symhx.spaces import MAX_EXCESS, MAX_SPACE_WORK
 from symhx.spaces.study import STUDY_N_LIMIT
 
 ORDER = 60
 
 #: the paper's row for figures 11-13: 100 pipes -> N = 101
 PAPER_N = 101
-#: The section-8 spaces sum over every k <= N: N = 10**6 takes ~7 s, 10**7 minutes, and beyond
-#: ~10**19 the sums fail; the CLI refuses N above this (a documented work limit).
-MAX_SPACES_N = 10**6
+#: The largest N of ``symhx spaces`` over eq41 (the default space): the API's work limit
+#: ``N * (m + 1) <= symhx.spaces.MAX_SPACE_WORK`` (one limit for the API and the CLI, checked by
+#: the API before any work; ``N <= 153846`` for excess<=25).
+MAX_SPACES_N = MAX_SPACE_WORK // 4
 
 
 def register(sub: Any) -> None:
@@ -28,8 +29,9 @@ def register(sub: Any) -> None:
                        description="The distribution of X over a sample space with "
                        "higher-order circuits (section 8): the jump of the mode and, given p, "
                        "E[X], Var[X], the modes and the class probabilities.")
-    s.add_argument("N", type=int_arg("N", minimum=2, maximum=MAX_SPACES_N),
-                   help=N_HELP + f"; at most {MAX_SPACES_N:.0e} (work limit)")
+    s.add_argument("N", type=int_arg("N", minimum=2),
+                   help=N_HELP + f"; N * (m + 1) <= {MAX_SPACE_WORK:.0e} (work limit: N <= "
+                   f"{MAX_SPACES_N:.0e} for eq41)")
     s.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
                    help=P_HELP + "; omit for the jump only")
     s.add_argument("--space", default="eq41",
@@ -59,6 +61,9 @@ def cmd_spaces(args: argparse.Namespace) -> int:
     from symhx._mpctx import export, mp
     from symhx.spaces import class_probabilities, critical_point, distribution
 
+    from symhx.spaces import check_space_work, parse_space
+
+    check_space_work(parse_space(args.space), args.N, "symhx spaces")  # before any work
     cp = critical_point(args.N, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "space": args.space, "critical": cp.as_dict()}
     if args.p is not None:
@@ -72,7 +77,7 @@ def cmd_spaces(args: argparse.Namespace) -> int:
         if args.classes:
             out["classes"] = class_probabilities(args.N, p, space=args.space, dps=args.dps)
     if args.json:
-        print(dump_json(out))
+        print(dump_json(out, args.dps))
         return 0
     print(f"space {args.space}, N = {int_show(args.N)}: mode jumps 1 -> "
           f"{int_show(cp.k_after)} at p_c = {mpstr(cp.p, args.dps)}")
@@ -102,7 +107,7 @@ def cmd_convergence(args: argparse.Namespace) -> int:
         check_p(p, "--p")
     rows = _convergence_rows(args.N, args.max_m, args.p, args.dps)
     if args.json:
-        print(dump_json({"N": args.N, "rows": rows}))
+        print(dump_json({"N": args.N, "rows": rows}, args.dps))
         return 0
     ps = list(rows[0]["means"])
     print(f"N = {args.N}: E[X] at p = {', '.join(ps)}")
