@@ -59,9 +59,13 @@ def register(sub: Any) -> None:
 
 def cmd_spaces(args: argparse.Namespace) -> int:
     from symhx._mpctx import export, mp
-    from symhx.spaces import class_probabilities, critical_point, distribution
-
-    from symhx.spaces import check_space_work, parse_space
+    from symhx.spaces import (
+        check_space_work,
+        class_probabilities,
+        critical_point,
+        distribution,
+        parse_space,
+    )
 
     check_space_work(parse_space(args.space), args.N, "symhx spaces")  # before any work
     cp = critical_point(args.N, space=args.space, dps=args.dps)

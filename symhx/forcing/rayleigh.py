@@ -59,6 +59,7 @@ from symhx.validation import (
     check_choice,
     check_dps,
     check_seed,
+    check_size,
     short_value,
     to_rational,
 )
@@ -766,10 +767,11 @@ class RayleighSum:
 
         ``random_state``: None, an int seed or a ``numpy.random.Generator``.
         """
+        shape = check_size(size)  # at most MAX_SAMPLE_SIZE draws, before any work
         rng = (random_state if isinstance(random_state, np.random.Generator)
                else np.random.default_rng(check_seed(random_state, "random_state")))
         sc = self._float_scales()
-        return sum(rng.rayleigh(scale=s, size=size) for s in sc)   # a float for size=None
+        return sum(rng.rayleigh(scale=s, size=shape) for s in sc)   # a float for size=None
 
     # ---- probabilities
     def sf(self, x: Any, *, dps: int | None = None) -> Any:

@@ -42,7 +42,12 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 
-from symhx.circuits import necklaces_with_content, normalise_visits, partitions
+from symhx.circuits import (
+    MAX_COUNT_BITS,
+    necklaces_with_content,
+    normalise_visits,
+    partitions,
+)
 from symhx.validation import check_int, check_N
 
 __all__ = [
@@ -109,7 +114,8 @@ def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
                         f"{shape!r}")
     s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
-        raise ValueError(f"a class lists the parts > 1 of a visit pattern, got {shape!r}")
+        raise ValueError(f"shape must list the parts >= 2 of a visit pattern (the vertices "
+                         f"visited more than once), got shape={shape!r:.80}")
     return s
 
 
@@ -148,10 +154,10 @@ def check_space_work(space: Space, N: int, what: str) -> None:
     """Refuse, before any work, ``what`` over ``space`` when ``N * (m + 1) > MAX_SPACE_WORK``.
 
     >>> check_space_work(parse_space("eq41"), 10**6, "critical_point")
-    >>> check_space_work(parse_space("eq41"), 10**7, "critical_point")
+    >>> check_space_work(parse_space("eq41"), 10**7, "critical_point")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: N=10000000 is beyond the documented work limit of critical_point over space 'eq41': N <= 1000000 (N * (m + 1) <= MAX_SPACE_WORK = 4000000 with m = 3, symhx.spaces.MAX_SPACE_WORK); raise that constant to allow it
+    ValueError: N=10000000 is beyond the documented work limit ... N <= 1000000 ...
     """
     if space.base == "simple" or N * (space.max_excess + 1) <= MAX_SPACE_WORK:
         return
@@ -254,6 +260,12 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     Equal to :func:`symhx.circuits.circuit_count` of the visit pattern ``shape + (1,)*(k-r)``;
     ``printed=True`` gives the paper's count instead (see :func:`class_ratio`).
 
+    Raises
+    ------
+    ValueError
+        A bad ``N``, ``shape`` or ``k``, or a count of more than about
+        :data:`symhx.circuits.MAX_COUNT_BITS` bits (``k * bit_length(N)``, checked first).
+
     >>> class_count(100, (3,), 1), class_count(100, (3,), 1, printed=True)
     (100, 0)
     >>> class_count(10, (2, 2), 4)      # eq. (40) at length 6: (1/8) 5!/2! * 10!/6!
@@ -264,6 +276,14 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     shape = check_shape(shape)  # validated even where the count is 0 (k outside 1..N)
     if k < 1 or k > N:
         return 0
+    if k * N.bit_length() > MAX_COUNT_BITS:  # the count has about k log2(N) bits
+        from symhx.validation import show_exact
+
+        raise ValueError(f"class_count(N={show_exact(N)}, k={show_exact(k)}) would have about "
+                         f"k * bit_length(N) = {show_exact(k * N.bit_length())} bits, beyond "
+                         f"the documented work limit k * bit_length(N) <= {MAX_COUNT_BITS} "
+                         f"(symhx.circuits.MAX_COUNT_BITS); use symhx.log_phi for the size of "
+                         f"such counts")
     val = class_ratio(shape, k, printed=printed) * Fraction(math.perm(N, k), k)
     assert val.denominator == 1
     return int(val)
@@ -309,7 +329,8 @@ def printed_count(eq: str, N: int, L: int, *, outside: str = "zero") -> Fraction
 
 def eq41_terms(N: int, k: int, *, printed: bool = False) -> dict[str, int]:
     """The five terms of eq. (41) at ``k`` distinct vertices, as counts of circuits:
-    ``phi(k)``, ``phi^1(k+1)``, ``phi^{1,0}(k+2)``, ``phi^2(k+2)``, ``phi^{1,0,0}(k+3)``.
+    ``phi(k)``, ``phi^1(k+1)``, ``phi^{1,0}(k+2)``, ``phi^2(k+2)``, ``phi^{1,0,0}(k+3)``
+    (the limits of :func:`class_count` apply).
 
     >>> eq41_terms(5, 1)
     {'phi': 5, 'phi^1': 5, 'phi^{1,0}': 5, 'phi^2': 0, 'phi^{1,0,0}': 5}
@@ -552,6 +573,8 @@ def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
     (2, 1, 1)
     """
     s = check_shape(shape)
+    k = check_int(k, "k")
     if k < len(s):
-        raise ValueError(f"class {s} needs at least {len(s)} distinct vertices")
+        raise ValueError(f"k must be >= {len(s)} for shape={s} (it has {len(s)} repeated "
+                         f"vertices), got k={k}")
     return normalise_visits(s + (1,) * (k - len(s))) if k else ()

@@ -79,11 +79,10 @@ def root_estimates(space: Space | str, N: int) -> np.ndarray:
     >>> int(np.argmin(s)) + 2   # the jump of eq. (41) for N = 10 lands on k = 5
     5
     """
-    from scipy.special import gammaln
-
     sp = parse_space(space)
     N = check_N(N)
     check_space_work(sp, N, "root_estimates")
+    from scipy.special import gammaln
     lu = log_U_table(sp, N)
     ks = np.arange(2, N + 1, dtype=float)
     G = gammaln(float(N)) - gammaln(N - ks + 1.0) - (ks - 1.0) * math.log(N)
