@@ -111,8 +111,32 @@ def short_value(fr: Fraction) -> str:
     >>> short_value(Fraction(10) ** 400)
     '1.0e+400'
     """
+    if fr and abs(fr.numerator.bit_length() - fr.denominator.bit_length()) > 200:
+        return _sci5(fr)  # mpmath's to_str takes seconds for a decimal exponent ~10**5
     return str(libmp.to_str(libmp.from_rational(fr.numerator, fr.denominator, 53,
                                                  libmp.round_nearest), 5))
+
+
+def _sci5(fr: Fraction) -> str:
+    """``fr`` (far from 1) as ``d.dddde+NN`` in 5 significant digits (trailing zeros dropped),
+    mpmath's ``to_str`` style, with integer arithmetic only."""
+    sign, a = ("-", -fr) if fr < 0 else ("", fr)
+    e = math.floor(math.log10(a.numerator) - math.log10(a.denominator))
+    num, den = a.numerator, a.denominator
+    if e >= 0:
+        den *= 10**e
+    else:
+        num *= 10 ** (-e)
+    m = round(Fraction(num, den) * 10**4)  # 5 significant digits, if 1 <= num/den < 10
+    while m >= 10**5:
+        e, num, den = e + 1, num, den * 10
+        m = round(Fraction(num, den) * 10**4)
+    while m < 10**4:
+        e, num = e - 1, num * 10
+        m = round(Fraction(num, den) * 10**4)
+    digits = str(m)
+    frac = digits[1:].rstrip("0") or "0"
+    return f"{sign}{digits[0]}.{frac}e{e:+d}"
 
 
 #: largest number of random draws of one ``rvs`` call (distributions of X, ``RayleighSum``): the
