@@ -103,7 +103,7 @@ def jsonable(obj: Any, digits: int | None = None) -> Any:
         if not _finite(obj):
             return None if obj._mpf_ == libmp.fnan else ("inf" if obj > 0 else "-inf")
         shown = mpf_digits(obj) if digits is None else min(digits, mpf_digits(obj))
-        return str(mp().nstr(obj, shown, strip_zeros=False))
+        return _tidy(str(mp().nstr(obj, shown, strip_zeros=False)))
     if isinstance(obj, float):
         if not math.isfinite(obj):
             return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
@@ -131,7 +131,7 @@ def _directed(x: mpmath.mpf, digits: int, key: str) -> str:
     from decimal import Decimal
 
     shown = min(digits, mpf_digits(x))
-    text = str(mp().nstr(x, shown, strip_zeros=False))
+    text = _tidy(str(mp().nstr(x, shown, strip_zeros=False)))
     exact = V.mpf_to_fraction(x)
     dec = Decimal(text)
     step = Decimal(1).scaleb(dec.adjusted() - shown + 1)
@@ -149,7 +149,16 @@ def _dec_str(dec: Any, digits: int) -> str:
     """A Decimal in ``digits`` significant digits, in mpmath's ``nstr`` style."""
     ctx = mp()
     with ctx.workdps(digits + 5):
-        return str(ctx.nstr(ctx.mpf(str(dec)), digits, strip_zeros=False))
+        return _tidy(str(ctx.nstr(ctx.mpf(str(dec)), digits, strip_zeros=False)))
+
+
+def _tidy(text: str) -> str:
+    """mpmath's one-digit forms ``"2."`` and ``"1.e+30"`` as ``"2"`` and ``"1e+30"``.
+
+    >>> _tidy("2."), _tidy("1.e+30"), _tidy("0.25")
+    ('2', '1e+30', '0.25')
+    """
+    return text.replace(".e", "e").removesuffix(".")
 
 
 def _finite(x: mpmath.mpf) -> bool:
@@ -228,7 +237,8 @@ def mpstr(x: Any, digits: int) -> str:
         return f"{dec}  (rounded from an exact rational)"
     if is_mpf(x):
         digits = min(digits, mpf_digits(x))
-        return str(mp().nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12))
+        return _tidy(str(mp().nstr(x, digits, strip_zeros=False, min_fixed=-5,
+                                   max_fixed=12)))
     if isinstance(x, float):
         return repr(x)
     return str(x)
