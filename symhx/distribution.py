@@ -129,6 +129,14 @@ def _n_show(N: int) -> str:
     return f"10**{e}" if N == 10**e else f"~10**{e}"
 
 
+def _p_show(fr: Fraction) -> str:
+    """``p`` for a message: its first 40 characters, or 5 significant digits when its digits
+    would pass Python's 4300-digit ``str`` limit."""
+    if max(fr.numerator.bit_length(), fr.denominator.bit_length()) > 10_000:
+        return show_exact(fr)
+    return str(fr)[:40]
+
+
 def _is_array(x: Any) -> bool:
     return isinstance(x, (np.ndarray, list, tuple))
 
@@ -216,7 +224,7 @@ class Distribution:
         if work > limit:
             raise ValueError(
                 f"{what} in exact rational arithmetic would need ~{work:.2g} bit-terms for "
-                f"N={_n_show(self.N)}, p={show_exact(self.fr)} (documented work limit {limit}, "
+                f"N={_n_show(self.N)}, p={_p_show(self.fr)} (documented work limit {limit}, "
                 f"symhx.distribution.{name}); pass p as a float or mpmath.mpf for the mpmath "
                 f"path at dps digits, or dps=None for float64")
 

@@ -201,6 +201,8 @@ def brief_repr(x: Any) -> str:
 def _show(x: Any) -> str:
     """A short description of a bad value for an error message."""
     try:
+        r = repr(x)
+    except ValueError:  # an int beyond Python's 4300-digit str limit
         r = brief_repr(x)
     except Exception:  # pragma: no cover - exotic objects
         r = object.__repr__(x)

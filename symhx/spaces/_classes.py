@@ -114,8 +114,8 @@ def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
                         f"{shape!r}")
     s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
-        raise ValueError(f"shape must list the parts >= 2 of a visit pattern (the vertices "
-                         f"visited more than once), got shape={shape!r:.80}")
+        raise ValueError(f"shape (a class) must list the parts > 1 of a visit pattern (the "
+                         f"vertices visited more than once), got shape={shape!r:.80}")
     return s
 
 
@@ -575,6 +575,6 @@ def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
     s = check_shape(shape)
     k = check_int(k, "k")
     if k < len(s):
-        raise ValueError(f"k must be >= {len(s)} for shape={s} (it has {len(s)} repeated "
-                         f"vertices), got k={k}")
+        raise ValueError(f"k must be >= {len(s)} for the class shape={s}: it needs at least "
+                         f"{len(s)} distinct vertices, got k={k}")
     return normalise_visits(s + (1,) * (k - len(s))) if k else ()
