@@ -116,9 +116,10 @@ def cmd_convergence(args: argparse.Namespace) -> int:
     ps = list(rows[0]["means"])
     print(f"N = {args.N}: E[X] at p = {', '.join(ps)}")
     print(f"{'space':>14s} {'p_c':>14s} {'k':>4s} " + " ".join(f"{p:>9s}" for p in ps))
+    pc_digits, mean_digits = min(8, args.dps), min(5, args.dps)  # never beyond --dps
     for r in rows:
-        print(f"{r['space']:>14s} {mpstr(r['p_c'], 8):>14s} {r['k_after']:4d} "
-              + " ".join(f"{float(v):9.3f}" for v in r["means"].values()))
+        print(f"{r['space']:>14s} {mpstr(r['p_c'], pc_digits):>14s} {r['k_after']:4d} "
+              + " ".join(f"{mpstr(v, mean_digits):>9s}" for v in r["means"].values()))
     return 0
 
 

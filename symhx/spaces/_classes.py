@@ -111,7 +111,7 @@ def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
     """
     if isinstance(shape, (str, bytes)) or not hasattr(shape, "__iter__"):
         raise TypeError(f"shape must be a tuple of ints >= 2, got {type(shape).__name__} "
-                        f"{shape!r}")
+                        f"{shape!r:.80}")
     s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
         raise ValueError(f"shape (a class) must list the parts > 1 of a visit pattern (the "
@@ -131,7 +131,10 @@ def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
     """
     m = check_int(m, "maximum excess m", minimum=0)
     if m > MAX_EXCESS:
-        raise ValueError(f"maximum excess m={m} is beyond the documented work limit {MAX_EXCESS} "
+        from symhx.validation import show_exact
+
+        raise ValueError(f"maximum excess m={show_exact(m)} is beyond the documented work limit "
+                         f"{MAX_EXCESS} "
                          f"(symhx.spaces._classes.MAX_EXCESS: excess<=25 already has 9296 "
                          f"classes and takes seconds per distribution); raise that constant "
                          f"to allow it")

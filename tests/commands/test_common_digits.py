@@ -106,3 +106,19 @@ def test_distribution_table_has_a_documented_row_limit(capsys):
 
     rc, cap = run(capsys, "distribution", str(MAX_PMF_TABLE_N + 1), "0.1", "--float", "--table")
     assert rc == 2 and "--table" in cap.err and str(MAX_PMF_TABLE_N) in cap.err
+
+
+@pytest.mark.parametrize("argv, dps", [
+    (["asymptotics", "1e10", "--dps", "3", "--exact"], 3),
+    (["convergence", "30", "--max-m", "1", "--p", "0.05", "--dps", "2"], 2),
+    (["critical", "10**3", "--dps", "2"], 2),
+    (["spaces", "101", "0.02", "--dps", "3"], 3),
+])
+def test_text_output_carries_at_most_dps_digits(capsys, argv, dps):
+    import re
+
+    rc, cap = run(capsys, *argv)
+    assert rc == 0
+    # every decimal number with a point (integers and exact rationals aside)
+    for num in re.findall(r"(?<![\w/.])-?\d+\.\d+(?:e[-+]?\d+)?", cap.out):
+        assert significant_digits(num) <= dps, (num, cap.out)
