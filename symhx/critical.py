@@ -76,7 +76,7 @@ from symhx.validation import (
     check_dps,
     check_int,
     check_N,
-    short_value,
+    show_exact,
 )
 
 __all__ = [
@@ -598,7 +598,7 @@ def compare_with_critical(cp: CriticalPoint, fr: Fraction) -> int:
     def exact() -> int:
         if k * (N.bit_length() + fr.numerator.bit_length() + fr.denominator.bit_length()) \
                 > EXACT_BITS_LIMIT:
-            raise UndecidedError(f"p={short_value(fr)} vs p_c for N={_fmt_int(N)}: exact "
+            raise UndecidedError(f"p={show_exact(fr)} vs p_c for N={_fmt_int(N)}: exact "
                                  f"comparison too big")
         lhs = fmpz(fr.numerator) ** (k - 1) * _perm(N - 1, k - 1)
         rhs = k * fmpz(fr.denominator) ** (k - 1)
