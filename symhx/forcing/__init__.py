@@ -68,14 +68,16 @@ ufuncs and ``scipy.stats`` do). Scalars may be decimal strings (exact, ``"0.05"`
 Modules (one concept each): :mod:`~symhx.forcing.arguments` (conversion, validation, the
 forcing value object), :mod:`~symhx.forcing.kernels_float` (float64 closed forms),
 :mod:`~symhx.forcing.kernels_mp` and :mod:`~symhx.forcing.rawmp` (mpmath closed forms and
-their raw-libmp fast path), :mod:`~symhx.forcing.rayleigh` (the Rayleigh sum),
+their raw-libmp fast path), :mod:`~symhx.forcing.rayleigh` (the Rayleigh sum of at most
+``MAX_SCALES`` = 64 scales),
+:mod:`~symhx.forcing.inversion` (its Laplace-transform inversion for three and more scales),
 :mod:`~symhx.forcing.probability` (p, 1 - p, logs), :mod:`~symhx.forcing.derivative`,
 :mod:`~symhx.forcing.inverse`, :mod:`~symhx.forcing.theory` (the chain to the graph model).
 """
 
 from __future__ import annotations
 
-from symhx.forcing.arguments import ForcingParams
+from symhx.forcing.arguments import MAX_SCALES, ForcingParams
 from symhx.forcing.derivative import dp_dsigma
 from symhx.forcing.inverse import sigma_for_impact_probability
 from symhx.forcing.probability import (
@@ -94,6 +96,7 @@ from symhx.forcing.rayleigh import (
 from symhx.forcing.theory import TheoryCurve, theory_curve
 
 __all__ = [
+    "MAX_SCALES",
     "ForcingParams",
     "RayleighSum",
     "RayleighSumResult",

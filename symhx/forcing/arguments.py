@@ -17,6 +17,7 @@ validation layer (:mod:`symhx.validation`):
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from fractions import Fraction
@@ -25,13 +26,18 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from symhx._mpctx import export, is_mpf
+from symhx._mpctx import mp as thread_mp
 from symhx.validation import brief_repr, check_array, check_dps, to_rational
 
 __all__ = [
     "IRRATIONAL_EXTRA_DIGITS",
+    "MAX_SCALES",
     "ForcingParams",
     "bad_index",
     "elementwise",
+    "export_result",
+    "exported",
     "float_arg",
     "is_array",
     "is_components",
@@ -57,6 +63,42 @@ def bad_index(arr: np.ndarray, bad: np.ndarray) -> str:
         return ""
     idx = np.unravel_index(int(np.argmax(bad)), arr.shape)
     return f" at index {idx[0] if len(idx) == 1 else tuple(int(i) for i in idx)}"
+
+
+def export_result(x: Any) -> Any:
+    """A public result as the global ``mpmath`` type, bit for bit (mpf/mpc, and inside
+    tuples, named tuples, lists and object arrays): the forcing layer computes in the calling
+    thread's context (:mod:`symhx._mpctx`), its users compute with ``mpmath``."""
+    if hasattr(x, "_mpf_") or hasattr(x, "_mpc_"):
+        return export(x)
+    if isinstance(x, np.ndarray):
+        if x.dtype != object:
+            return x
+        out = np.empty(x.shape, dtype=object)
+        for idx in np.ndindex(x.shape):
+            out[idx] = export_result(x[idx])
+        return out
+    if isinstance(x, tuple):
+        vals = [export_result(v) for v in x]
+        return type(x)(*vals) if hasattr(x, "_fields") else tuple(vals)
+    if isinstance(x, list):
+        return [export_result(v) for v in x]
+    return x
+
+
+def exported(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """Decorator of the public functions and methods: results through :func:`export_result`."""
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        return export_result(fn(*args, **kwargs))
+    return wrapper
+
+
+#: most Rayleigh scales of a sum (``RayleighSum``; eq. 22 with ``M + 1`` amplitudes, so at most
+#: ``MAX_SCALES - 1`` forcing components): checked before any conversion or evaluation, for the
+#: float64 and the mpmath paths alike (the float64 path takes under 50 ms a threshold at this
+#: size, the mpmath path is bounded by ``rayleigh.MAX_MP_SUM_WORK`` too)
+MAX_SCALES = 64
 
 
 #: extra digits of a sympy irrational input over the requested ``dps``: ``p = exp(-E)`` turns a
@@ -113,14 +155,14 @@ def mpf_of(fr: Fraction) -> mpmath.mpf:
     """``fr`` as an mpf rounded at the current precision (exact for dyadic fractions)."""
     num, den = fr.numerator, fr.denominator
     if den & (den - 1) == 0:  # a power of two: exact
-        return mpmath.ldexp(mpmath.mpf(num), -(den.bit_length() - 1))
-    return mpmath.mpf(num) / den
+        return thread_mp().ldexp(thread_mp().mpf(num), -(den.bit_length() - 1))
+    return thread_mp().mpf(num) / den
 
 
 def mp_arg(name: str, value: Any) -> mpmath.mpf:
     """A scalar ``> 0`` as an mpf at the current precision (floats and mpf exactly)."""
-    if isinstance(value, mpmath.mpf) and mpmath.isfinite(value) and value > 0:
-        return +value  # (mpmath.mpf is the class of mpmath.mp's numbers only)
+    if is_mpf(value) and thread_mp().isfinite(value) and value > 0:
+        return thread_mp().mpf(value)  # any context's mpf, at this thread's precision
     return mpf_of(rational_arg(name, value))
 
 
@@ -189,6 +231,10 @@ class ForcingParams:
         if is_components(Omega):
             if not Omega:
                 raise ValueError("Omega: an empty list of forcing components")
+            if len(Omega) + 1 > MAX_SCALES:
+                raise ValueError(f"Omega: {len(Omega)} forcing components, more than "
+                                 f"MAX_SCALES - 1 = {MAX_SCALES - 1} (a sum of at most "
+                                 f"MAX_SCALES = {MAX_SCALES} Rayleigh amplitudes, eq. 22)")
             if any(is_array(o) for o in Omega):
                 raise TypeError("Omega: each forcing component must be a scalar")
             om_t = tuple(conv(f"Omega[{i}]", o) for i, o in enumerate(Omega))

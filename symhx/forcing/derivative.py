@@ -7,7 +7,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.forcing.arguments import ForcingParams, elementwise, mp_arg
+from symhx._mpctx import mp as thread_mp
+from symhx.forcing.arguments import ForcingParams, elementwise, exported, mp_arg
 from symhx.forcing.kernels_float import UV, i2_float, i3_float, uv_forcing
 from symhx.forcing.kernels_mp import estimate, guard_digits, mp_i2, mp_i3, mp_xy_forcing
 from symhx.forcing.probability import with_params_doc
@@ -66,18 +67,18 @@ def _dp_fallback(e: float, s0: float, s1: float, om: float, dd: float, *rest: fl
 
 def _dp_mp(fp: ForcingParams, dps: int) -> mpmath.mpf:
     args = (fp.sigma, fp.sigma1, fp.omega, fp.Omega, fp.d)
-    with mpmath.workprec(64):
+    with thread_mp().workprec(64):
         e = estimate(*mp_xy_forcing(*args))[0]
-    with mpmath.workdps(dps + guard_digits(e) + 5):
+    with thread_mp().workdps(dps + guard_digits(e) + 5):
         x, y = mp_xy_forcing(*args)
         s0 = mp_arg("sigma", fp.sigma)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
         if fp.sigma1 is None:
-            val = 4 * u * v / r * mpmath.exp(-u * v) * mp_i2(u, v) / s0
+            val = 4 * u * v / r * thread_mp().exp(-u * v) * mp_i2(u, v) / s0
         else:
-            val = 4 * u * v / (r * r) * mpmath.exp(-u * v) * mp_i3(u, v) / s0
-    with mpmath.workdps(dps):
+            val = 4 * u * v / (r * r) * thread_mp().exp(-u * v) * mp_i3(u, v) / s0
+    with thread_mp().workdps(dps):
         return +val
 
 
@@ -92,17 +93,18 @@ def _dp_multi(fp: ForcingParams, dps: int | None) -> Any:
         # sigma dp/dsigma = d * density of the sum at d (all scales proportional to sigma)
         if dps is None:
             return float(f.d) * RayleighSum(scales_of(f)).pdf(float(f.d)) / float(f.sigma)
-        with mpmath.workdps(dps + 15):
+        with thread_mp().workdps(dps + 15):
             S = RayleighSum(scales_of(f, dps + 15))
         dens = S.pdf(f.d, dps=dps + 3)
-        with mpmath.workdps(dps + 15):
+        with thread_mp().workdps(dps + 15):
             val = mp_arg("d", f.d) * dens / mp_arg("sigma", f.sigma)
-        with mpmath.workdps(dps):
+        with thread_mp().workdps(dps):
             return +val
 
     return elementwise(fp, one, dtype=float if dps is None else object)
 
 
+@exported
 @with_params_doc
 def dp_dsigma(
     sigma: Any,

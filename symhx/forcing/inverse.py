@@ -11,7 +11,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.forcing.arguments import ForcingParams, float_arg, is_array, mpf_of
+from symhx._mpctx import mp as thread_mp
+from symhx.forcing.arguments import ForcingParams, exported, float_arg, is_array, mpf_of
 from symhx.forcing.probability import evaluate, impact_probability
 from symhx.validation import check_dps, to_rational
 
@@ -31,6 +32,7 @@ def _target(p: Any, digits: int) -> Fraction:
     return fr
 
 
+@exported
 def sigma_for_impact_probability(
     p: Any,
     *,
@@ -172,27 +174,27 @@ def _inverse_mp(exact: Fraction, fp: ForcingParams, dps: int) -> mpmath.mpf:
     ``Fraction``, so ``1 - p`` keeps its relative accuracy for ``p`` near 1."""
     upper = exact > Fraction(1, 2)
     work = dps + 15
-    with mpmath.workdps(work):
+    with thread_mp().workdps(work):
         tail = mpf_of(1 - exact if upper else exact)  # p, or 1 - p when p > 1/2
-        lt = mpmath.log(tail)
+        lt = thread_mp().log(tail)
     s0 = None
     if tail > 1e-300:  # the float64 start (p and 1 - p representable)
         try:
             s0 = _inverse_float(float(exact), _float_params(fp))
         except (ValueError, OverflowError):  # not reachable in float64: bracket below
             pass
-    with mpmath.workdps(work):
+    with thread_mp().workdps(work):
         if upper:
             def f(ls: mpmath.mpf) -> mpmath.mpf:
-                return lt - evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logq")
+                return lt - evaluate(_with_sigma(fp, thread_mp().exp(ls)), work, "logq")
         else:
             def f(ls: mpmath.mpf) -> mpmath.mpf:
-                return evaluate(_with_sigma(fp, mpmath.exp(ls)), work, "logp") - lt
+                return evaluate(_with_sigma(fp, thread_mp().exp(ls)), work, "logp") - lt
 
         if s0 is None:  # far outside float64: bracket, then bisect in ln(sigma)
-            br = _bracket(f, mpmath.log(mpf_of(fp.d)), 15)  # |ln(sigma/d)| < 2**15
+            br = _bracket(f, thread_mp().log(mpf_of(fp.d)), 15)  # |ln(sigma/d)| < 2**15
             if br is None:
-                raise ValueError(f"{'1 - p' if upper else 'p'} = {mpmath.nstr(tail, 10)} is "
+                raise ValueError(f"{'1 - p' if upper else 'p'} = {thread_mp().nstr(tail, 10)} is "
                                  "not reachable for these parameters (no root with "
                                  "|ln(sigma/d)| < 32767)")
             lo, hi = br
@@ -204,11 +206,11 @@ def _inverse_mp(exact: Fraction, fp: ForcingParams, dps: int) -> mpmath.mpf:
                     lo = mid
             x0 = (lo + hi) / 2
         else:
-            x0 = mpmath.log(s0)
-        ls = mpmath.findroot(f, (x0, x0 + mpmath.mpf(10) ** -12), solver="secant",
-                             tol=mpmath.mpf(10) ** (-2 * work + 10))
-        val = mpmath.exp(ls)
-    with mpmath.workdps(dps):
+            x0 = thread_mp().log(s0)
+        ls = thread_mp().findroot(f, (x0, x0 + thread_mp().mpf(10) ** -12), solver="secant",
+                             tol=thread_mp().mpf(10) ** (-2 * work + 10))
+        val = thread_mp().exp(ls)
+    with thread_mp().workdps(dps):
         return +val
 
 

@@ -10,6 +10,8 @@ import sys
 
 import mpmath
 
+from symhx._mpctx import local
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import mp_arg
 from symhx.forcing.kernels_float import SQRT_PI
 
@@ -29,17 +31,18 @@ __all__ = [
 
 def _uv_b_over_r(x: mpmath.mpf, y: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
     """``(u v, b / r)`` with ``p = exp(-u v) b / r``: the closed form's positive terms."""
-    r = mpmath.sqrt(x + y)
+    x, y = local(x), local(y)   # any context's mpf: this thread's arithmetic
+    r = thread_mp().sqrt(x + y)
     u = x / r
     v = y / r
-    b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-    b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+    b = v * thread_mp().exp(-u * u) + u * thread_mp().exp(-v * v)
+    b += thread_mp().sqrt(thread_mp().pi) * u * v * (thread_mp().erf(u) + thread_mp().erf(v))
     return u * v, b / r
 
 
 def mp_p_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
     uv, b_r = _uv_b_over_r(x, y)
-    return mpmath.exp(-uv) * b_r
+    return thread_mp().exp(-uv) * b_r
 
 
 def mp_q_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
@@ -48,18 +51,19 @@ def mp_q_from_xy(x: mpmath.mpf, y: mpmath.mpf) -> mpmath.mpf:
     The cancellation in ``1 - p`` is known a priori: ``1 - p ~ x y / 6`` for small ``x + y``;
     the result is checked a posteriori and recomputed if more digits cancelled than planned.
     """
-    prec = mpmath.mp.prec
+    prec = thread_mp().prec
+    x, y = local(x), local(y)
     p = mp_p_from_xy(x, y)
     if p <= 0.5:
         return 1 - p
-    extra = max(0, -mpmath.log(x * y / 7, 2)) + 20
+    extra = max(0, -thread_mp().log(x * y / 7, 2)) + 20
     for _ in range(8):
-        with mpmath.workprec(prec + int(extra)):
+        with thread_mp().workprec(prec + int(extra)):
             q = 1 - mp_p_from_xy(x, y)
-            lost = -mpmath.log(q, 2) if q > 0 else mpmath.inf
+            lost = -thread_mp().log(q, 2) if q > 0 else thread_mp().inf
         if lost + 10 <= extra:
             return +q
-        extra = 2 * extra if not mpmath.isfinite(lost) else lost + 30
+        extra = 2 * extra if not thread_mp().isfinite(lost) else lost + 30
     raise ArithmeticError("1 - p: cancellation could not be resolved")  # pragma: no cover
 
 
@@ -78,8 +82,8 @@ def mp_xy_forcing(sigma, sigma1, omega, Omega, d) -> tuple[mpmath.mpf, mpmath.mp
 
 def estimate(x: mpmath.mpf, y: mpmath.mpf) -> tuple[float, float, float]:
     """Rough ``(uv, x*y, p)`` in float64 (mpf exponents keep huge/tiny values in range)."""
-    lx = float(mpmath.log(x)) if x > 0 else -1e300
-    ly = float(mpmath.log(y)) if y > 0 else -1e300
+    lx = float(thread_mp().log(x)) if x > 0 else -1e300
+    ly = float(thread_mp().log(y)) if y > 0 else -1e300
     lxy = lx + ly
     ls = max(lx, ly) + math.log1p(math.exp(-abs(lx - ly)))
     le = lxy - ls
@@ -160,22 +164,24 @@ def precision_plan(est: tuple[float, float, float], want: str) -> tuple[int, boo
 # ---- mpmath groups
 def mp_i2(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
     """``int_{-v}^{u} (v+z)(u-z) exp(-z**2) dz`` in closed form, extra digits for cancellation."""
+    u, v = local(u), local(v)
     r = u + v
-    extra = 10 + (int(-mpmath.log10(r**2 / 3)) if r < 1 else 0)
-    with mpmath.workdps(mpmath.mp.dps + extra):
-        k0 = mpmath.sqrt(mpmath.pi) / 2 * (mpmath.erf(u) + mpmath.erf(v))
-        val = (u * v - mpmath.mpf(1) / 2) * k0
-        val += (u * mpmath.exp(-v * v) + v * mpmath.exp(-u * u)) / 2
+    extra = 10 + (int(-thread_mp().log10(r**2 / 3)) if r < 1 else 0)
+    with thread_mp().workdps(thread_mp().dps + extra):
+        k0 = thread_mp().sqrt(thread_mp().pi) / 2 * (thread_mp().erf(u) + thread_mp().erf(v))
+        val = (u * v - thread_mp().mpf(1) / 2) * k0
+        val += (u * thread_mp().exp(-v * v) + v * thread_mp().exp(-u * u)) / 2
     return +val
 
 
 def mp_i3(u: mpmath.mpf, v: mpmath.mpf) -> mpmath.mpf:
     """``int_{-v}^{u} (v+z)**2 (u-z) exp(-z**2) dz`` (closed form, extra digits as it cancels)."""
+    u, v = local(u), local(v)
     r = u + v
-    extra = 10 + (int(-mpmath.log10(r**4 / 12)) if r < 1 else 0)
-    with mpmath.workdps(mpmath.mp.dps + extra):
-        eu, ev = mpmath.exp(-u * u), mpmath.exp(-v * v)
-        k0 = mpmath.sqrt(mpmath.pi) / 2 * (mpmath.erf(u) + mpmath.erf(v))
+    extra = 10 + (int(-thread_mp().log10(r**4 / 12)) if r < 1 else 0)
+    with thread_mp().workdps(thread_mp().dps + extra):
+        eu, ev = thread_mp().exp(-u * u), thread_mp().exp(-v * v)
+        k0 = thread_mp().sqrt(thread_mp().pi) / 2 * (thread_mp().erf(u) + thread_mp().erf(v))
         k1 = (ev - eu) / 2
         k2 = k0 / 2 - (u * eu + v * ev) / 2
         k3 = ((v * v + 1) * ev - (u * u + 1) * eu) / 2

@@ -14,7 +14,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.forcing.arguments import ForcingParams, elementwise, float_arg, mp_arg
+from symhx._mpctx import mp as thread_mp
+from symhx.forcing.arguments import ForcingParams, elementwise, exported, float_arg, mp_arg
 from symhx.forcing.kernels_float import single_float
 from symhx.forcing.kernels_mp import (
     estimate,
@@ -57,25 +58,25 @@ def single_mp(fp: ForcingParams, dps: int, want: str) -> mpmath.mpf:
         return fast
     est = estimate_float(sigma, sigma1, omega, Omega, d)
     if est is None:  # an input beyond the float range: estimate from mpf x, y
-        with mpmath.workprec(64):
+        with thread_mp().workprec(64):
             est = estimate(*mp_xy_forcing(sigma, sigma1, omega, Omega, d))
     if est[2] > 0.5 and want == "logp":  # log p = log1p(-q) keeps its relative accuracy
         q = single_mp(fp, dps + 5, "q")
-        with mpmath.workdps(dps + 5):
-            return mpmath.log1p(-q)
+        with thread_mp().workdps(dps + 5):
+            return thread_mp().log1p(-q)
     guard, direct_q = precision_plan(est, want)
-    with mpmath.workdps(dps + guard):
+    with thread_mp().workdps(dps + guard):
         x, y = mp_xy_forcing(sigma, sigma1, omega, Omega, d)
-        value = from_xy_raw(x._mpf_, y._mpf_, mpmath.mp.prec, want, guard, direct_q)
+        value = from_xy_raw(x._mpf_, y._mpf_, thread_mp().prec, want, guard, direct_q)
         if value is not None:
             return value
         # the adaptive 1 - p (p above 1/2, or more digits cancelled than planned) or log1p(-p)
         if want == "logq":
             p = mp_p_from_xy(x, y)
             if p <= 0.5:
-                return mpmath.log1p(-p)
+                return thread_mp().log1p(-p)
         q = mp_q_from_xy(x, y)
-        return q if want == "q" else mpmath.log(q)
+        return q if want == "q" else thread_mp().log(q)
 
 
 def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:
@@ -92,10 +93,10 @@ def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:
             return getattr(S, kind)(float(f.d))
         # a relative error eps of a scale moves log p by ~2 E eps (p = exp(-E), E = d**2/(2
         # sum s**2)): the scales carry log10(E) more digits (RayleighSum takes them exactly)
-        with mpmath.workdps(20):
+        with thread_mp().workdps(20):
             dd = mp_arg("d", f.d)
-            e = dd * dd / (2 * mpmath.fsum(s * s for s in scales_of(f, 20)))
-            extra = int(mpmath.log10(e)) + 1 if e > 1 else 0
+            e = dd * dd / (2 * thread_mp().fsum(s * s for s in scales_of(f, 20)))
+            extra = int(thread_mp().log10(e)) + 1 if e > 1 else 0
         S = RayleighSum(scales_of(f, dps + 15 + extra))
         return getattr(S, kind)(f.d, dps=dps)
 
@@ -114,7 +115,7 @@ def evaluate(fp: ForcingParams, dps: int | None, want: str) -> Any:
 def _at_dps(value: mpmath.mpf, dps: int) -> mpmath.mpf:
     """``value`` (computed with guard digits) rounded to ``dps`` digits, as every mpmath result
     of the package is returned (the guard digits are not correct digits)."""
-    with mpmath.workdps(dps):
+    with thread_mp().workdps(dps):
         return +value
 
 
@@ -167,6 +168,7 @@ def with_params_doc(fn: Callable[..., Any]) -> Callable[..., Any]:
         fn.__doc__ = fn.__doc__.replace("\n    @PARAMS@\n", _PARAMS_DOC)
     return fn
 
+@exported
 @with_params_doc
 def impact_probability(
     sigma: Any,
@@ -206,6 +208,7 @@ def impact_probability(
     return _dispatch(sigma, sigma1, omega, Omega, d, dps, "p")
 
 
+@exported
 @with_params_doc
 def no_impact_probability(
     sigma: Any,
@@ -239,6 +242,7 @@ def no_impact_probability(
     return _dispatch(sigma, sigma1, omega, Omega, d, dps, "q")
 
 
+@exported
 @with_params_doc
 def log_impact_probability(
     sigma: Any,
@@ -264,6 +268,7 @@ def log_impact_probability(
     return _dispatch(sigma, sigma1, omega, Omega, d, dps, "logp")
 
 
+@exported
 @with_params_doc
 def log_no_impact_probability(
     sigma: Any,

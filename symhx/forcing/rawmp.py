@@ -10,6 +10,7 @@ from typing import Any
 
 import mpmath
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.kernels_mp import estimate_float, precision_plan
 
 __all__ = ["from_xy_raw", "raw_xy", "single_mp_fast"]
@@ -132,7 +133,7 @@ def from_xy_raw(x: tuple, y: tuple, prec: int, want: str, guard: int, direct_q: 
     general one (which passes the raw tuples of its mpf ``x, y``)."""
     mul, div, sub, rnd = _lm.mpf_mul, _lm.mpf_div, _lm.mpf_sub, _RND
     nuv, b, r = _raw_p_parts(x, y, prec)
-    make = mpmath.mp.make_mpf
+    make = thread_mp().make_mpf
     if want == "logp":
         lg = _lm.mpf_log(div(b, r, prec, rnd), prec, rnd)
         return make(_lm.mpf_add(nuv, lg, prec, rnd))

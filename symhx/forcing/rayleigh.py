@@ -1,32 +1,27 @@
 r"""The sum of independent Rayleigh variables (eq. 22) as a distribution object.
 
 ``S = R_1 + ... + R_n`` with ``R_i`` Rayleigh of scale ``s_i`` (density ``(r/s**2)
-exp(-r**2/(2 s**2))``). One or two scales have closed forms (eq. 27 and its complement, see
-:mod:`symhx.forcing`); more scales are paired (adjacent scales after sorting, so a pair holds
-comparable scales), each pair having the closed-form tail, CDF and density, and the pairs (and a
-leftover single) are convolved by nested composite Gauss-Legendre quadrature of *positive*
-integrands::
+exp(-r**2/(2 s**2))``), ``n <= MAX_SCALES``. One or two scales have closed forms (eq. 27 and its
+complement, see :mod:`symhx.forcing`); more scales (and a pair whose ratio of scales to ``x`` is
+beyond the closed form's float64 range) are computed by the inversion of the Laplace transform
+of the sum along a saddle-point contour (:mod:`symhx.forcing.inversion`): float64 vectorised
+over thresholds, Arb balls for ``dps``, both tails with their relative accuracy, any spread of
+the scales (a negligible scale is evaluated, with its tiny effect, never dropped), an error
+estimate that includes the quadrature, the truncation and the rounding. The tail below 1/2 is
+the one integrated (``x >= E[S]``: the upper tail, else the lower one); the other is ``1 -``
+it; ``log`` of a tail above 1/2 is ``log1p`` of the other one.
 
-    P(A + B > x)  = P(B > x) + int_0^x f_B(t) P(A > x - t) dt,
-    P(A + B <= x) = int_0^x f_B(t) P(A <= x - t) dt,
+float64 also has two asymptotic regions where the value is exact to far below an ulp: below
+``x = 1e-9 min(s)`` the leading power of the lower tail (:func:`_float_small_logcdf`), beyond
+``x min(s) = 1e5 V`` the Laplace asymptotic of ``log P(S > x)`` (:func:`_laplace_logsf`).
 
-so both tails keep their relative accuracy. The upper tail and the density are computed scaled:
-``P(S > x) = m(x) exp(-x**2/(2V))`` (``V = sum s_i**2``) with the Gaussian factors of the groups
-combined analytically, ``exp(-t**2/(2 V_B) - (x - t)**2/(2 V_A)) = exp(-x**2/(2V))
-exp(-(t - t*)**2/(2 w**2))``, so ``log P(S > x) = log m - x**2/(2V)`` stays finite and accurate
-where ``P(S > x)`` underflows (float64) or needs many guard digits (mpmath); the cdf is ``1 - sf``
-where ``sf <= 1/2``. The panels are placed around the Gaussian saddle ``t*`` (in ``tau = t - t*``,
-out to where ``exp(-tau**2/(2 w**2))`` is negligible at the requested digits) *and* at multiples
-of every scale from both ends of ``[0, x]`` (where a small scale puts its structure), so scales
-spread over many orders of magnitude are resolved. The error estimate is the difference of two
-rule orders plus the rounding of the closed forms. float64 only: beyond ``x min(s) = 1e5 V`` the
-log tail is the Laplace asymptotic (:func:`_laplace_logsf`), below ``x = 1e-9 min(s)`` the log cdf
-its leading power.
+The work is bounded before it starts: at most ``MAX_SCALES`` scales (both paths), ``rvs`` at most
+``MAX_DRAWS`` draws, the mpmath path ``MAX_MP_SUM_WORK`` (scales times digits) for three or more
+scales, and ``exp(-E)`` up to ``MAX_EXPONENT``.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Sequence
 from fractions import Fraction
@@ -34,10 +29,13 @@ from typing import Any, NamedTuple
 
 import mpmath
 import numpy as np
-from scipy import special as sc
+from scipy import special
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import (
+    MAX_SCALES,
     ForcingParams,
+    exported,
     float_arg,
     is_array,
     is_components,
@@ -45,10 +43,10 @@ from symhx.forcing.arguments import (
     mpf_of,
     rational_arg,
 )
+from symhx.forcing.inversion import invert_arb, invert_float
 from symhx.forcing.kernels_float import (
     SQRT_PI,
     delta_float,
-    gauss_legendre,
     i2_float,
     pq_float,
     uv_from_h,
@@ -58,19 +56,30 @@ from symhx.validation import (
     check_array,
     check_choice,
     check_dps,
+    check_int,
     check_seed,
-    check_size,
+    mpf_to_fraction,
     short_value,
     to_rational,
 )
 
 __all__ = [
+    "MAX_DRAWS",
+    "MAX_MP_SUM_WORK",
+    "MAX_SCALES",
     "RayleighSum",
     "RayleighSumResult",
     "rayleigh_scales",
     "rayleigh_sum_probability",
     "scales_of",
 ]
+
+#: most draws of one :meth:`RayleighSum.rvs` call (its memory is ~16 bytes a draw)
+MAX_DRAWS = 10**8
+#: the mpmath path of three or more scales costs about (distinct scales) x (digits) evaluations
+#: of ``erfc`` at the working precision: their product is at most this (64 scales at 250
+#: digits, 8 at 2000; measured ~1 minute at the cap)
+MAX_MP_SUM_WORK = 16_000
 
 
 class RayleighSumResult(NamedTuple):
@@ -104,10 +113,10 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
             # huge frequencies whose scale is still a float64 (or +inf)
             out.append(scale / abs(omf - Omf) / (omf + Omf))
         return tuple(out)
-    with mpmath.workdps(work_dps):
+    with thread_mp().workdps(work_dps):
         s0 = mp_arg("sigma", fp.sigma)
         om = mp_arg("omega", fp.omega)
-        out = [mpmath.sqrt(2) * s0]
+        out = [thread_mp().sqrt(2) * s0]
         for i, (Om, s1) in enumerate(zip(omegas, s1s, strict=True)):
             om2 = 2 if Om is None else mp_arg("Omega", Om) ** 2
             delta = om * om - om2
@@ -115,7 +124,7 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
                 raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)")
             s1v = s0 if s1 is None else mp_arg("sigma1", s1)
-            out.append(mpmath.sqrt(2) * s1v / abs(delta))
+            out.append(thread_mp().sqrt(2) * s1v / abs(delta))
         return tuple(out)
 
 
@@ -123,6 +132,7 @@ def _om_name(fp: ForcingParams, i: int) -> str:
     return f"Omega[{i}]" if fp.components else "Omega"
 
 
+@exported
 def rayleigh_scales(
     sigma: Any, *, sigma1: Any = None, omega: Any = 1, Omega: Any = None, dps: int | None = None
 ) -> tuple[Any, ...]:
@@ -162,17 +172,30 @@ def rayleigh_scales(
     fp = ForcingParams.validated(sigma, sigma1, omega, Omega, 1, dps=dps)
     if dps is None:
         return scales_of(fp)
-    with mpmath.workdps(dps + 10):
+    with thread_mp().workdps(dps + 10):
         return tuple(+s for s in scales_of(fp, dps + 10))
 
 
-# =========================================================================== groups
+# =========================================================================== float64
 #: the smallest normal float64
 _TINY = float(np.finfo(float).tiny)
-#: chunk length of the float64 group functions on the (large) nested node arrays
+#: chunk length of the pair's closed forms on long arrays
 _CHUNK = 16384
+_EPS = float(np.finfo(float).eps)
+#: a pair of scales takes its closed form where ``x/(sqrt(2) s)`` is in this range for both
+#: scales (the fast range of the one-component kernels); beyond it (one scale negligible against
+#: ``x``, or both far above it) the inversion, which has no range limits
+_PAIR_RANGE = (1e-75, 1e75)
+#: lower tail: ``x <= _X_SMALL min(s)`` takes the leading power of ``P(S <= x)`` (relative
+#: corrections ``<= sum_i x**2/(2 s_i**2) <= 1e-17``), where the cdf itself may underflow
+_X_SMALL = 1e-9
+#: Laplace regime: ``x min(s) >= _X_LAPLACE V``; the neglected relative corrections of the
+#: asymptotic log-tail are ``O((V/(x s_i))**2) <= 1e-10`` absolute on ``log P(S > x) <= -5e9``
+#: (whose ulp is ~1e-6)
+_X_LAPLACE = 1e5
 
 
+# =========================================================================== groups
 class _FGroup:
     """float64 group of one or two Rayleigh scales (closed forms on arrays).
 
@@ -196,6 +219,7 @@ class _FGroup:
         float64 (cdf and density below ``h**2 / min(s) < 1e-460``, scaled tail 1)."""
         return t / (math.sqrt(2.0) * max(self.scales)) >= _TINY
 
+    @exported
     def cdf(self, t: np.ndarray) -> np.ndarray:
         t = np.maximum(t, 0.0)
         if len(self.scales) == 1:
@@ -205,6 +229,7 @@ class _FGroup:
         out[pos] = pq_float(self._uv(t[pos]), "q")
         return out
 
+    @exported
     def pdf(self, t: np.ndarray) -> np.ndarray:
         out = np.zeros_like(t)
         if len(self.scales) == 1:
@@ -231,7 +256,7 @@ class _FGroup:
             uv = self._uv(tc[pos])
             u, v = uv.u, uv.v
             b = v * np.exp(-u * u) + u * np.exp(-v * v)
-            b += SQRT_PI * u * v * (sc.erf(u) + sc.erf(v))
+            b += SQRT_PI * u * v * (special.erf(u) + special.erf(v))
             out[i : i + _CHUNK][pos] = b / uv.r
         return out
 
@@ -254,7 +279,7 @@ class _MGroup:
     """mpmath group of one or two Rayleigh scales (closed forms on scalars)."""
 
     def __init__(self, scales: Sequence[Any]) -> None:
-        self.scales = tuple(mpmath.mpf(s) for s in scales)
+        self.scales = tuple(thread_mp().mpf(s) for s in scales)
         self.var = sum(s * s for s in self.scales)
 
     def _xy(self, t: mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
@@ -263,350 +288,254 @@ class _MGroup:
 
     def cdf(self, t: mpmath.mpf) -> mpmath.mpf:
         if t <= 0:
-            return mpmath.mpf(0)
+            return thread_mp().mpf(0)
         if len(self.scales) == 1:
-            return -mpmath.expm1(-t * t / (2 * self.scales[0] ** 2))
+            return -thread_mp().expm1(-t * t / (2 * self.scales[0] ** 2))
         return mp_q_from_xy(*self._xy(t))
 
     def pdf(self, t: mpmath.mpf) -> mpmath.mpf:
         if t <= 0:
-            return mpmath.mpf(0)
+            return thread_mp().mpf(0)
         if len(self.scales) == 1:
             s = self.scales[0]
-            return t / (s * s) * mpmath.exp(-t * t / (2 * s * s))
+            return t / (s * s) * thread_mp().exp(-t * t / (2 * s * s))
         x, y = self._xy(t)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
-        return 4 * u * v / r * mpmath.exp(-u * v) * mp_i2(u, v) / t
+        return 4 * u * v / r * thread_mp().exp(-u * v) * mp_i2(u, v) / t
 
     def msf(self, t: mpmath.mpf) -> mpmath.mpf:
         """``sf(t) exp(t**2/(2 var))`` (all terms positive)."""
         if t <= 0 or len(self.scales) == 1:
-            return mpmath.mpf(1)
+            return thread_mp().mpf(1)
         x, y = self._xy(t)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
-        b = v * mpmath.exp(-u * u) + u * mpmath.exp(-v * v)
-        b += mpmath.sqrt(mpmath.pi) * u * v * (mpmath.erf(u) + mpmath.erf(v))
+        b = v * thread_mp().exp(-u * u) + u * thread_mp().exp(-v * v)
+        b += thread_mp().sqrt(thread_mp().pi) * u * v * (thread_mp().erf(u) + thread_mp().erf(v))
         return b / r
 
     def mpdf(self, t: mpmath.mpf) -> mpmath.mpf:
         """``pdf(t) exp(t**2/(2 var))``."""
         if t <= 0:
-            return mpmath.mpf(0)
+            return thread_mp().mpf(0)
         if len(self.scales) == 1:
             return t / self.scales[0] ** 2
         x, y = self._xy(t)
-        r = mpmath.sqrt(x + y)
+        r = thread_mp().sqrt(x + y)
         u, v = x / r, y / r
         return 4 * u * v / r * mp_i2(u, v) / t
 
 
-def make_groups(scales: Sequence[Any]) -> list[tuple[Any, ...]]:
-    """Pairs of adjacent scales after sorting (closed forms; a pair holds comparable scales); a
-    leftover single goes second to last, so that the innermost nested integrand uses its cheap
-    density."""
-    s = sorted(scales, reverse=True)
-    groups = [tuple(s[i : i + 2]) for i in range(0, len(s), 2)]
-    if len(groups) >= 3 and len(groups[-1]) == 1:
-        groups[-2], groups[-1] = groups[-1], groups[-2]
-    return groups
-
-
-# =========================================================================== panels
-#: first offsets (in units of the saddle's width ``w``) of the panels around the Gaussian
-#: saddle; further panels every 4 widths out to :func:`_saddle_c`'s ``c_max``
-_PANEL_C = (0.0, 1.5, 3.0, 5.0, 8.0, 12.0)
-#: multiples of each scale at which panels start from the ends of [0, x]
-_SCALE_C = (0.5, 2.0, 8.0)
-#: the digits the float64 panels resolve
-_FLOAT_DIGITS = 16
-
-
-class _Panels(NamedTuple):
-    """Saddle offsets (units of the width ``w``) and scale multiples of the panel breakpoints."""
-
-    sad: list[float]
-    mult: list[float]
-
-
-def _saddle_c(digits: int, n_scales: int, ratio: float) -> _Panels:
-    """Saddle offsets ``c`` (both signs, units of ``w``) out to ``c_max``, scale multiples out to
-    ``sqrt(2 (digits + 10) ln 10)``.
-
-    Beyond ``c_max`` the Gaussian factor ``exp(-c**2/2)``, times the largest growth of the
-    polynomial factors over ``[0, x]`` (below ``(2 + ratio)**(2 n + 1)`` with ``ratio >= x/w``)
-    and the length of the interval, is below ``10**-(digits + 10)`` of the peak: the long
-    outer panels then carry nothing at the target precision, however large ``x/w`` (a fixed
-    ``c_max`` left a long unresolved panel at ``e**-72`` of the peak, fatal beyond 30 digits).
-    Likewise the structure of a scale ``s`` (``exp(-t**2/(2 s**2))``) is resolved out to where
-    it is below ``10**-(digits + 10)`` (a fixed ``8 s`` left ``e**-32``).
-    """
-    lr = math.log(2.0 + ratio)
-    cmax = math.sqrt(2 * (digits + 10) * math.log(10) + 2 * (2 * n_scales + 2) * lr)
-    cs = list(_PANEL_C)
-    while cs[-1] < cmax:
-        cs.append(cs[-1] + 4.0)
-    mmax = math.sqrt(2 * (digits + 10) * math.log(10))
-    mult = list(_SCALE_C)
-    while mult[-1] < mmax:
-        mult.append(mult[-1] + 4.0)
-    return _Panels([-c for c in reversed(cs[1:])] + cs, mult)
-
-
-def _offsets(last: Any, rest: list[Any], mult: list[float]) -> tuple[list[Any], list[Any]]:
-    """Scale multiples of the last group (near t = 0) and of the rest (near t = x)."""
-    near0 = [c * s for s in last.scales for c in mult]
-    nearx = [c * s for g in rest for s in g.scales for c in mult]
-    return near0, nearx
-
-
-def _split(last: Any, rest: list[Any], x: Any, sqrt: Any) -> tuple[Any, Any, Any]:
-    """``(t*, x - t*, w)``: the saddle ``t* = x V_B/V`` of ``exp(-t**2/(2 V_B) - (x - t)**2/
-    (2 V_A))`` and its width ``w = sqrt(V_A V_B/V)``; the exponent is ``x**2/(2 V) +
-    (t - t*)**2/(2 w**2)`` exactly."""
-    vb = last.var
-    va = sum(g.var for g in rest)
-    v = va + vb
-    return x * (vb / v), x * (va / v), sqrt(va * (vb / v))  # (va * vb may overflow)
-
-
-def _tau_panels_float(ts: np.ndarray, xs: np.ndarray, w: float, last: _FGroup,
-                      rest: list[_FGroup], cs: _Panels) -> np.ndarray:
-    """Sorted breakpoints in ``tau = t - t*``, shape (len(x), K), clipped to [-t*, x - t*]."""
-    near0, nearx = _offsets(last, rest, cs.mult)
-    cols = [-ts, xs]
-    cols += [np.full_like(ts, c * w) for c in cs.sad]
-    cols += [a - ts for a in near0]
-    cols += [xs - a for a in nearx]
-    pts = np.clip(np.stack(cols, axis=1), -ts[:, None], xs[:, None])
-    return np.sort(pts, axis=1)
-
-
-def _conv_scaled_float(groups: list[_FGroup], x: np.ndarray, kind: str, n: int,
-                       cs: _Panels) -> np.ndarray:
-    """``P(sum > x) exp(x**2/(2 V))`` (kind 'sf') or the density times it ('pdf'), x >= 0.
-
-    With ``tau = t - t*`` the Gaussian factors of the two groups combine exactly into
-    ``exp(-x**2/(2 V)) exp(-tau**2/(2 w**2))``: the first is taken out (so nothing underflows
-    however far the tail), the second is evaluated from ``tau`` (no cancellation in
-    ``t - t*``) and only the smooth scaled group functions see ``t = t* + tau``.
-    """
-    if len(groups) == 1:
-        return groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
-    last, rest = groups[-1], groups[:-1]
-    ts, xs, w = _split(last, rest, x, math.sqrt)
-    bp = _tau_panels_float(ts, xs, w, last, rest, cs)
-    xg, wg = gauss_legendre(n)
-    a, b = bp[:, :-1], bp[:, 1:]
-    h = 0.5 * (b - a)
-    tau = (0.5 * (a + b))[..., None] + h[..., None] * xg  # (nx, panels, n)
-    t = ts[:, None, None] + tau
-    y = np.maximum(xs[:, None, None] - tau, 0.0)
-    inner = _conv_scaled_float(rest, y.ravel(), kind, n, cs).reshape(tau.shape)
-    f = last.mpdf(t.ravel()).reshape(tau.shape) * inner * np.exp(-0.5 * (tau / w) ** 2)
-    out = np.sum(h * (f @ wg), axis=1)
-    if kind == "sf":
-        out = out + last.msf(x) * np.exp(-0.5 * (xs / w) ** 2)
+def _float_small_logcdf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
+    r"""``log P(S <= x) = sum_i 2 log(x/s_i) - log((2n)!)`` for ``x << min(s_i)``: each density
+    is ``r/s_i**2 (1 + O(r**2/s_i**2))`` near 0 and the ``n``-fold convolution of ``r`` is
+    ``x**(2n-1)/(2n-1)!``."""
+    out = np.full(x.shape, -math.lgamma(2 * len(scales) + 1))
+    with np.errstate(under="ignore", divide="ignore"):
+        for s in scales:
+            q = x / s
+            out += 2 * np.where(q > 1e-300, np.log(q), np.log(x) - math.log(s))
     return out
 
 
-def _panels_float(x: np.ndarray, last: _FGroup, rest: list[_FGroup], cs: _Panels
-                  ) -> np.ndarray:
-    """Sorted panel breakpoints in ``t``, shape (len(x), K), clipped to [0, x]."""
-    tstar, _, w = _split(last, rest, x, math.sqrt)
-    near0, nearx = _offsets(last, rest, cs.mult)
-    cols = [np.zeros_like(x), x]
-    cols += [tstar + w * c for c in cs.sad]
-    cols += [np.full_like(x, a) for a in near0]
-    cols += [x - a for a in nearx]
-    pts = np.clip(np.stack(cols, axis=1), 0.0, x[:, None])
-    return np.sort(pts, axis=1)
+def _float_regions(scales: list[float], x: np.ndarray) -> dict[str, np.ndarray]:
+    """Masks of the thresholds (scales normalised to a largest one in [1/2, 1)): at or below 0,
+    beyond float64, the leading power, the Laplace regime and the rest."""
+    var = math.fsum(s * s for s in scales)
+    smin = min(scales)
+    with np.errstate(over="ignore", invalid="ignore"):
+        nonpos = ~(x > 0)
+        inf = x == math.inf
+        small = ~nonpos & (x <= _X_SMALL * smin)
+        laplace = ~nonpos & ~inf & ~small & (x * smin >= _X_LAPLACE * var)
+    return {"nonpos": nonpos, "inf": inf, "small": small, "laplace": laplace,
+            "rest": ~(nonpos | inf | small | laplace)}
 
 
-def _conv_float(groups: list[_FGroup], x: np.ndarray, n: int, cs: _Panels) -> np.ndarray:
-    """``P(sum <= x)`` on array x (no Gaussian factor to take out)."""
-    if len(groups) == 1:
-        return groups[0].cdf(x)
-    last, rest = groups[-1], groups[:-1]
-    bp = _panels_float(np.maximum(x, 0.0), last, rest, cs)
-    xg, wg = gauss_legendre(n)
-    a, b = bp[:, :-1], bp[:, 1:]
-    h = 0.5 * (b - a)
-    t = (0.5 * (a + b))[..., None] + h[..., None] * xg  # (nx, panels, n)
-    xr = np.broadcast_to(x[:, None, None], t.shape)
-    inner = _conv_float(rest, (xr - t).ravel(), n, cs).reshape(t.shape)
-    f = last.pdf(t.ravel()).reshape(t.shape) * inner
-    return np.sum(h * (f @ wg), axis=1)
+_LIMITS = {  # kind: (value at x <= 0, value at x = inf)
+    "sf": (1.0, 0.0), "cdf": (0.0, 1.0), "pdf": (0.0, 0.0), "logsf": (0.0, -math.inf),
+    "logcdf": (-math.inf, 0.0)}
 
 
-_MP_GL_CACHE: dict[tuple[int, int], tuple[list[mpmath.mpf], list[mpmath.mpf]]] = {}
+def _float_eval(scales0: list[float], x: np.ndarray, kind: str
+                ) -> tuple[np.ndarray, np.ndarray, str]:
+    """``(values, absolute error estimates, method)`` of ``kind`` (sf, cdf, pdf, logsf,
+    logcdf) at float64 thresholds (flat array); the scales are float64 > 0 (any spread).
+
+    Under- and overflow inside are expected (far tails, tiny ratios): the caller's numpy error
+    state never reaches them; a NaN would be a bug and is raised, never returned."""
+    with np.errstate(all="ignore"):
+        val, err, method = _float_eval_quiet(scales0, x, kind)
+    if np.isnan(val).any():   # pragma: no cover - every route has a value
+        i = int(np.argmax(np.isnan(val)))
+        raise ArithmeticError(f"RayleighSum({scales0!r}).{kind}({float(x[i])!r}) gave nan")
+    return val, err, method
 
 
-def _mp_gl(n: int) -> tuple[list[mpmath.mpf], list[mpmath.mpf]]:
-    key = (n, mpmath.mp.prec)
-    if key not in _MP_GL_CACHE:
-        xs, ws = mpmath.mp.gauss_quadrature(n, "legendre")
-        _MP_GL_CACHE[key] = (list(xs), list(ws))
-    return _MP_GL_CACHE[key]
+def _float_eval_quiet(scales0: list[float], x: np.ndarray, kind: str
+                      ) -> tuple[np.ndarray, np.ndarray, str]:
+    # scales (and x) are rescaled by an exact power of two only where the largest scale is
+    # outside [2**-200, 2**200] (the probabilities are scale-free, the density scales by 2**-e)
+    top = max(scales0)
+    e = 0 if 2.0**-200 <= top <= 2.0**200 else math.frexp(top)[1]
+    sc = [math.ldexp(s, -e) for s in scales0]
+    with np.errstate(under="ignore", over="ignore"):
+        xs = np.ldexp(x, -e)
+    reg = _float_regions(sc, xs)
+    val = np.empty(x.shape)
+    err = np.zeros(x.shape)
+    lo, hi = _LIMITS[kind]
+    val[reg["nonpos"]] = lo
+    val[reg["inf"]] = hi
+    method = "closed form" if len(sc) <= 2 else "Laplace-transform inversion"
+    with np.errstate(under="ignore", over="ignore", divide="ignore"):
+        m = reg["small"]
+        if m.any():   # unscaled values: only ratios (x / 2**e may be subnormal)
+            lc = _float_small_logcdf(scales0, x[m])
+            cdf = np.exp(lc)
+            vals = {"logcdf": lc, "cdf": cdf, "sf": 1.0 - cdf, "logsf": -cdf,
+                    "pdf": np.exp(lc + math.log(2 * len(sc)) - np.log(x[m]))}
+            val[m] = vals[kind]
+            err[m] = 4 * _EPS * np.abs(val[m]) * (len(sc) + np.abs(lc))
+        m = reg["laplace"]
+        if m.any():   # E >= 5e9: sf and pdf are 0 in float64, cdf 1
+            val[m] = (_laplace_logsf(sc, xs[m]) if kind == "logsf"
+                      else {"sf": 0.0, "pdf": 0.0, "cdf": 1.0, "logcdf": 0.0}[kind])
+        m = reg["rest"]
+        if m.any():
+            v, er, meth = _float_body(sc, xs[m], kind)
+            val[m], err[m] = v, er
+            method = meth
+    if kind == "pdf" and e:   # the density scales by 2**-e (it is below 1/s_max: no overflow)
+        with np.errstate(under="ignore"):
+            val, err = np.ldexp(val, -e), np.ldexp(err, -e)
+    return val, err, method
 
 
-def _conv_scaled_mp(groups: list[_MGroup], x: mpmath.mpf, kind: str, n: int,
-                    cs: _Panels) -> mpmath.mpf:
-    """mpmath :func:`_conv_scaled_float` (one threshold ``x``)."""
-    if len(groups) == 1:
-        return groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
-    if x <= 0:
-        return mpmath.mpf(1) if kind == "sf" else mpmath.mpf(0)
-    last, rest = groups[-1], groups[:-1]
-    ts, xs, w = _split(last, rest, x, mpmath.sqrt)
-    near0, nearx = _offsets(last, rest, cs.mult)
-    raw = [c * w for c in cs.sad] + [a - ts for a in near0] + [xs - a for a in nearx]
-    pts = sorted({-ts, xs} | {min(max(p, -ts), xs) for p in raw})
-    xg, wg = _mp_gl(n)
-    total = mpmath.mpf(0)
-    for a, b in itertools.pairwise(pts):
-        h = (b - a) / 2
-        m = (a + b) / 2
-        s = mpmath.mpf(0)
-        for xi, wi in zip(xg, wg, strict=True):
-            tau = m + h * xi
-            s += (wi * last.mpdf(ts + tau) * _conv_scaled_mp(rest, xs - tau, kind, n, cs)
-                  * mpmath.exp(-(tau / w) ** 2 / 2))
-        total += h * s
+def _float_body(sc: list[float], x: np.ndarray, kind: str) -> tuple[np.ndarray, np.ndarray, str]:
+    """The closed forms (one scale; two scales in :data:`_PAIR_RANGE`) or the inversion, for
+    thresholds ``0 < x`` in the body (normalised scales)."""
+    n = len(sc)
+    val = np.empty(x.shape)
+    err = np.empty(x.shape)
+    if n == 1:
+        s = sc[0]
+        big_e = 0.5 * (x / s) ** 2
+        g = np.exp(-big_e)
+        vals = {"sf": g, "cdf": -np.expm1(-big_e), "pdf": x / (s * s) * g, "logsf": -big_e,
+                "logcdf": np.log(-np.expm1(-big_e))}
+        val = vals[kind]
+        return val, 4 * _EPS * np.abs(val) * (1 + big_e), "closed form"
+    closed = np.zeros(x.shape, dtype=bool)
+    if n == 2:
+        with np.errstate(over="ignore", under="ignore"):
+            h = [x / (math.sqrt(2.0) * s) for s in sc]
+        closed = ((h[0] >= _PAIR_RANGE[0]) & (h[0] <= _PAIR_RANGE[1])
+                  & (h[1] >= _PAIR_RANGE[0]) & (h[1] <= _PAIR_RANGE[1]))
+        if closed.any():
+            val[closed], err[closed] = _float_pair(sc, x[closed], kind)
+    rest = ~closed
+    if rest.any():
+        val[rest], err[rest] = _float_inverted(sc, x[rest], kind)
+    return val, err, "closed form" if closed.all() else "Laplace-transform inversion"
+
+
+def _float_pair(sc: list[float], x: np.ndarray, kind: str) -> tuple[np.ndarray, np.ndarray]:
+    """Two scales by the closed forms of eq. (27) (all ``x/(sqrt 2 s)`` in the fast range)."""
+    grp = _FGroup(sc)
+    big_e = x * x / (2.0 * grp.var)
+    g = np.exp(-big_e)
+    if kind == "pdf":
+        v = grp.mpdf(x) * g
+        return v, 4 * _EPS * np.abs(v) * (3 + 2 * big_e)
+    m = grp.msf(x)
+    sf = m * g
+    sf_err = 4 * _EPS * np.abs(sf) * (3 + 2 * big_e)
+    upper = sf <= 0.5
+    cdf = np.where(upper, 1.0 - sf, 0.0)
+    cdf_err = np.where(upper, sf_err + np.minimum(_EPS, sf), 0.0)
+    if (~upper).any():   # the cdf's own form below 1/2 (no cancellation)
+        c_own = grp.cdf(x[~upper])
+        cdf[~upper] = c_own
+        cdf_err[~upper] = 4 * _EPS * c_own * (2 + np.abs(np.log(np.maximum(c_own, 1e-300))))
+        sf[~upper] = 1.0 - c_own
+        sf_err[~upper] = cdf_err[~upper] + _EPS
     if kind == "sf":
-        total += last.msf(x) * mpmath.exp(-(xs / w) ** 2 / 2)
-    return total
-
-
-def _conv_mp(groups: list[_MGroup], x: mpmath.mpf, n: int, cs: _Panels) -> mpmath.mpf:
-    """``P(sum <= x)`` at one threshold."""
-    if len(groups) == 1:
-        return groups[0].cdf(x)
-    if x <= 0:
-        return mpmath.mpf(0)
-    last, rest = groups[-1], groups[:-1]
-    tstar, _, w = _split(last, rest, x, mpmath.sqrt)
-    near0, nearx = _offsets(last, rest, cs.mult)
-    raw = [tstar + c * w for c in cs.sad] + list(near0) + [x - a for a in nearx]
-    pts = sorted({mpmath.mpf(0), x} | {min(max(p, 0), x) for p in raw})
-    xg, wg = _mp_gl(n)
-    total = mpmath.mpf(0)
-    for a, b in itertools.pairwise(pts):
-        h = (b - a) / 2
-        m = (a + b) / 2
-        s = mpmath.fsum(
-            wi * last.pdf(m + h * xi) * _conv_mp(rest, x - (m + h * xi), n, cs)
-            for xi, wi in zip(xg, wg, strict=True)
-        )
-        total += h * s
-    return total
-
-
-#: float64 rule orders whose difference is the quadrature error estimate
-_N_LO, _N_HI = 12, 24
-_EPS = float(np.finfo(float).eps)
-#: float64 quadrature range: ``x <= _X_QUAD max(s)`` (the scaled group functions, powers of
-#: ``x/s`` up to the 8th, stay far from overflow)
-_X_QUAD = 1e30
-#: Laplace regime: ``x min(s) >= _X_LAPLACE V``; the neglected relative corrections of the
-#: asymptotic log-tail are ``O((V/(x s_i))**2) <= 1e-10`` absolute on ``log P(S > x) <= -5e9``
-#: (whose ulp is ~1e-6): within 2 ulp of mpmath from there on (measured for K = 1e5 .. 1e7 on
-#: five sets of 3 to 5 scales, spread up to 3e4), as the quadrature is
-_X_LAPLACE = 1e5
-
-
-def _regions(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Masks ``(laplace, out)`` of the float64 sf/pdf: the asymptotic regime, and the rest of
-    the region beyond the quadrature range (only for scales spread over > 1e21) or, for one or
-    two scales (closed forms, no quadrature), beyond ``x/min(s) = 1e150``."""
-    var = math.fsum(s * s for s in scales)
-    with np.errstate(under="ignore", over="ignore"):   # a subnormal or huge x: no matter
-        laplace = x * min(scales) >= _X_LAPLACE * var
-    lim = _X_QUAD * max(scales) if len(scales) > 2 else 1e150 * min(scales)
-    out = (x > lim) & ~laplace
-    return laplace, out
-
-
-def _float_scaled(scales: Sequence[float], x: np.ndarray, kind: str
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(m, err_m, E)`` with ``sf`` (or ``pdf``) ``= m exp(-E)``, ``E = x**2/(2 V)``, for
-    ``0 <= x`` in the quadrature range (see :func:`_regions`)."""
-    groups = [_FGroup(g) for g in make_groups(scales)]
-    var = math.fsum(s * s for s in scales)
-    xp = np.maximum(x, 0.0)
-    with np.errstate(under="ignore"):   # exp(-u**2) of the groups, x**2 of a tiny x
-        e = xp * xp / (2.0 * var)
-        if len(groups) == 1:
-            m = groups[0].msf(xp) if kind == "sf" else groups[0].mpdf(xp)
-            return m, 4 * _EPS * np.abs(m), e
-        ratio = 2.0 * float(np.max(xp, initial=0.0)) / min(scales)
-        cs = _saddle_c(_FLOAT_DIGITS, len(scales), ratio)
-        lo = _conv_scaled_float(groups, xp, kind, _N_LO, cs)
-        hi = _conv_scaled_float(groups, xp, kind, _N_HI, cs)
-        return hi, np.abs(hi - lo) + 4 * _EPS * np.abs(hi) * len(scales), e
-
-
-def _float_with_error(scales: Sequence[float], x: np.ndarray, kind: str
-                      ) -> tuple[np.ndarray, np.ndarray]:
-    laplace, out = _regions(scales, x)
-    far = laplace | out
-    if far.any():
-        # E >= 5e17 there: sf and pdf are exactly 0 in float64 (cdf: 1)
-        val = np.full(x.shape, 1.0 if kind == "cdf" else 0.0)
-        err = np.zeros(x.shape)
-        if (~far).any():
-            val[~far], err[~far] = _float_with_error(scales, x[~far], kind)
-        return val, err
+        return sf, sf_err
     if kind == "cdf":
-        # 1 - sf where sf <= 1/2 (no cancellation; the tail of the cdf's own quadrature would
-        # need panels out to the saddle), the quadrature of the cdf below
-        sf, err = _float_with_error(scales, x, "sf")
-        low = sf > 0.5
-        err = err + np.minimum(_EPS, sf)  # the rounding of 1 - sf (1 is a float)
-        sf = 1.0 - sf
-        if low.any():
-            sf[low], err[low] = _float_cdf(scales, x[low])
-        return sf, err
-    with np.errstate(under="ignore"):   # exp(-E) far out
-        m, err_m, e = _float_scaled(scales, x, kind)
-        g = np.exp(-e)
-        hi = m * g
-        # rounding: exp(-E) carries ~E * few eps from the roundings of its exponent
-        err = err_m * g + 4 * _EPS * np.abs(hi) * (len(scales) + 2 * e)
-    return hi, err
+        return cdf, cdf_err
+    if kind == "logsf":
+        v = np.where(upper, np.log(m) - big_e, np.log1p(-cdf))
+        return v, sf_err / np.maximum(sf, 1e-300)
+    v = np.where(upper, np.log1p(-sf), np.log(cdf))
+    return v, cdf_err / np.maximum(cdf, 1e-300)
 
 
-def _float_cdf(scales: Sequence[float], x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``P(S <= x)`` and its error by the quadrature of the cdf (where it is below ~1/2)."""
-    with np.errstate(under="ignore"):   # the Gaussian factors of the groups far out
-        groups = [_FGroup(g) for g in make_groups(scales)]
-        if len(groups) == 1:
-            val = groups[0].cdf(x)
-            return val, 4 * _EPS * np.abs(val) * (2 + np.abs(np.log(np.maximum(val, 1e-300))))
-        ratio = 2.0 * float(np.max(x, initial=0.0)) / min(scales)
-        cs = _saddle_c(_FLOAT_DIGITS, len(scales), ratio)
-        lo = _conv_float(groups, x, _N_LO, cs)
-        hi = _conv_float(groups, x, _N_HI, cs)
-        return hi, np.abs(hi - lo) + 4 * _EPS * np.abs(hi) * (len(scales) + 2)
+#: a scale above ``_HUGE_RATIO x`` is in its power regime at ``x`` (density ``r/s**2 (1 +
+#: O(x**2/s**2))`` on ``[0, x]``): it is evaluated at ``_HUGE_RATIO x`` and the value (lower
+#: tail, density) multiplied by ``(_HUGE_RATIO x/s)**2`` (exact to ``1e-200`` relative)
+_HUGE_RATIO = 1e100
 
 
-def _float_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
-    """``log P(S > x)`` where ``P(S > x) <= 1/2``: ``log m - E`` (no underflow), the Laplace
-    asymptotic beyond the quadrature range."""
-    laplace, out = _regions(scales, x)
-    if out.any():
-        i = int(np.argmax(out))
-        raise ValueError(f"x = {float(x[i])!r}: log sf of Rayleigh scales spread over more than 21 "
-                         "orders of magnitude is beyond the float64 range; use dps=")
-    res = np.empty(x.shape)
-    q = ~laplace
-    if q.any():
-        m, _, e = _float_scaled(scales, x[q], "sf")
-        res[q] = np.log(m) - e   # m > 0: the scaled tail, a polynomial-like factor
-    if laplace.any():
-        res[laplace] = _laplace_logsf(scales, x[laplace])
-    return res
+def _float_inverted(sc: list[float], x: np.ndarray, kind: str
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Any number of scales by the inversion (:func:`~symhx.forcing.inversion.invert_float`):
+    the tail below about 1/2 (the upper one from the mean on), the other as ``1 -`` it.
+    Thresholds ``x`` far below the largest scales (by more than :data:`_HUGE_RATIO`) take
+    those scales in their power regime, one threshold at a time."""
+    far = np.array([max(sc) > _HUGE_RATIO * xv for xv in x], dtype=bool)
+    if far.any():
+        val = np.empty(x.shape)
+        err = np.empty(x.shape)
+        if (~far).any():
+            val[~far], err[~far] = _float_inverted(sc, x[~far], kind)
+        for i in np.flatnonzero(far):
+            cap = _HUGE_RATIO * float(x[i])
+            clipped = [min(s, cap) for s in sc]
+            log_fac = math.fsum(2.0 * math.log(cap / s) for s in sc if s > cap)
+            # (through the rescaling entry: the clipped scales may need it)
+            v, er, _ = _float_eval_quiet(clipped, x[i:i + 1], kind)
+            if kind in ("logcdf", "logsf"):   # x is far below the mean: the lower tail
+                if kind == "logcdf":
+                    val[i], err[i] = v[0] + log_fac, er[0]
+                else:   # log1p(-cdf) = -cdf, cdf below exp(-460)
+                    cdf = _float_eval_quiet(clipped, x[i:i + 1], "cdf")[0][0] * math.exp(
+                        log_fac)
+                    val[i], err[i] = -cdf + 0.0, abs(cdf) * 1e-13
+            elif kind == "sf":
+                cdf, cerr, _ = _float_eval_quiet(clipped, x[i:i + 1], "cdf")
+                val[i] = 1.0 - cdf[0] * math.exp(log_fac)
+                err[i] = cerr[0] * math.exp(log_fac) + min(_EPS, cdf[0])
+            else:   # cdf, pdf: linear in the factor
+                fac = math.exp(log_fac)
+                val[i], err[i] = v[0] * fac, er[0] * fac
+        return val, err
+    if kind == "pdf":
+        inv = invert_float(sc, x, "pdf")
+        return inv.value, np.abs(inv.value) * inv.err / inv.t
+    mean = math.sqrt(math.pi / 2) * math.fsum(sc)
+    upper = x >= mean
+    val = np.empty(x.shape)
+    err = np.empty(x.shape)
+    for side, mask in (("sf", upper), ("cdf", ~upper)):
+        if not mask.any():
+            continue
+        inv = invert_float(sc, x[mask], side)
+        small = inv.value
+        rel = inv.err / inv.t
+        log_small = inv.log_scale + np.log(inv.t)
+        if kind == side:
+            v, er = small, small * rel
+        elif kind == "log" + side:
+            v, er = log_small, rel
+        elif kind in ("sf", "cdf"):   # (1 - small rounds by at most min(eps, small))
+            v, er = 1.0 - small, small * rel + np.minimum(_EPS, small)
+        else:   # the log of the other tail: log1p(-small) (never -0.0)
+            v = np.log1p(-small) + 0.0
+            er = small * rel / (1.0 - small)
+        val[mask], err[mask] = v, er
+    return val, err
 
 
 def _laplace_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
@@ -632,71 +561,73 @@ def _laplace_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
     return out
 
 
-def _mp_scaled_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
-                          ) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-    """``(m, err_m, E)`` with ``sf`` (or ``pdf``) ``= m exp(-E)``, ``E = x**2/(2 V)``, ``x >
-    0``, ``m`` correct to ``dps`` digits (call inside the working precision)."""
-    # E at the caller's precision (its exp needs log10(E) guard digits), the scaled quadrature
-    # at dps + 12 digits: m is a smooth function of x and the scales, and the Gaussian factors
-    # inside it only need their absolute accuracy relative to the peak
-    e = x * x / (2 * mpmath.fsum(s * s for s in scales))
-    with mpmath.workdps(dps + 12):
-        groups = [_MGroup(g) for g in make_groups(scales)]
-        if len(groups) == 1:
-            m = groups[0].msf(x) if kind == "sf" else groups[0].mpdf(x)
-            return m, abs(m) * mpmath.mpf(10) ** (-dps - 10), e
-        cs = _saddle_c(dps, len(scales), float(2 * x / min(scales)))
-        cur, err = _converge(lambda n: _conv_scaled_mp(groups, x, kind, n, cs), dps)
-    return cur, err, e
 
 
-def _converge(fn: Any, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
-    """Raise the rule order until two successive orders agree to ``dps + 3`` digits."""
-    tol = mpmath.mpf(10) ** (-dps - 3)
-    n = 6 + dps // 4
-    prev = fn(n)
-    err = abs(prev)
-    for _ in range(8):
-        n2 = (3 * n) // 2 + 2
-        cur = fn(n2)
-        err = abs(cur - prev)
-        if err <= tol * abs(cur):
-            return cur, err
-        prev, n = cur, n2
-    raise ArithmeticError(  # pragma: no cover - the panels resolve every scale
-        f"Rayleigh sum: the quadrature did not converge to {dps} digits (error {err})")
+# =========================================================================== mpmath
+def _mp_pair(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
+             ) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """One or two scales by their closed forms at ``dps`` digits (inside the working
+    precision): ``kind`` sf, cdf or pdf, and the absolute error estimate."""
+    grp = _MGroup(scales)
+    tol = thread_mp().mpf(10) ** (-dps - 10)
+    if x <= 0:
+        return (thread_mp().mpf(1) if kind == "sf" else thread_mp().mpf(0)), thread_mp().mpf(0)
+    e = x * x / (2 * grp.var)
+    if kind == "pdf":
+        v = grp.mpdf(x) * thread_mp().exp(-e)
+        return v, abs(v) * tol
+    sf = grp.msf(x) * thread_mp().exp(-e)
+    if kind == "sf" or sf <= 0.5:
+        v = sf if kind == "sf" else 1 - sf
+        return v, abs(sf) * tol
+    v = grp.cdf(x)
+    return v, abs(v) * tol
 
 
-def _upper_half(scales: Sequence[Any], x: mpmath.mpf) -> bool:
-    """Whether ``P(S > x)`` may be ``<= 0.55`` (the float64 value decides; True when it cannot
-    be formed): the mpmath cdf is then ``1 - sf``, else its own quadrature (both are accurate
-    near 1/2, only the far tail needs ``1 - sf``)."""
-    fs = [float(s) for s in scales]
-    xf = float(x)
-    if not all(1e-150 < s < 1e150 for s in fs) or not 0 < xf < 1e150:
-        return xf > 0
-    return bool(_float_with_error(fs, np.array([xf]), "sf")[0][0] <= 0.55)
-
-
-def _mp_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
-                   ) -> tuple[mpmath.mpf, mpmath.mpf]:
-    """Value and error estimate at ``dps`` digits (call inside the working precision)."""
-    if kind != "cdf":
+def _mp_tail_pair_log(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int) -> mpmath.mpf:
+    """``log`` of a tail of one or two scales (``kind`` logsf or logcdf), relative accuracy
+    kept: ``log m - E`` for the upper tail (no ``exp(-E)``), ``log1p`` of the other tail above
+    1/2."""
+    grp = _MGroup(scales)
+    if kind == "logsf":
         if x <= 0:
-            return (mpmath.mpf(1) if kind == "sf" else mpmath.mpf(0)), mpmath.mpf(0)
-        m, err, e = _mp_scaled_with_error(scales, x, kind, dps)
-        g = mpmath.exp(-e)
-        return m * g, err * g
-    if _upper_half(scales, x):
-        sf, err = _mp_with_error(scales, x, "sf", dps)
-        if sf <= 0.5:  # no cancellation in 1 - sf (see _float_with_error)
-            return 1 - sf, err
-    groups = [_MGroup(g) for g in make_groups(scales)]
-    if len(groups) == 1:
-        val = groups[0].cdf(x)
-        return val, abs(val) * mpmath.mpf(10) ** (-dps - 10)
-    cs = _saddle_c(dps, len(scales), float(2 * max(x, 0) / min(scales)))
-    return _converge(lambda n: _conv_mp(groups, x, n, cs), dps)
+            return thread_mp().mpf(0)
+        val = thread_mp().log(grp.msf(x)) - x * x / (2 * grp.var)
+        if val > -thread_mp().log(2):
+            val = thread_mp().log1p(-_mp_pair(scales, x, "cdf", dps + 5)[0])
+        return val
+    v = _mp_pair(scales, x, "cdf", dps + 5)[0]
+    if v > 0.5:
+        return thread_mp().log1p(-_mp_pair(scales, x, "sf", dps + 5)[0])
+    return thread_mp().log(v) if v > 0 else thread_mp().mpf("-inf")
+
+
+def _mp_sum(scales: Sequence[Fraction], x: Fraction, kind: str, dps: int
+            ) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """Three or more scales (or any, for a check) by the Arb inversion: ``(value, absolute
+    error)`` of ``kind`` (sf, cdf, pdf, logsf, logcdf) at the current working precision."""
+    if x <= 0:
+        v = {"sf": 1, "cdf": 0, "pdf": 0, "logsf": 0, "logcdf": thread_mp().mpf("-inf")}[kind]
+        return thread_mp().mpf(v), thread_mp().mpf(0)
+    if kind == "pdf":
+        inv = invert_arb(scales, x, "pdf", dps + 3)
+        v = thread_mp().exp(thread_mp().mpf(inv.log_scale)) * thread_mp().mpf(inv.t)
+        return v, abs(v) * inv.rel_err
+    with thread_mp().workprec(64):
+        mean = thread_mp().sqrt(thread_mp().pi / 2) * thread_mp().fsum(mpf_of(s) for s in scales)
+        upper = mpf_of(x) >= mean
+    side = "sf" if upper else "cdf"
+    inv = invert_arb(scales, x, side, dps + 3)
+    ls, t = thread_mp().mpf(inv.log_scale), thread_mp().mpf(inv.t)
+    if kind == "log" + side:
+        return ls + thread_mp().log(t), thread_mp().mpf(inv.rel_err)
+    small = thread_mp().exp(ls) * t
+    err = abs(small) * inv.rel_err
+    if kind == side:
+        return small, err
+    if kind in ("sf", "cdf"):
+        return 1 - small, err
+    return thread_mp().log1p(-small), err / (1 - small)
 
 
 # =========================================================================== the distribution
@@ -708,11 +639,20 @@ class RayleighSum:
     scales). Methods follow ``scipy.stats``: ``pdf, cdf, sf, logcdf, logsf`` take a float or
     an array of thresholds ``x`` (float64, vectorised; ``x <= 0`` gives ``sf = 1``; an empty
     array gives an empty result) or, with ``dps=``, mpmath values correct to ``dps`` digits.
+    One or two scales have closed forms; more are computed by the inversion of the Laplace
+    transform of the sum (see :mod:`symhx.forcing.inversion`), up to ``MAX_SCALES`` scales of
+    any spread.
 
     Parameters
     ----------
     scales : sequence of real
-        Scales ``s_i > 0`` (decimal strings exact, floats/mpf at their binary value).
+        Scales ``s_i > 0`` (decimal strings exact, floats/mpf at their binary value), at most
+        ``MAX_SCALES`` of them.
+
+    Raises
+    ------
+    ValueError
+        No scale, more than ``MAX_SCALES``, or a scale that is not finite and ``> 0``.
 
     >>> S = RayleighSum([0.5, 0.3, 0.2])
     >>> abs(S.sf(1.0) + S.cdf(1.0) - 1) < 1e-15
@@ -729,6 +669,9 @@ class RayleighSum:
         arr = np.asarray(scales, dtype=object).ravel()
         if arr.size == 0:
             raise ValueError("scales: need at least one Rayleigh scale, got an empty sequence")
+        if arr.size > MAX_SCALES:
+            raise ValueError(f"scales: {arr.size} Rayleigh scales, more than MAX_SCALES = "
+                             f"{MAX_SCALES} (the documented limit of the sum's evaluation)")
         exact = []
         for i, s in enumerate(arr):
             exact.append(rational_arg(f"scales[{i}]", s))
@@ -739,41 +682,58 @@ class RayleighSum:
         return f"RayleighSum({[float(s) for s in self.scales]!r})"
 
     # ---- moments
+    @exported
     def mean(self, *, dps: int | None = None) -> Any:
         """``E[S] = sqrt(pi/2) sum s_i``."""
         dps = check_dps(dps, allow_none=True)
         if dps is None:
             return float(math.sqrt(math.pi / 2) * math.fsum(self._float_scales()))
-        with mpmath.workdps(dps + 10):
-            val = mpmath.sqrt(mpmath.pi / 2) * mpmath.fsum(mpf_of(s) for s in self._exact)
-        return +val
+        with thread_mp().workdps(dps + 10):
+            ctx = thread_mp()
+            val = ctx.sqrt(ctx.pi / 2) * ctx.fsum(mpf_of(s) for s in self._exact)
+            with thread_mp().workdps(dps):
+                return +val
 
+    @exported
     def var(self, *, dps: int | None = None) -> Any:
         """``Var S = (2 - pi/2) sum s_i**2``."""
         dps = check_dps(dps, allow_none=True)
         if dps is None:
             return float((2 - math.pi / 2) * math.fsum(s * s for s in self._float_scales()))
-        with mpmath.workdps(dps + 10):
-            val = (2 - mpmath.pi / 2) * mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
-        return +val
+        with thread_mp().workdps(dps + 10):
+            val = (2 - thread_mp().pi / 2) * thread_mp().fsum(mpf_of(s) ** 2 for s in self._exact)
+            with thread_mp().workdps(dps):
+                return +val
 
+    @exported
     def std(self, *, dps: int | None = None) -> Any:
         """Standard deviation ``sqrt(Var S)``."""
-        v = self.var(dps=dps)
-        return math.sqrt(v) if dps is None else mpmath.sqrt(v)
+        dps = check_dps(dps, allow_none=True)
+        if dps is None:
+            return math.sqrt(self.var())
+        with thread_mp().workdps(dps + 10):
+            val = thread_mp().sqrt(self.var(dps=dps + 10))
+            with thread_mp().workdps(dps):
+                return +val
 
     def rvs(self, size: Any = None, random_state: Any = None) -> Any:
         """Random draws (float64): ``sum_i Rayleigh(s_i)`` with numpy's generator.
 
-        ``random_state``: None, an int seed or a ``numpy.random.Generator``.
+        ``size``: None (one float), an int ``>= 0`` or a tuple of them (an array of that
+        shape), at most ``MAX_DRAWS`` draws. ``random_state``: None, an int seed ``>= 0`` or a
+        ``numpy.random.Generator``; the same seed gives the same draws.
         """
-        shape = check_size(size)  # at most MAX_SAMPLE_SIZE draws, before any work
+        shape = _check_size(size)
         rng = (random_state if isinstance(random_state, np.random.Generator)
                else np.random.default_rng(check_seed(random_state, "random_state")))
         sc = self._float_scales()
-        return sum(rng.rayleigh(scale=s, size=shape) for s in sc)   # a float for size=None
+        out = rng.rayleigh(scale=sc[0], size=shape)
+        for s in sc[1:]:
+            out = out + rng.rayleigh(scale=s, size=shape)
+        return float(out) if shape is None else out
 
     # ---- probabilities
+    @exported
     def sf(self, x: Any, *, dps: int | None = None) -> Any:
         """``P(S > x)``."""
         return self._eval(x, "sf", dps)
@@ -786,52 +746,65 @@ class RayleighSum:
         """Density of ``S`` at ``x``."""
         return self._eval(x, "pdf", dps)
 
+    @exported
     def logsf(self, x: Any, *, dps: int | None = None) -> Any:
         """``log P(S > x)``; ``log1p(-cdf)`` where ``sf > 1/2`` (relative accuracy kept)."""
         return self._eval(x, "logsf", dps)
 
+    @exported
     def logcdf(self, x: Any, *, dps: int | None = None) -> Any:
         """``log P(S <= x)``; ``log1p(-sf)`` where ``cdf > 1/2``."""
         return self._eval(x, "logcdf", dps)
 
+    @exported
     def probability(self, x: Any, *, tail: str = "upper", dps: int | None = None
                     ) -> RayleighSumResult:
-        """``P(S > x)`` (``tail="upper"``) or ``P(S <= x)`` with an error estimate."""
+        """``P(S > x)`` (``tail="upper"``) or ``P(S <= x)`` with an error estimate (of the
+        quadrature, the truncation and the rounding; for ``dps`` also the final rounding to
+        ``dps`` digits) and the method used."""
         tail = check_choice(tail, "tail", ("upper", "lower"))
         kind = "sf" if tail == "upper" else "cdf"
         dps = check_dps(dps, allow_none=True)
-        method = ("closed form" if len(self._exact) <= 2 else
-                  f"nested Gauss-Legendre ({len(make_groups(self._exact)) - 1}-D)")
         if dps is None:
             xa = float_arg("x", x, positive=False)
             if xa.ndim:
                 raise TypeError("x must be a scalar here (use sf/cdf for arrays)")
-            sc, xn, _ = _float_normalized(self._float_scales(), xa.reshape(1))
-            val, err = _float_with_error(sc, xn, kind)
+            val, err, method = _float_eval(self._float_scales(), xa.reshape(1), kind)
             return RayleighSumResult(float(val[0]), float(err[0]), method)
-        with mpmath.workdps(dps + 15 + self._exp_digits(x)):
-            xm = _mp_x(x)
-            val, err = _mp_with_error([mpf_of(s) for s in self._exact], xm, kind, dps)
-            with mpmath.workdps(dps):   # returned at dps digits (the guard digits are not
+        self._check_mp_work(dps)
+        method = "closed form" if len(self._exact) <= 2 else "Laplace-transform inversion"
+        with thread_mp().workdps(dps + 15 + self._exp_digits(x)):
+            val, err = self._mp_value(x, kind, dps)
+            with thread_mp().workdps(dps):   # returned at dps digits (the guard digits are not
                 out = +val              # correct digits): the estimate includes that rounding
             err = err + abs(out - val)
-        with mpmath.workdps(dps):
-            return RayleighSumResult(out, +err, method)
+            with thread_mp().workdps(dps):
+                return RayleighSumResult(out, +err, method)
 
     # ---- internals
+    def _check_mp_work(self, dps: int) -> None:
+        """The cap of the mpmath path of three or more scales, before any work."""
+        n = len(set(self._exact))
+        if len(self._exact) >= 3 and n * dps > MAX_MP_SUM_WORK:
+            raise ValueError(
+                f"dps: {dps} digits for {n} distinct Rayleigh scales (work {n * dps}) is above "
+                f"the cap MAX_MP_SUM_WORK = {MAX_MP_SUM_WORK} (distinct scales x dps) of the "
+                "mpmath evaluation of a sum of three or more scales")
+
     def _exp_digits(self, x: Any) -> int:
         """Extra digits for ``exp(-E)``, ``E ~ x**2/(2 sum s**2)``, to keep its relative
         accuracy (E ~ 1e6 costs 6 digits)."""
-        with mpmath.workprec(53):
+        with thread_mp().workprec(53):
             xm = _mp_x(x)   # a sympy expression too (evaluated), not taken as 0
-            var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
-            e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
+            var = thread_mp().fsum(mpf_of(s) ** 2 for s in self._exact)
+            e = xm * xm / (2 * var) if xm > 0 else thread_mp().mpf(0)
         if e > MAX_EXPONENT:
             raise ValueError(
-                f"x: P(S > x) = exp(-E) with E ~ {mpmath.nstr(e, 3)} above the cap MAX_EXPONENT "
+                f"x: P(S > x) = exp(-E) with E ~ {thread_mp().nstr(e, 3)} above the cap "
+                f"MAX_EXPONENT "
                 f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
                 "guard digits); logsf has no cap")
-        return int(mpmath.log10(e)) + 1 if e > 1 else 0
+        return int(thread_mp().log10(e)) + 1 if e > 1 else 0
 
     def _float_scales(self) -> list[float]:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
@@ -841,114 +814,58 @@ class RayleighSum:
                              "float64 range; use dps=")
         return [float(s) for s in self.scales]
 
+    def _mp_value(self, x: Any, kind: str, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
+        """``(value, absolute error)`` at the current working precision (``dps`` digits of
+        accuracy): closed forms for one or two scales, the Arb inversion for more."""
+        xm = _mp_x(x)
+        if len(self._exact) <= 2:
+            scales = [mpf_of(s) for s in self._exact]
+            if kind in ("sf", "cdf", "pdf"):
+                return _mp_pair(scales, xm, kind, dps)
+            return _mp_tail_pair_log(scales, xm, kind, dps), thread_mp().mpf(0)
+        fr = to_rational(x, "x")
+        xf = fr if fr is not None else mpf_to_fraction(xm)
+        return _mp_sum(self._exact, xf, kind, dps)
+
     def _eval(self, x: Any, kind: str, dps: Any) -> Any:
         dps = check_dps(dps, allow_none=True)
         if dps is None:
             xa = (check_array(x, "x", allow_empty=True) if is_array(x)
                   else float_arg("x", x, positive=False))
             flat = xa.reshape(-1)
-            out = self._float_kind(flat, kind)
+            sc = self._float_scales()
+            out = _float_eval(sc, flat, kind)[0] if flat.size else np.empty(0)
             return float(out[0]) if xa.ndim == 0 else out.reshape(xa.shape)
+        self._check_mp_work(dps)
         if is_array(x):
             xs = np.asarray(x, dtype=object)
             out = np.empty(xs.shape, dtype=object)
             for idx in np.ndindex(xs.shape):
                 out[idx] = self._eval(xs[idx], kind, dps)
             return out
-        # exp(-E) needs log10(E) guard digits; log sf = log m - E does not (its absolute
-        # error E 10**-prec is relative 10**-prec), so its cost does not grow with E
+        # exp(-E) needs log10(E) guard digits (so does log cdf = log1p(-sf) far out); log sf
+        # = log m - E does not (its absolute error E 10**-prec is relative 10**-prec), so its
+        # cost does not grow with E
         guard = 15 + (0 if kind == "logsf" else self._exp_digits(x))
-        with mpmath.workdps(dps + guard):
-            xm = _mp_x(x)
-            scales = [mpf_of(s) for s in self._exact]
-            if kind in ("sf", "cdf", "pdf"):
-                val = _mp_with_error(scales, xm, kind, dps)[0]
-            elif kind == "logsf":
-                # log P(S > x) = log m - E: no exp(-E) (and no guard digits for it) needed
-                if xm <= 0:
-                    val = mpmath.mpf(0)
-                else:
-                    m, _, e = _mp_scaled_with_error(scales, xm, "sf", dps + 5)
-                    val = mpmath.log(m) - e
-                    if val > -mpmath.log(2):
-                        val = mpmath.log1p(-_mp_with_error(scales, xm, "cdf", dps + 5)[0])
-            else:
-                v = _mp_with_error(scales, xm, "cdf", dps + 5)[0]
-                if v > 0.5:
-                    val = mpmath.log1p(-_mp_with_error(scales, xm, "sf", dps + 5)[0])
-                else:
-                    val = mpmath.log(v) if v > 0 else mpmath.mpf("-inf")
-        with mpmath.workdps(dps):
-            return +val
-
-    def _float_kind(self, x: np.ndarray, kind: str) -> np.ndarray:
-        sc0 = self._float_scales()
-        sc, x, e = _float_normalized(sc0, x)
-        if kind in ("sf", "cdf", "pdf"):
-            val = _float_with_error(sc, x, kind)[0]
-            if kind == "pdf" and e:   # the density scales by 2**-e (it may underflow; it
-                with np.errstate(under="ignore"):   # is below 1/s_max, so it cannot overflow)
-                    return np.ldexp(val, -e)
-            return val
-        if kind == "logsf":
-            out = _float_logsf(sc, x)
-            big = out > -math.log(2.0)
-            if big.any():
-                out[big] = np.log1p(-_float_with_error(sc, x[big], "cdf")[0])
-            return out
-        tiny = (x > 0) & (x <= _X_SMALL * min(sc))
-        out = np.empty(x.shape)
-        if tiny.any():   # ratios only: the unscaled values (x / 2**e may be subnormal)
-            out[tiny] = _float_small_logcdf(sc0, np.ldexp(x[tiny], e))
-        rest = ~tiny
-        v = _float_with_error(sc, x[rest], "cdf")[0]
-        big = v > 0.5
-        with np.errstate(divide="ignore"):
-            r = np.log(v)
-            if big.any():
-                r[big] = np.log1p(-_float_with_error(sc, x[rest][big], "sf")[0])
-        out[rest] = r
-        return out
+        with thread_mp().workdps(dps + guard):
+            val = self._mp_value(x, kind, dps)[0]
+            with thread_mp().workdps(dps):
+                return +val
 
 
-#: the float64 routes square the scales and x: beyond ``2**+-200`` both are scaled by the power
-#: of two ``2**-e`` that brings the largest scale to [1/2, 1) (exact; the probabilities are
-#: scale-free, the density scales by ``2**-e``)
-_FLOAT_SCALE_RANGE = 2.0**200
-
-
-def _float_normalized(scales: list[float], x: np.ndarray) -> tuple[list[float], np.ndarray, int]:
-    """``(scales, x, e)`` scaled by ``2**-e`` when the largest scale is outside
-    ``[1/_FLOAT_SCALE_RANGE, _FLOAT_SCALE_RANGE]`` (else ``e = 0`` and the inputs as they are).
-    A scale that would then be below ``2**-500`` (its square below the normal float64 range)
-    is refused (``dps=`` handles it)."""
-    top = max(scales)
-    if 1 / _FLOAT_SCALE_RANGE <= top <= _FLOAT_SCALE_RANGE:
-        return scales, x, 0
-    e = math.frexp(top)[1]
-    out = [math.ldexp(s, -e) for s in scales]
-    if min(out) < 2.0**-500:
-        raise ValueError(f"the Rayleigh scales spread over more than float64 resolves here "
-                         f"({min(scales):.3g} to {top:.3g}): use dps=")
-    with np.errstate(under="ignore", over="ignore"):   # x beyond the range: inf (far tail)
-        return out, np.ldexp(x, -e), e
-
-
-#: lower tail: ``x <= _X_SMALL min(s)`` takes the leading power of ``P(S <= x)`` (relative
-#: corrections ``<= sum_i x**2/(2 s_i**2) <= 1e-17``), where the cdf itself may underflow
-_X_SMALL = 1e-9
-
-
-def _float_small_logcdf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
-    r"""``log P(S <= x) = sum_i 2 log(x/s_i) - log((2n)!)`` for ``x << min(s_i)``: each density
-    is ``r/s_i**2 (1 + O(r**2/s_i**2))`` near 0 and the ``n``-fold convolution of ``r`` is
-    ``x**(2n-1)/(2n-1)!``."""
-    out = np.full(x.shape, -math.lgamma(2 * len(scales) + 1))
-    with np.errstate(under="ignore", divide="ignore"):
-        for s in scales:
-            q = x / s
-            out += 2 * np.where(q > 1e-300, np.log(q), np.log(x) - math.log(s))
-    return out
+def _check_size(size: Any) -> tuple[int, ...] | None:
+    """``size`` of :meth:`RayleighSum.rvs` as a shape (None: one draw), refused with its name
+    before any draw: an int ``>= 0`` or a tuple of them, at most ``MAX_DRAWS`` draws."""
+    if size is None:
+        return None
+    if isinstance(size, (str, bytes)):
+        raise TypeError(f"size must be None, an int >= 0 or a tuple of them, got {size!r}")
+    dims = tuple(size) if isinstance(size, (tuple, list)) else (size,)
+    shape = tuple(check_int(d, "size", minimum=0) for d in dims)
+    total = math.prod(shape)
+    if total > MAX_DRAWS:
+        raise ValueError(f"size: {total} draws, more than MAX_DRAWS = {MAX_DRAWS:.0e}")
+    return shape
 
 
 def _to_float(fr: Fraction) -> float:
@@ -962,10 +879,11 @@ def _mp_x(x: Any) -> mpmath.mpf:
     """A finite real threshold as an mpf at the current precision (``<= 0`` allowed)."""
     fr = to_rational(x, "x")
     if fr is None:
-        return mpmath.mpf(x.evalf(mpmath.mp.dps + 5))
-    return mpf_of(fr) if fr > 0 else mpmath.mpf(fr.numerator) / fr.denominator
+        return thread_mp().mpf(x.evalf(thread_mp().dps + 5))
+    return mpf_of(fr) if fr > 0 else thread_mp().mpf(fr.numerator) / fr.denominator
 
 
+@exported
 def rayleigh_sum_probability(
     scales: Sequence[Any], d: Any = 1, *, tail: str = "upper", dps: int | None = None
 ) -> RayleighSumResult:

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
-import mpmath
 import numpy as np
 
+from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import ForcingParams, float_arg
 from symhx.forcing.probability import evaluate
 from symhx.validation import check_dps, check_N
@@ -91,13 +91,13 @@ def theory_curve(
         if not tiny:
             pm = evaluate(ForcingParams.validated(float(sv), sigma1, omega, Omega, d, dps=dps),
                           dps, "p")
-            with mpmath.workdps(dps):
-                floor = mpmath.mpf(THEORY_P_FLOOR)
+            with thread_mp().workdps(dps):
+                floor = thread_mp().mpf(THEORY_P_FLOOR)
                 tiny = pm < floor
         ps.append(0.0 if tiny else float(pm))
         if tiny:  # the limit p -> 0: evaluate at the floor and check it is the limit
-            with mpmath.workdps(dps):
-                floor = mpmath.mpf(THEORY_P_FLOOR)
+            with thread_mp().workdps(dps):
+                floor = thread_mp().mpf(THEORY_P_FLOOR)
             m_val = float(symhx.mean(N, floor, space=space, dps=dps))
             mo_val = int(symhx.mode(N, floor, space=space))
             if m_val != 1.0 or mo_val != 1:  # pragma: no cover - N <= THEORY_MAX_N

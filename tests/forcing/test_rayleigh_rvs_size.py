@@ -1,5 +1,5 @@
 """``RayleighSum.rvs`` checks its size like every ``rvs`` (issue 28, item 7): a negative or
-fractional size names ``size``; more than ``MAX_SAMPLE_SIZE`` draws are refused at once."""
+fractional size names ``size``; more than ``MAX_DRAWS`` draws are refused at once."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ def test_rayleigh_sum_rvs_refuses_bad_sizes_naming_size():
     assert_refuses(r.rvs, -1, arg="size", value="-1", allowed=">= 0")
     assert_refuses(r.rvs, 2.5, exc=TypeError, arg="size", value="2.5")
     t0 = time.perf_counter()
-    assert_refuses(r.rvs, 10**12, arg="size", allowed="MAX_SAMPLE_SIZE")
+    assert_refuses(r.rvs, 10**12, arg="size", allowed="MAX_DRAWS")
     assert time.perf_counter() - t0 < 1.0
 
 

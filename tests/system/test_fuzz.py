@@ -429,6 +429,11 @@ def _warm_up() -> None:
             res = _call(entry, {})()
             if isinstance(res, Iterator):
                 list(res)
+    # the Laplace-transform inversion of three or more Rayleigh scales builds its Taylor table
+    # of L(z) once a process (~0.3 s) and imports python-flint: before forking, too
+    with contextlib.suppress(Exception):
+        symhx.RayleighSum([1.0, 0.5, 0.25]).sf(1.0)
+        symhx.RayleighSum([1.0, 0.5, 0.25]).sf(1.0, dps=20)
     import tempfile
 
     from symhx.cli import main
@@ -995,9 +1000,7 @@ def _interactions() -> list[Any]:
     for scales in ([1.0, 1e-8], [1.0, 1e-100], [1.0, 1e-154], [1.0, 1e-200], [1.0, 1e-300],
                    [1.0, 1e-300, 1e-300]):
         for dps in (None, 20):
-            bug = (dps is None and scales[1] < 1e-8) or scales == [1.0, 1e-300, 1e-300]
-            cases.append(one(_rayleigh_tiny_scale(scales, dps), f"RayleighSum{scales}-dps={dps}",
-                             [_known("2", "negligible scale")] if bug else []))
+            cases.append(one(_rayleigh_tiny_scale(scales, dps), f"RayleighSum{scales}-dps={dps}"))
     for sigma1 in (1e-8, 1e-100, 1e-300):
         for dps in (None, 20):
             cases.append(one(_forcing_tiny_component({"sigma": 0.3, "sigma1": sigma1},
@@ -1008,11 +1011,9 @@ def _interactions() -> list[Any]:
         cases.append(one(_forcing_tiny_component(
             {"sigma": 0.3, "Omega": [1.5, 1e100]},
             lambda: symhx.impact_probability(0.3, Omega=[1.5], dps=40), 1e-199, dps),
-            f"impact_probability(0.3, Omega=[1.5, 1e100])-dps={dps}",
-            _known("2", "negligible scale (a forcing frequency far from omega)")))
+            f"impact_probability(0.3, Omega=[1.5, 1e100])-dps={dps}"))
     for kind in ("RayleighSum", "impact_probability"):
-        cases.append(one(_many_scales(kind), f"{kind}-seven-scales",
-                         _known("4", "sums of many Rayleigh scales")))
+        cases.append(one(_many_scales(kind), f"{kind}-seven-scales"))
     for N, label in ((10**6, "1e6"), (10**30, "1e30"), (10**1000, "1e1000")):
         for p, plabel in ((0.5, "0.5"), (2.0, "2.0"), (10 / N if N < 10**300 else 1e-299,
                                                       "10/N")):

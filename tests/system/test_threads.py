@@ -10,7 +10,7 @@ dask's threaded scheduler; every result must be bit-identical to the serial one 
 tuples, exact ints and Fractions).
 
 Routes whose modules are converted to thread contexts in other branches (the frozen
-distribution in ``symhx/distribution.py``, ``symhx.forcing``, ``symhx.impact``) are marked
+distribution in ``symhx/distribution.py``, ``symhx.impact``) are marked
 ``xfail(strict=False)`` until those branches are merged.
 """
 
@@ -42,7 +42,6 @@ THREADS = 8
 REPEATS = 4  # each case is called this many times concurrently (after the serial reference)
 
 DIST_BRANCH = "symhx/distribution.py is converted to thread contexts in its own branch"
-FORCING_BRANCH = "symhx.forcing is converted to thread contexts in the forcing branch"
 IMPACT_BRANCH = "symhx.impact is converted to thread contexts in the impact branch"
 
 
@@ -206,7 +205,9 @@ def _space_moment_cases() -> list[Case]:
 def _forcing_cases() -> list[Case]:
     return [(f"forcing {dps}", lambda dps=dps: (
         symhx.impact_probability(0.1, dps=dps), symhx.no_impact_probability(0.3, dps=dps),
-        symhx.RayleighSum([1.0, 0.5]).sf(1.0, dps=dps)))
+        symhx.RayleighSum([1.0, 0.5]).sf(1.0, dps=dps),
+        symhx.RayleighSum([1.0, 0.5, 0.25]).logsf(3.0, dps=dps),
+        symhx.dp_dsigma(0.2, dps=dps), symhx.sigma_for_impact_probability("1e-3", dps=dps)))
         for dps in (8, 30)]
 
 
@@ -227,8 +228,7 @@ GROUPS: dict[str, Callable[[], list[Case]]] = {
     "forcing": _forcing_cases,
     "impact": _impact_cases,
 }
-XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH, "forcing": FORCING_BRANCH,
-         "impact": IMPACT_BRANCH}
+XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH, "impact": IMPACT_BRANCH}
 
 
 def _params() -> list[Any]:

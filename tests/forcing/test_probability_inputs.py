@@ -1,4 +1,7 @@
-"""Hostile inputs to the forcing functions: a correct value or a clear ValueError/TypeError."""
+"""Hostile inputs to the public forcing functions (``symhx.forcing.probability`` and
+``dp_dsigma``): a correct value or a clear ValueError/TypeError naming the argument, the value
+and what is allowed (first bad index of an array); empty in, empty out; exact decimal strings;
+the global mpmath precision left alone."""
 
 from __future__ import annotations
 
@@ -10,6 +13,7 @@ import numpy as np
 import pytest
 
 from symhx import forcing as F
+from symhx._mpctx import mp as thread_mp
 
 FUNCS = [F.impact_probability, F.no_impact_probability, F.log_impact_probability,
          F.log_no_impact_probability, F.dp_dsigma]
@@ -61,7 +65,7 @@ def test_decimal_strings_are_exact_and_floats_binary():
     b = F.impact_probability(Fraction(1, 10), dps=40)
     c = F.impact_probability(0.1, dps=40)
     assert a == b and a != c
-    with mpmath.workdps(60):
+    with mpmath.workdps(60), thread_mp().workdps(60):
         ref = F.impact_probability(mpmath.mpf(1) / 10, dps=50)
         assert abs(a / ref - 1) < mpmath.mpf(10) ** -40
     # float64 path: a string is the correctly rounded float
@@ -74,7 +78,7 @@ def test_decimal_strings_are_exact_and_floats_binary():
     assert F.log_impact_probability("1e-150", dps=15) < mpmath.mpf("-1e299")
 
 
-def test_fuzz_fixes_none_empty_and_extremes():
+def test_none_empty_omega_and_extreme_inputs():
     """Issue 12: None is a TypeError, an empty Omega array an error, extremes no NaN."""
     for name in ("sigma", "omega", "d"):
         kw = {"sigma": 0.3, name: None}
@@ -118,18 +122,6 @@ def test_resonance_and_components():
         F.impact_probability(0.3, Omega=[])
 
 
-def test_inverse_bad_targets():
-    for p in (0, 1, -0.5, 1.5, float("nan")):
-        with pytest.raises(ValueError, match="p"):
-            F.sigma_for_impact_probability(p)
-    with pytest.raises(ValueError, match=r"p must be in \(0, 1\).*index 1"):
-        F.sigma_for_impact_probability([0.5, 1.0])
-    with pytest.raises(TypeError, match="p"):
-        F.sigma_for_impact_probability(True)
-    with pytest.raises(ValueError, match="rounds to"):
-        F.sigma_for_impact_probability("1e-400")
-
-
 def test_global_precision_untouched():
     before = mpmath.mp.dps
     F.impact_probability(0.2, dps=60)
@@ -139,21 +131,56 @@ def test_global_precision_untouched():
     assert mpmath.mp.dps == before
 
 
+# ----------------------------------------------------------------------------- bad input
+@pytest.mark.parametrize("dps", [None, 20])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(sigma=0.0), "sigma"),
+        (dict(sigma=-1.0), "sigma"),
+        (dict(sigma=float("nan")), "sigma"),
+        (dict(sigma=float("inf")), "sigma"),
+        (dict(sigma=0.1, sigma1=0.0), "sigma1"),
+        (dict(sigma=0.1, sigma1=float("nan")), "sigma1"),
+        (dict(sigma=0.1, d=0.0), "d"),
+        (dict(sigma=0.1, d=-2.0), "d"),
+        (dict(sigma=0.1, d=float("inf")), "d"),
+        (dict(sigma=0.1, omega=float("nan")), "omega"),
+        (dict(sigma=0.1, omega=0.0), "omega"),
+        (dict(sigma=0.1, Omega=-float("inf")), "Omega"),
+        (dict(sigma=0.1, Omega=1.0), "resonance"),
+        (dict(sigma=0.1, omega=1.5, Omega=1.5), "resonance"),
+    ],
+)
+def test_bad_input_names_the_argument(kwargs, name, dps):
+    for fn in (F.impact_probability, F.no_impact_probability, F.log_impact_probability,
+               F.log_no_impact_probability, F.dp_dsigma):
+        kw = dict(kwargs)
+        sigma = kw.pop("sigma")
+        with pytest.raises(ValueError, match=name):
+            fn(sigma, **kw, dps=dps)
 
-def test_theory_curve_tiny_p_and_N_cap():
-    """Below THEORY_P_FLOOR the p -> 0 shortcut equals the graph model at the exact p."""
-    import symhx
-    from symhx.forcing.theory import THEORY_MAX_N, theory_curve
 
-    tc = theory_curve([5e-324, 0.01, 0.05, 0.2], N=101, dps=15)
-    assert list(tc.p[:2]) == [0.0, 0.0] and list(tc.mode[:2]) == [1, 1]
-    for i, s in enumerate((0.01, 0.05, 0.2)):  # p(0.01) ~ 1e-1086: below the floor
-        pm = F.impact_probability(s, dps=20)
-        assert tc.p[i + 1] == float(pm)
-        assert tc.mean[i + 1] == float(symhx.mean(101, pm, space="simple", dps=20))
-        assert tc.mode[i + 1] == int(symhx.mode(101, pm, space="simple"))
-    assert tc.mean[0] == 1.0
-    with pytest.raises(ValueError, match="THEORY_MAX_N"):
-        theory_curve(0.3, N=THEORY_MAX_N + 1)
-    with pytest.raises(ValueError, match="THEORY_MAX_N"):
-        theory_curve(0.3, N=10**1000)
+def test_bad_array_input_reports_first_bad_index():
+    s = np.array([0.1, 0.2, np.nan, -1.0])
+    with pytest.raises(ValueError, match=r"sigma.*index 2"):
+        F.impact_probability(s)
+    with pytest.raises(ValueError, match=r"d must be > 0.*index \(1, 0\)"):
+        F.impact_probability(0.1, d=np.array([[1.0, 2.0], [0.0, 1.0]]))
+    with pytest.raises(ValueError, match=r"resonance.*index 1"):
+        F.impact_probability(0.1, omega=1.0, Omega=np.array([2.0, 1.0, 3.0]))
+    with pytest.raises(ValueError, match=r"sigma.*index 1"):
+        F.impact_probability([0.1, 0.0], dps=15)
+
+
+def test_several_components_bad_input():
+    with pytest.raises(ValueError, match=r"Omega\[1\]: resonance"):
+        F.impact_probability(0.1, Omega=[1.5, 1.0])
+    with pytest.raises(ValueError, match="sigma1"):
+        F.impact_probability(0.1, Omega=[1.5, 2.0], sigma1=[0.1])
+    with pytest.raises(ValueError, match=r"sigma1\[1\]"):
+        F.impact_probability(0.1, Omega=[1.5, 2.0], sigma1=[0.1, -1.0])
+    with pytest.raises(ValueError, match="scales"):
+        F.rayleigh_sum_probability([0.1, float("nan")], 1.0)
+    with pytest.raises(ValueError, match="tail"):
+        F.rayleigh_sum_probability([0.1, 0.2], 1.0, tail="both")

@@ -1,9 +1,9 @@
-"""The ``symhx p-sigma`` command: strict JSON, one evaluation per sigma, clear errors."""
+"""The ``symhx p-sigma`` command (``symhx.commands.forcing``): the values of the API, strict JSON,
+one-line errors."""
 
 from __future__ import annotations
 
 import json
-import math
 import subprocess
 import sys
 
@@ -11,6 +11,7 @@ import mpmath
 import pytest
 
 from symhx import forcing as F
+from tests.reference.mp import rel_err
 
 
 def run(*args):
@@ -63,23 +64,20 @@ def test_bad_options_one_line_error(args, word):
     assert word in r.stderr
 
 
-def test_paths_evaluated_once_per_sigma(monkeypatch):
-    """mpmath: p and 1 - p once each per sigma (the logs are derived), no log kernels."""
-    import argparse
+# ----------------------------------------------------------------------------- CLI
+def test_cli_p_sigma(tmp_path, capsys):
+    from symhx.cli import main
 
-    from symhx.commands import forcing as C
-    from symhx.forcing import probability as P
-
-    calls = []
-    orig = P.evaluate
-
-    def spy(fp, dps, want):
-        calls.append(want)
-        return orig(fp, dps, want)
-
-    monkeypatch.setattr(P, "evaluate", spy)
-    ns = argparse.Namespace(sigma=["0.1", "0.2"], grid=None, dps=20, sigma1=None, omega="1",
-                            Omega=None, d="1", inverse=False)
-    rows = C._rows(C._values(ns), ns)
-    assert sorted(calls) == ["p", "p", "q", "q"]
-    assert math.isclose(float(rows[0]["log_p"]), F.log_impact_probability(0.1), rel_tol=1e-14)
+    assert main(["p-sigma", "0.12", "--dps", "40"]) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if ln.strip().startswith("p "))
+    with mpmath.workdps(50):
+        printed = mpmath.mpf(line.split("=")[1].strip())
+        assert rel_err(printed, F.impact_probability("0.12", dps=45)) < mpmath.mpf(10) ** -38
+    csvf = tmp_path / "grid.csv"
+    assert main(["p-sigma", "--grid", "0.01", "100", "7", "--csv", str(csvf)]) == 0
+    rows = csvf.read_text().splitlines()
+    assert rows[0].startswith("sigma,p,one_minus_p") and len(rows) == 8
+    assert main(["p-sigma", "-1"]) == 2
+    assert "sigma must be > 0" in capsys.readouterr().err
+    assert main(["p-sigma", "0.1", "--Omega", "1.0"]) == 2  # resonance
