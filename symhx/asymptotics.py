@@ -63,10 +63,12 @@ import mpmath
 
 from symhx._mpctx import export, local, mp
 from symhx._numeric import digits_of, log1m_series, stirling_ok, stirling_series
-from symhx.validation import check_choice, check_dps, check_int, check_N
+from symhx.validation import check_choice, check_dps, check_int, check_N, show_exact
 
 __all__ = [
+    "MAX_FORMULA_DIGITS",
     "MAX_PD_TERMS",
+    "MAX_RELAXED_DIGITS",
     "ORDERS",
     "AsymptoticCriticalPoint",
     "PdSeries",
@@ -95,12 +97,34 @@ DECAY: dict[str, str] = {
 }
 
 
+#: Work limits of :func:`asymptotic_critical_point`: the working precision carries every digit of
+#: N (``k_int`` has ``log10(N)/2`` digits), and mpmath's cost grows faster than linearly with
+#: it.  The closed-form orders (``"leading"``, ``"next"``, ``"lambert"``, ``"corrected"``) are
+#: refused for ``N >= 10**MAX_FORMULA_DIGITS`` (measured on 2 shared cores: 10**20000 takes
+#: 1-9 s, 10**100000 over 30 s); the relaxation (``"relaxed"``, ``"best"``, a root search) for
+#: ``N >= 10**MAX_RELAXED_DIGITS`` (10**5000 takes 9 s, 10**10000 30 s).  Checked before any work.
+MAX_FORMULA_DIGITS = 20_000
+MAX_RELAXED_DIGITS = 5_000
+
+
 def _check_N(N: Any) -> int:
     N = check_int(N, "N", minimum=2)
     if N < MIN_N:
         raise ValueError(f"the asymptotic formulas need N >= {MIN_N}, got N={N}; "
                          "use symhx.critical_point for small N")
     return N
+
+
+def _check_work(N: int, order: str) -> None:
+    """Refuse, before any work, an ``N`` beyond the order's documented digit limit."""
+    relaxed = order in ("relaxed", "best")
+    limit, name = ((MAX_RELAXED_DIGITS, "MAX_RELAXED_DIGITS") if relaxed
+                   else (MAX_FORMULA_DIGITS, "MAX_FORMULA_DIGITS"))
+    if N >= 10**limit:
+        raise ValueError(
+            f"N={show_exact(N)} is beyond the documented work limit of order={order!r}: "
+            f"N < 10**{limit} (symhx.asymptotics.{name}; the working precision carries every "
+            f"digit of N); raise that constant to allow it")
 
 
 def _dps(dps: Any) -> int:
@@ -293,8 +317,10 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     Parameters
     ----------
     N : int
-        Number of vertices, ``N >= 21`` (any size: tested to 10**1000; the work is done at
-        ``dps + 15 + log10(N)`` digits, so the cost grows with the digits of N).
+        Number of vertices, ``N >= 21``; the work is done at ``dps + 15 + log10(N)`` digits, so
+        the cost grows with the digits of N: ``N < 10**MAX_FORMULA_DIGITS`` (20000) for the
+        closed-form orders, ``N < 10**MAX_RELAXED_DIGITS`` (5000) for ``"relaxed"`` and
+        ``"best"`` (documented work limits, checked before any work).
     order : str
         One of ``"leading"``, ``"next"``, ``"lambert"``, ``"corrected"``, ``"relaxed"``,
         ``"best"`` (see the module docstring for the formulas and their errors).
@@ -306,6 +332,12 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     AsymptoticCriticalPoint
         ``.p``, ``.q`` (= ``N p - 1``), ``.k``, ``.k_int``, ``.order``, ``.decay``.
 
+    Raises
+    ------
+    ValueError
+        ``N < 21``, an unknown ``order``, a bad ``dps``, or ``N`` beyond the work limit of the
+        order (:data:`MAX_FORMULA_DIGITS`, :data:`MAX_RELAXED_DIGITS`).
+
     >>> a = asymptotic_critical_point(10**10, order="leading")
     >>> mpmath.nstr(a.q, 3), a.k_int
     ('4.8e-5', 479853)
@@ -316,6 +348,7 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     N = _check_N(N)
     order = check_choice(order, "order", ORDERS)
     dps = _dps(dps)
+    _check_work(N, order)
     # k ~ sqrt(N ln N) has about log10(N)/2 integer digits: k_int (its nearest integer) and the
     # relaxation (which resolves k to well below one unit) need them all, hence log10(N) digits
     wdps = dps + 15 + digits_of(N)

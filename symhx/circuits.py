@@ -133,7 +133,7 @@ def log_phi(N: int, k: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     k = _int(k, "k", 1)
     dps = check_dps(dps)
     if k > N:
-        raise ValueError(f"k must be <= N, got k={k}, N={N}")
+        raise ValueError(f"k must be <= N, got k={_short(k)}, N={_short(N)}")
     # loggamma(N+1) - loggamma(N-k+1) cancels ~log10(N) digits
     guard = 10 + int(N.bit_length() * 0.30103) + 1
     ctx = mp()  # this thread's context (symhx._mpctx): threads never share a precision

@@ -70,7 +70,14 @@ from symhx.certify import (
     rel_width_ok,
     to_arb,
 )
-from symhx.validation import DEFAULT_DPS, as_fraction, check_dps, check_int, check_N
+from symhx.validation import (
+    DEFAULT_DPS,
+    as_fraction,
+    check_dps,
+    check_int,
+    check_N,
+    show_exact,
+)
 
 __all__ = [
     "MAX_BREAKPOINTS",
@@ -591,7 +598,8 @@ def compare_with_critical(cp: CriticalPoint, fr: Fraction) -> int:
     def exact() -> int:
         if k * (N.bit_length() + fr.numerator.bit_length() + fr.denominator.bit_length()) \
                 > EXACT_BITS_LIMIT:
-            raise UndecidedError(f"p={fr} vs p_c for N={_fmt_int(N)}: exact comparison too big")
+            raise UndecidedError(f"p={show_exact(fr)} vs p_c for N={_fmt_int(N)}: exact "
+                                 f"comparison too big")
         lhs = fmpz(fr.numerator) ** (k - 1) * _perm(N - 1, k - 1)
         rhs = k * fmpz(fr.denominator) ** (k - 1)
         return (lhs > rhs) - (lhs < rhs)

@@ -73,8 +73,10 @@ from symhx.validation import (
     check_p,
     check_real,
     check_seed,
+    check_size,
     is_exact_type,
     mpf_to_fraction,
+    show_exact,
     to_rational,
 )
 
@@ -121,8 +123,18 @@ _LN2 = math.log(2)
 def _n_show(N: int) -> str:
     if N < 10**15:
         return str(N)
+    if N.bit_length() > 10_000:  # str() would hit Python's 4300-digit limit
+        return show_exact(N)
     e = len(str(N)) - 1
     return f"10**{e}" if N == 10**e else f"~10**{e}"
+
+
+def _p_show(fr: Fraction) -> str:
+    """``p`` for a message: its first 40 characters, or 5 significant digits when its digits
+    would pass Python's 4300-digit ``str`` limit."""
+    if max(fr.numerator.bit_length(), fr.denominator.bit_length()) > 10_000:
+        return show_exact(fr)
+    return str(fr)[:40]
 
 
 def _is_array(x: Any) -> bool:
@@ -190,8 +202,8 @@ class Distribution:
         if self.exact and self.N > EXACT_N_LIMIT:
             raise ValueError(
                 f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT} "
-                f"(symhx.distribution.EXACT_N_LIMIT); got N={self.N}. Pass p as a float or "
-                f"mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
+                f"(symhx.distribution.EXACT_N_LIMIT); got N={_n_show(self.N)}. Pass p as a "
+                f"float or mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
         # digits lost by the recurrences and the k, k**2 weights
         self._guard = 10 + 2 * digits_of(self.N)
 
@@ -212,7 +224,7 @@ class Distribution:
         if work > limit:
             raise ValueError(
                 f"{what} in exact rational arithmetic would need ~{work:.2g} bit-terms for "
-                f"N={_n_show(self.N)}, p={str(self.fr)[:40]} (documented work limit {limit}, "
+                f"N={_n_show(self.N)}, p={_p_show(self.fr)} (documented work limit {limit}, "
                 f"symhx.distribution.{name}); pass p as a float or mpmath.mpf for the mpmath "
                 f"path at dps digits, or dps=None for float64")
 
@@ -325,9 +337,10 @@ class Distribution:
     def _ftab(self) -> dict[str, np.ndarray]:
         if self.N > FLOAT_N_LIMIT:
             raise ValueError(
-                f"the float64 path (dps=None) and rvs() tabulate the whole support; N={self.N} "
-                f"is above symhx.distribution.FLOAT_N_LIMIT={FLOAT_N_LIMIT}. Use an int dps for "
-                f"the mpmath path, or raise FLOAT_N_LIMIT if you have the memory.")
+                f"the float64 path (dps=None) and rvs() tabulate the whole support; "
+                f"N={_n_show(self.N)} is above symhx.distribution.FLOAT_N_LIMIT="
+                f"{FLOAT_N_LIMIT}. Use an int dps for the mpmath path, or raise FLOAT_N_LIMIT if "
+                f"you have the memory.")
         from scipy.special import logsumexp
 
         lw = self._float_logw()
@@ -575,7 +588,8 @@ class Distribution:
         """Random draws of X (inverse transform on the float64 cdf, exact to ~1e-16 in
         probability).  ``random_state``: ``None``, a non-negative int seed or a
         :class:`numpy.random.Generator`; the same seed gives the same draws.  Returns an int
-        for ``size=None``, else an int64 array of shape ``size``.
+        for ``size=None``, else an int64 array of shape ``size`` (at most
+        :data:`symhx.validation.MAX_SAMPLE_SIZE` draws per call).
 
         >>> import symhx
         >>> d = symhx.distribution_of(101, 0.02)
@@ -586,9 +600,7 @@ class Distribution:
             rng = random_state
         else:
             rng = np.random.default_rng(check_seed(random_state, "random_state"))
-        if size is not None:
-            shape = (check_int(size, "size", minimum=0),) if not isinstance(size, tuple) \
-                else tuple(check_int(s, "size", minimum=0) for s in size)
+        shape = check_size(size)  # at most MAX_SAMPLE_SIZE draws, before any work
         cdf = self._ftab["cdf"]
         u = rng.random() if size is None else rng.random(shape)
         idx = np.minimum(np.searchsorted(cdf, u, side="right"), self.N - 1) + 1

@@ -66,7 +66,9 @@ __all__ = [
     "MAX_BINARY_EXPONENT",
     "MAX_DECIMAL_EXPONENT",
     "MAX_DPS",
+    "MAX_SAMPLE_SIZE",
     "as_fraction",
+    "brief_repr",
     "check_N",
     "check_array",
     "check_choice",
@@ -75,9 +77,11 @@ __all__ = [
     "check_p",
     "check_real",
     "check_seed",
+    "check_size",
     "is_exact_type",
     "mpf_to_fraction",
     "short_value",
+    "show_exact",
     "to_rational",
 ]
 
@@ -107,14 +111,99 @@ def short_value(fr: Fraction) -> str:
     >>> short_value(Fraction(10) ** 400)
     '1.0e+400'
     """
+    if fr and abs(fr.numerator.bit_length() - fr.denominator.bit_length()) > 200:
+        return _sci5(fr)  # mpmath's to_str takes seconds for a decimal exponent ~10**5
     return str(libmp.to_str(libmp.from_rational(fr.numerator, fr.denominator, 53,
                                                  libmp.round_nearest), 5))
+
+
+def _sci5(fr: Fraction) -> str:
+    """``fr`` (far from 1) as ``d.dddde+NN`` in 5 significant digits (trailing zeros dropped),
+    mpmath's ``to_str`` style, with integer arithmetic only."""
+    sign, a = ("-", -fr) if fr < 0 else ("", fr)
+    e = math.floor(math.log10(a.numerator) - math.log10(a.denominator))
+    num, den = a.numerator, a.denominator
+    if e >= 0:
+        den *= 10**e
+    else:
+        num *= 10 ** (-e)
+    m = round(Fraction(num, den) * 10**4)  # 5 significant digits, if 1 <= num/den < 10
+    while m >= 10**5:
+        e, num, den = e + 1, num, den * 10
+        m = round(Fraction(num, den) * 10**4)
+    while m < 10**4:
+        e, num = e - 1, num * 10
+        m = round(Fraction(num, den) * 10**4)
+    digits = str(m)
+    frac = digits[1:].rstrip("0") or "0"
+    return f"{sign}{digits[0]}.{frac}e{e:+d}"
+
+
+#: largest number of random draws of one ``rvs`` call (distributions of X, ``RayleighSum``): the
+#: draws and their uniforms are int64 / float64 arrays (16 bytes per draw: 10**7 draws ~160 MB,
+#: ~1 s).  Checked before any work; draw in chunks, or raise the constant, for more.
+MAX_SAMPLE_SIZE = 10**7
+
+
+def check_size(size: Any, name: str = "size") -> tuple[int, ...] | None:
+    """A sample ``size`` of an ``rvs`` method: ``None`` (one draw), a non-negative int or a tuple
+    of them (a shape), with at most :data:`MAX_SAMPLE_SIZE` draws in all; returns the shape.
+
+    >>> check_size(3), check_size((2, 3)), check_size(None)
+    ((3,), (2, 3), None)
+    """
+    if size is None:
+        return None
+    if isinstance(size, tuple):
+        shape = tuple(check_int(s, f"each entry of {name}", minimum=0) for s in size)
+    else:
+        shape = (check_int(size, name, minimum=0),)
+    total = math.prod(shape)
+    if total > MAX_SAMPLE_SIZE:
+        shown = show_exact(total) if len(shape) == 1 else repr(shape)[:80]
+        raise ValueError(f"{name}={shown} asks "
+                         f"for {show_exact(total)} draws, beyond the documented limit of "
+                         f"{MAX_SAMPLE_SIZE:.0e} draws per call ({name} <= MAX_SAMPLE_SIZE, "
+                         f"symhx.validation.MAX_SAMPLE_SIZE); draw in chunks or raise that "
+                         f"constant")
+    return shape
+
+
+def show_exact(x: int | Fraction) -> str:
+    """An exact int or Fraction for an error message: as it is when short (``101``, ``1/50``),
+    else in 5 significant digits (``1.0e+400``) -- never thousands of digits, and never Python's
+    4300-digit ``str`` limit.
+
+    >>> show_exact(101), show_exact(Fraction(1, 50)), show_exact(Fraction(1, 10**5000))
+    ('101', '1/50', '1.0e-5000')
+    """
+    fr = Fraction(x)
+    if fr.numerator.bit_length() + fr.denominator.bit_length() <= 128:
+        return str(x)
+    return short_value(fr)
+
+
+def brief_repr(x: Any) -> str:
+    """``repr(x)``, but an int or Fraction of more than 200 bits in 5 significant digits
+    (:func:`short_value`): a refusal never formats thousands of digits (nor hits Python's
+    4300-digit ``str`` limit).
+
+    >>> brief_repr(Fraction(1, 3)), brief_repr(-10**5000)
+    ('Fraction(1, 3)', '-1.0e+5000')
+    """
+    if isinstance(x, (int, Fraction)) and not isinstance(x, bool):
+        fr = Fraction(x)
+        if fr.numerator.bit_length() + fr.denominator.bit_length() > 200:
+            return short_value(fr)
+    return repr(x)
 
 
 def _show(x: Any) -> str:
     """A short description of a bad value for an error message."""
     try:
         r = repr(x)
+    except ValueError:  # an int beyond Python's 4300-digit str limit
+        r = brief_repr(x)
     except Exception:  # pragma: no cover - exotic objects
         r = object.__repr__(x)
     if len(r) > 60:
@@ -296,7 +385,7 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
     fr = to_rational(p, name)
     if fr is not None:
         if fr <= 0:
-            raise ValueError(f"{name} must be > 0, got {p!r}")
+            raise ValueError(f"{name} must be > 0, got {brief_repr(p)}")
         return fr, p
     # the sign, proved on a rigorous Arb ball of the expression with rising precision (sympy's
     # evalf runs special functions in mpmath's global, process-wide context, and plain evalf
@@ -306,13 +395,13 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
     try:
         sign = real_sign(p, max_bits=IRRATIONAL_SIGN_BITS)
     except UndecidedError:
-        raise ValueError(f"{name} must be > 0, got {p!r} (its sign cannot be decided "
+        raise ValueError(f"{name} must be > 0, got {brief_repr(p)} (its sign cannot be decided "
                          f"numerically: simplify it)") from None
     except TypeError as exc:
         raise TypeError(f"{name} must be a real number symhx can enclose rigorously, got "
                         f"sympy object {p!r}: {exc}") from None
     if sign <= 0:
-        raise ValueError(f"{name} must be > 0, got {p!r}")
+        raise ValueError(f"{name} must be > 0, got {brief_repr(p)}")
     return None, p
 
 
@@ -325,10 +414,10 @@ def check_real(x: Any, name: str, *, low: float | None = None, high: float | Non
         raise TypeError(f"{name} must be a rational or float number, got {_show(x)}")
     if low is not None and (fr < Fraction(low) or (low_open and fr == Fraction(low))):
         rel = ">" if low_open else ">="
-        raise ValueError(f"{name} must be {rel} {low}, got {x!r}")
+        raise ValueError(f"{name} must be {rel} {brief_repr(low)}, got {brief_repr(x)}")
     if high is not None and (fr > Fraction(high) or (high_open and fr == Fraction(high))):
         rel = "<" if high_open else "<="
-        raise ValueError(f"{name} must be {rel} {high}, got {x!r}")
+        raise ValueError(f"{name} must be {rel} {brief_repr(high)}, got {brief_repr(x)}")
     return fr
 
 
@@ -360,9 +449,9 @@ def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | N
                     f"write e.g. 10**100 or the string '1e100')") from None
             raise TypeError(f"{name} must be an integer, got {_show(x)}") from None
     if minimum is not None and v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {v}")
+        raise ValueError(f"{name} must be >= {brief_repr(minimum)}, got {brief_repr(v)}")
     if maximum is not None and v > maximum:
-        raise ValueError(f"{name} must be <= {maximum}, got {v}")
+        raise ValueError(f"{name} must be <= {brief_repr(maximum)}, got {brief_repr(v)}")
     return v
 
 
@@ -388,7 +477,7 @@ def check_dps(dps: Any, *, allow_none: bool = False, name: str = "dps") -> int |
     except TypeError:
         raise TypeError(f"{name} must be {allowed}, got {_show(dps)}") from None
     if not 1 <= d <= MAX_DPS:
-        raise ValueError(f"{name} must be {allowed}, got {d} "
+        raise ValueError(f"{name} must be {allowed}, got {brief_repr(d)} "
                          f"(the cap is symhx.validation.MAX_DPS)")
     return d
 

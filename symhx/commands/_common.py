@@ -123,11 +123,17 @@ def dps_arg(text: str) -> int:
 
 
 # --------------------------------------------------------------------------- JSON
-def jsonable(obj: Any) -> Any:
+def jsonable(obj: Any, digits: int | None = None) -> Any:
     """Convert ints, Fractions, mpf and containers into strict-JSON values (see module doc).
+
+    ``digits``: the significant digits promised (a command's ``--dps``): an mpf or float is
+    printed with at most that many (never the 15+ digits of a value rounded to fewer bits);
+    exact ints and Fractions stay exact.
 
     >>> jsonable({"a": Fraction(1, 3), "b": 2**60, "c": float("nan"), "d": float("-inf")})
     {'a': '1/3', 'b': '1152921504606846976', 'c': None, 'd': '-inf'}
+    >>> jsonable([mpmath.mpf(1) / 3, 2 / 3], digits=3)
+    ['0.333', 0.667]
     """
     if isinstance(obj, bool) or obj is None:
         return obj
@@ -140,20 +146,63 @@ def jsonable(obj: Any) -> Any:
     if is_mpf(obj):  # any mpmath context
         if not _finite(obj):
             return None if obj._mpf_ == libmp.fnan else ("inf" if obj > 0 else "-inf")
-        return str(mp().nstr(obj, mpf_digits(obj), strip_zeros=False))
+        shown = mpf_digits(obj) if digits is None else min(digits, mpf_digits(obj))
+        return _tidy(str(mp().nstr(obj, shown, strip_zeros=False)))
     if isinstance(obj, float):
         if not math.isfinite(obj):
             return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
-        return obj
+        return obj if digits is None or digits >= 17 else float(f"{obj:.{digits}g}")
     if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
+        return {str(k): _directed(v, digits, str(k)) if digits is not None and is_mpf(v)
+                and _finite(v) and str(k).endswith(("_lo", "_hi")) else jsonable(v, digits)
+                for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
+        return [jsonable(v, digits) for v in obj]
     if hasattr(obj, "as_dict"):
-        return jsonable(obj.as_dict())
+        return jsonable(obj.as_dict(), digits)
     if hasattr(obj, "item") and callable(obj.item):  # numpy scalars
-        return jsonable(obj.item())
+        return jsonable(obj.item(), digits)
     return str(obj)
+
+
+def _directed(x: mpmath.mpf, digits: int, key: str) -> str:
+    """A bound (a key ending in ``_lo`` / ``_hi``) in ``digits`` significant digits, rounded
+    outward (down for ``_lo``, up for ``_hi``) so that the printed decimal still encloses.
+
+    >>> _directed(mpmath.mpf(2) / 3, 2, "p_lo"), _directed(mpmath.mpf(2) / 3, 2, "p_hi")
+    ('0.66', '0.67')
+    """
+    from decimal import Decimal
+
+    shown = min(digits, mpf_digits(x))
+    text = _tidy(str(mp().nstr(x, shown, strip_zeros=False)))
+    exact = V.mpf_to_fraction(x)
+    dec = Decimal(text)
+    step = Decimal(1).scaleb(dec.adjusted() - shown + 1)
+    if key.endswith("_lo") and Fraction(dec) > exact:
+        dec -= step
+    elif key.endswith("_hi") and Fraction(dec) < exact:
+        dec += step
+    else:
+        return text
+    return str(mp().nstr(mp().mpf(str(dec)), shown + 1, strip_zeros=True)) \
+        if dec.is_zero() else _dec_str(dec, shown)
+
+
+def _dec_str(dec: Any, digits: int) -> str:
+    """A Decimal in ``digits`` significant digits, in mpmath's ``nstr`` style."""
+    ctx = mp()
+    with ctx.workdps(digits + 5):
+        return _tidy(str(ctx.nstr(ctx.mpf(str(dec)), digits, strip_zeros=False)))
+
+
+def _tidy(text: str) -> str:
+    """mpmath's one-digit forms ``"2."`` and ``"1.e+30"`` as ``"2"`` and ``"1e+30"``.
+
+    >>> _tidy("2."), _tidy("1.e+30"), _tidy("0.25")
+    ('2', '1e+30', '0.25')
+    """
+    return text.replace(".e", "e").removesuffix(".")
 
 
 def _finite(x: mpmath.mpf) -> bool:
@@ -168,9 +217,10 @@ def mpf_digits(x: mpmath.mpf) -> int:
     return max(15, mpmath.libmp.prec_to_dps(max(bits, 53)))
 
 
-def dump_json(obj: Any) -> str:
-    """Strict JSON text of ``obj`` (never ``NaN`` or ``Infinity``)."""
-    return json.dumps(jsonable(obj), indent=2, allow_nan=False)
+def dump_json(obj: Any, digits: int | None = None) -> str:
+    """Strict JSON text of ``obj`` (never ``NaN`` or ``Infinity``); inexact numbers with at most
+    ``digits`` significant digits (see :func:`jsonable`)."""
+    return json.dumps(jsonable(obj, digits), indent=2, allow_nan=False)
 
 
 # --------------------------------------------------------------------------- text and CSV
@@ -231,7 +281,8 @@ def mpstr(x: Any, digits: int) -> str:
         return f"{dec}  (rounded from an exact rational)"
     if is_mpf(x):
         digits = min(digits, mpf_digits(x))
-        return str(mp().nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12))
+        return _tidy(str(mp().nstr(x, digits, strip_zeros=False, min_fixed=-5,
+                                   max_fixed=12)))
     if isinstance(x, float):
         return repr(x)
     return str(x)

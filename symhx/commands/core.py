@@ -40,6 +40,9 @@ TABLE_NS = (2, 3, 4, 5, 6, 7, 8, 10, 20, 50, 100, 101, 1000, 10**4, 10**6, 10**1
 MAX_CIRCUIT_LENGTH = 40
 #: ``circuits N`` (the table of phi_N(k), k = 1..N) is refused above this N
 MAX_PHI_TABLE_N = 2000
+#: ``distribution N p --table`` (one row P(X = k) per k = 1..N) is refused above this N, before
+#: any work (a row limit: N = 10**4 rows print in ~1 s; a huge N would run for ever)
+MAX_PMF_TABLE_N = 10_000
 
 N_HELP = "number of vertices N = pipes + 1 (exact integer: 101, 1e100 or 10**100)"
 P_HELP = "impact probability p > 0, exact: 0.02, 2e-2 and 1/50 are all exactly 1/50"
@@ -86,7 +89,8 @@ def register(sub: Any) -> None:
     d = sub.add_parser("distribution", help="distribution of X: mean, variance, modes, pmf",
                        description="The distribution of X, the number of distinct impacts "
                        "(eq. 7), exactly (rational p) or with mpmath (--float).")
-    d.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
+    d.add_argument("N", type=int_arg("N", minimum=1),
+                   help=N_HELP + "; N >= 1 as in the API (N = 1: X = 1 with certainty)")
     d.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
                    help=P_HELP + "; or --sites")
     d.add_argument("--sites", type=sites_arg, default=None, help=SITES_HELP)
@@ -95,7 +99,8 @@ def register(sub: Any) -> None:
                    help="sample space: simple, eq41, eq41-printed or excess<=m")
     d.add_argument("--float", action="store_true",
                    help="evaluate with mpmath at --dps instead of exactly")
-    d.add_argument("--table", action="store_true", help="include P(X=k) for every k")
+    d.add_argument("--table", action="store_true",
+                   help=f"include P(X=k) for every k (N <= {MAX_PMF_TABLE_N}, a row limit)")
     add_json(d)
     d.set_defaults(func=cmd_distribution)
 
@@ -142,7 +147,7 @@ def cmd_critical(args: argparse.Namespace) -> int:
     cp = critical_point(args.N, dps=args.dps)
     q_d = discriminant_root_q(args.N, dps=args.dps)
     if args.json:
-        print(dump_json({**cp.as_dict(), "N_p_d_minus_1": q_d}))
+        print(dump_json({**cp.as_dict(), "N_p_d_minus_1": q_d}, args.dps))
         return 0
     dps = args.dps
     pc = mpstr(cp.p_exact, dps) if cp.p_exact is not None else mpstr(cp.p, dps)
@@ -164,7 +169,7 @@ def _critical_sites(args: argparse.Namespace) -> int:
     sites = sites_for(args.sites, args.N)
     cp = critical_point(args.N, weights=sites, dps=args.dps)
     if args.json:
-        print(dump_json(cp.as_dict()))
+        print(dump_json(cp.as_dict(), args.dps))
         return 0
     print(f"N = {int_show(cp.N)} vertices ({pipes_show(cp.N)} pipes), direction --sites "
           f"{sites_show(sites)}: p_v = t w_v")
@@ -195,6 +200,10 @@ def p_or_sites(args: argparse.Namespace) -> tuple[Any, Any]:
 def cmd_distribution(args: argparse.Namespace) -> int:
     from symhx.api import distribution_of
 
+    if args.table and args.N > MAX_PMF_TABLE_N:
+        raise ValueError(f"--table lists one row per k: N={int_show(args.N)} is beyond the "
+                         f"documented row limit N <= {MAX_PMF_TABLE_N} "
+                         f"(symhx.commands.core.MAX_PMF_TABLE_N); omit --table")
     p, sites = p_or_sites(args)
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
@@ -205,7 +214,7 @@ def cmd_distribution(args: argparse.Namespace) -> int:
     if args.table:
         out["pmf"] = {k: d.pmf(k) for k in range(1, d.N + 1)}
     if args.json:
-        print(dump_json(out))
+        print(dump_json(out, args.dps))
         return 0
     how = "exact rational arithmetic" if d.exact else f"mpmath, {args.dps} significant digits"
     given = f"sites {sites_show(sites)}" if sites is not None \
@@ -278,7 +287,7 @@ def cmd_mode_path(args: argparse.Namespace) -> int:
     path = mode_path(args.N, p_max=args.p_max, dps=args.dps)
     rows = path.as_rows()
     if args.json:
-        print(dump_json({"N": args.N, "p_max": args.p_max, "breakpoints": rows}))
+        print(dump_json({"N": args.N, "p_max": args.p_max, "breakpoints": rows}, args.dps))
         return 0
     print(f"mode k*(p) of X for N = {int_show(args.N)} on (0, {mpstr(args.p_max, 17)}]: "
           f"{len(rows)} breakpoints (k* = 1 up to the first)")

@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from symhx.commands._common import dump_json, int_arg, mpstr
+from symhx.commands._common import dump_json, int_arg, int_show, mpstr
 from symhx.commands.core import add_dps, add_json, write_csv
 
 ORDER = 30
@@ -104,7 +104,7 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
     if args.table:
         rows = error_table(dps=max(args.dps, 120), orders=orders)
         if args.json:
-            print(dump_json(rows))
+            print(dump_json(rows, args.dps))
         else:
             from symhx.asymptotics import format_error_table
 
@@ -134,16 +134,17 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
                 row["q_rel_error"] = rel_error(r.q)
                 row["k_exact"] = exact.k_after
             out.append(row)
-        print(dump_json(out))
+        print(dump_json(out, args.dps))
         return 0
-    print(f"N = {args.N}: large-N approximations of q = N p_c - 1 and k_jump")
+    shown = min(15, args.dps)  # never more digits than --dps promised
+    print(f"N = {int_show(args.N)}: large-N approximations of q = N p_c - 1 and k_jump")
     for r in res:
-        line = f"  {r.order:>9s}: q = {mpstr(r.q, 15)}   k = {mpstr(r.k, 15)}"
+        line = f"  {r.order:>9s}: q = {mpstr(r.q, shown)}   k = {mpstr(r.k, shown)}"
         if exact is not None:
-            line += f"   rel. err. {mpstr(rel_error(r.q), 3)}"
+            line += f"   rel. err. {mpstr(rel_error(r.q), min(3, args.dps))}"
         print(line + f"   [{r.decay}]")
     if exact is not None:
-        print(f"  {'exact':>9s}: q = {mpstr(exact.q, 15)}   k = {exact.k_after}")
+        print(f"  {'exact':>9s}: q = {mpstr(exact.q, shown)}   k = {int_show(exact.k_after)}")
     return 0
 
 

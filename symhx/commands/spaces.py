@@ -28,16 +28,17 @@ from symhx.commands.core import (
     p_or_sites,
     write_csv,
 )
-from symhx.spaces import MAX_EXCESS
+from symhx.spaces import MAX_EXCESS, MAX_SPACE_WORK
 from symhx.spaces.study import STUDY_N_LIMIT
 
 ORDER = 60
 
 #: the paper's row for figures 11-13: 100 pipes -> N = 101
 PAPER_N = 101
-#: The section-8 spaces sum over every k <= N: N = 10**6 takes ~7 s, 10**7 minutes, and beyond
-#: ~10**19 the sums fail; the CLI refuses N above this (a documented work limit).
-MAX_SPACES_N = 10**6
+#: The largest N of ``symhx spaces`` over eq41 (the default space): the API's work limit
+#: ``N * (m + 1) <= symhx.spaces.MAX_SPACE_WORK`` (one limit for the API and the CLI, checked by
+#: the API before any work; ``N <= 153846`` for excess<=25).
+MAX_SPACES_N = MAX_SPACE_WORK // 4
 
 
 def register(sub: Any) -> None:
@@ -46,8 +47,9 @@ def register(sub: Any) -> None:
                        description="The distribution of X over a sample space with "
                        "higher-order circuits (section 8): the jump of the mode and, given p, "
                        "E[X], Var[X], the modes and the class probabilities.")
-    s.add_argument("N", type=int_arg("N", minimum=2, maximum=MAX_SPACES_N),
-                   help=N_HELP + f"; at most {MAX_SPACES_N:.0e} (work limit)")
+    s.add_argument("N", type=int_arg("N", minimum=2),
+                   help=N_HELP + f"; N * (m + 1) <= {MAX_SPACE_WORK:.0e} (work limit: N <= "
+                   f"{MAX_SPACES_N:.0e} for eq41)")
     s.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
                    help=P_HELP + "; omit for the jump only")
     s.add_argument("--sites", type=sites_arg, default=None,
@@ -99,8 +101,15 @@ def _spaces_sites(args: argparse.Namespace) -> int:
 
 def cmd_spaces(args: argparse.Namespace) -> int:
     from symhx._mpctx import export, mp
-    from symhx.spaces import class_probabilities, critical_point, distribution
+    from symhx.spaces import (
+        check_space_work,
+        class_probabilities,
+        critical_point,
+        distribution,
+        parse_space,
+    )
 
+    check_space_work(parse_space(args.space), args.N, "symhx spaces")  # before any work
     if args.sites is not None:
         return _spaces_sites(args)
     cp = critical_point(args.N, space=args.space, dps=args.dps)
@@ -116,7 +125,7 @@ def cmd_spaces(args: argparse.Namespace) -> int:
         if args.classes:
             out["classes"] = class_probabilities(args.N, p, space=args.space, dps=args.dps)
     if args.json:
-        print(dump_json(out))
+        print(dump_json(out, args.dps))
         return 0
     print(f"space {args.space}, N = {int_show(args.N)}: mode jumps 1 -> "
           f"{int_show(cp.k_after)} at p_c = {mpstr(cp.p, args.dps)}")
@@ -146,14 +155,15 @@ def cmd_convergence(args: argparse.Namespace) -> int:
         check_p(p, "--p")
     rows = _convergence_rows(args.N, args.max_m, args.p, args.dps)
     if args.json:
-        print(dump_json({"N": args.N, "rows": rows}))
+        print(dump_json({"N": args.N, "rows": rows}, args.dps))
         return 0
     ps = list(rows[0]["means"])
     print(f"N = {args.N}: E[X] at p = {', '.join(ps)}")
     print(f"{'space':>14s} {'p_c':>14s} {'k':>4s} " + " ".join(f"{p:>9s}" for p in ps))
+    pc_digits, mean_digits = min(8, args.dps), min(5, args.dps)  # never beyond --dps
     for r in rows:
-        print(f"{r['space']:>14s} {mpstr(r['p_c'], 8):>14s} {r['k_after']:4d} "
-              + " ".join(f"{float(v):9.3f}" for v in r["means"].values()))
+        print(f"{r['space']:>14s} {mpstr(r['p_c'], pc_digits):>14s} {r['k_after']:4d} "
+              + " ".join(f"{mpstr(v, mean_digits):>9s}" for v in r["means"].values()))
     return 0
 
 

@@ -28,7 +28,7 @@ import numpy as np
 
 from symhx._mpctx import export, is_mpf
 from symhx._mpctx import mp as thread_mp
-from symhx.validation import check_array, check_dps, to_rational
+from symhx.validation import brief_repr, check_array, check_dps, to_rational
 
 __all__ = [
     "IRRATIONAL_EXTRA_DIGITS",
@@ -115,7 +115,7 @@ def rational_arg(name: str, value: Any, digits: int = 40) -> Fraction:
     if fr is None:  # a real sympy irrational such as sqrt(2)
         fr = Fraction(str(value.evalf(digits)))
     if not fr > 0:
-        raise ValueError(f"{name} must be > 0, got {value!r}")
+        raise ValueError(f"{name} must be > 0, got {brief_repr(value)}")
     return fr
 
 
@@ -144,9 +144,10 @@ def float_arg(name: str, value: Any, *, positive: bool = True) -> np.ndarray:
     try:
         x = float(fr)
     except OverflowError:
-        raise ValueError(f"{name} = {value!r} is outside the float64 range; use dps=") from None
+        raise ValueError(f"{name} = {brief_repr(value)} is outside the float64 range; "
+                         f"use dps=") from None
     if fr != 0 and x == 0.0:
-        raise ValueError(f"{name} = {value!r} underflows float64; use dps=")
+        raise ValueError(f"{name} = {brief_repr(value)} underflows float64; use dps=")
     return np.asarray(x)
 
 

@@ -11,6 +11,9 @@ the default everywhere is ``"simple"``, :data:`symhx.validation.DEFAULT_SPACE`):
 * ``"excess<=m"`` (``0 <= m <= MAX_EXCESS``, a documented work limit) -- every visit pattern
   whose length exceeds its number of distinct vertices by at most ``m``: the consistent
   truncation (``"excess<=0"`` is ``"simple"``);
+* work limit: every computation over a space other than ``"simple"`` scans ``k = 1..N`` and is
+  refused before any work when ``N * (m + 1) > MAX_SPACE_WORK`` (``m`` the largest excess:
+  ``N <= 10**6`` for eq41, ``N <= 153846`` for ``excess<=25``; :func:`space_n_limit`);
 * suffix ``";distinct"`` (or ``weighting="distinct"`` in this module) weights a circuit by
   ``p**k`` (k distinct vertices) instead of the default ``p**length`` (``";length"``).
 
@@ -25,8 +28,10 @@ Fraction(4, 25)
 from symhx.spaces._classes import (
     EQ41_SHAPES,
     MAX_EXCESS,
+    MAX_SPACE_WORK,
     PRINTED_RANGES,
     Space,
+    check_space_work,
     class_count,
     class_ratio,
     eq41_terms,
@@ -35,6 +40,7 @@ from symhx.spaces._classes import (
     printed_count,
     shape_excess,
     shapes_up_to,
+    space_n_limit,
 )
 from symhx.spaces._critical import critical_point, root_estimates
 from symhx.spaces._dist import (
@@ -59,12 +65,14 @@ __all__ = [
     "DEFAULT_PS",
     "EQ41_SHAPES",
     "MAX_EXCESS",
+    "MAX_SPACE_WORK",
     "PRINTED_RANGES",
     "ClassDecomposition",
     "ConvergenceRow",
     "Space",
     "SpaceDistribution",
     "boundary_table",
+    "check_space_work",
     "class_count",
     "class_count_symbolic",
     "class_decomposition",
@@ -84,5 +92,6 @@ __all__ = [
     "shape_excess",
     "shapes_up_to",
     "space_modes",
+    "space_n_limit",
     "verify_printed_formulas",
 ]

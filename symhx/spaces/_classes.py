@@ -42,15 +42,22 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 
-from symhx.circuits import necklaces_with_content, normalise_visits, partitions
+from symhx.circuits import (
+    MAX_COUNT_BITS,
+    necklaces_with_content,
+    normalise_visits,
+    partitions,
+)
 from symhx.validation import check_int, check_N
 
 __all__ = [
     "EQ41_SHAPES",
     "MAX_EXCESS",
+    "MAX_SPACE_WORK",
     "PRINTED_RANGES",
     "Space",
     "check_shape",
+    "check_space_work",
     "class_count",
     "class_ratio",
     "eq41_terms",
@@ -59,6 +66,7 @@ __all__ = [
     "printed_count",
     "shape_excess",
     "shapes_up_to",
+    "space_n_limit",
 ]
 
 #: the paper's five classes (eq. 41): simple, phi^1, phi^{1,0}, phi^2, phi^{1,0,0}
@@ -76,6 +84,14 @@ WEIGHTINGS = ("length", "distinct")
 #: Largest excess m of ``"excess<=m"`` (a documented work limit: the number of classes grows like
 #: the partition numbers, 9296 classes at m = 25).  Raise it by assigning the constant.
 MAX_EXCESS = 25
+#: Work limit of every higher-order-space computation that scans ``k = 1..N`` (``critical_point``,
+#: ``modes``, every distribution over the space, ``class_decomposition``): float64 arrays of
+#: ``N * (m + 1)`` entries (``m`` the space's largest excess) are swept by the root search and
+#: the screens, so ``N * (m + 1)`` must not exceed this.  Measured on 2 shared cores:
+#: ``critical_point(10**6, space="eq41")`` (4e6) 9 s, ``critical_point(10**5,
+#: space="excess<=25")`` (2.6e6) 6 s.  Checked before any work, the same for the API and the CLI;
+#: raise it by assigning the constant.
+MAX_SPACE_WORK = 4_000_000
 
 
 def shape_excess(shape: tuple[int, ...]) -> int:
@@ -95,10 +111,11 @@ def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
     """
     if isinstance(shape, (str, bytes)) or not hasattr(shape, "__iter__"):
         raise TypeError(f"shape must be a tuple of ints >= 2, got {type(shape).__name__} "
-                        f"{shape!r}")
+                        f"{shape!r:.80}")
     s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
-        raise ValueError(f"a class lists the parts > 1 of a visit pattern, got {shape!r}")
+        raise ValueError(f"shape (a class) must list the parts > 1 of a visit pattern (the "
+                         f"vertices visited more than once), got shape={shape!r:.80}")
     return s
 
 
@@ -114,7 +131,10 @@ def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
     """
     m = check_int(m, "maximum excess m", minimum=0)
     if m > MAX_EXCESS:
-        raise ValueError(f"maximum excess m={m} is beyond the documented work limit {MAX_EXCESS} "
+        from symhx.validation import show_exact
+
+        raise ValueError(f"maximum excess m={show_exact(m)} is beyond the documented work limit "
+                         f"{MAX_EXCESS} "
                          f"(symhx.spaces._classes.MAX_EXCESS: excess<=25 already has 9296 "
                          f"classes and takes seconds per distribution); raise that constant "
                          f"to allow it")
@@ -122,6 +142,35 @@ def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
     for e in range(1, m + 1):
         out += [tuple(x + 1 for x in part) for part in partitions(e)]
     return tuple(out)
+
+
+def space_n_limit(space: Space) -> int:
+    """Largest ``N`` allowed by :data:`MAX_SPACE_WORK` over ``space``: ``MAX_SPACE_WORK // (m+1)``.
+
+    >>> space_n_limit(parse_space("eq41"))
+    1000000
+    """
+    return MAX_SPACE_WORK // (space.max_excess + 1)
+
+
+def check_space_work(space: Space, N: int, what: str) -> None:
+    """Refuse, before any work, ``what`` over ``space`` when ``N * (m + 1) > MAX_SPACE_WORK``.
+
+    >>> check_space_work(parse_space("eq41"), 10**6, "critical_point")
+    >>> check_space_work(parse_space("eq41"), 10**7, "critical_point")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: N=10000000 is beyond the documented work limit ... N <= 1000000 ...
+    """
+    if space.base == "simple" or N * (space.max_excess + 1) <= MAX_SPACE_WORK:
+        return
+    from symhx.validation import show_exact
+
+    raise ValueError(
+        f"N={show_exact(N)} is beyond the documented work limit of {what} over space "
+        f"{space.name!r}: N <= {space_n_limit(space)} (N * (m + 1) <= MAX_SPACE_WORK = "
+        f"{MAX_SPACE_WORK} with m = {space.max_excess}, symhx.spaces.MAX_SPACE_WORK); raise "
+        f"that constant to allow it")
 
 
 def paper_label(shape: tuple[int, ...]) -> str:
@@ -192,8 +241,11 @@ def class_ratio(shape: tuple[int, ...], k: int, *, printed: bool = False) -> Fra
     >>> class_ratio((2, 2), 2), class_ratio((2, 2), 2, printed=True)
     (Fraction(2, 1), Fraction(0, 1))
     """
-    s = check_shape(shape)
-    k = check_int(k, "k")
+    return _ratio_unchecked(check_shape(shape), check_int(k, "k"), printed)
+
+
+def _ratio_unchecked(s: tuple[int, ...], k: int, printed: bool) -> Fraction:
+    """:func:`class_ratio` of a validated class ``s`` (sorted decreasing, parts >= 2)."""
     r = len(s)
     if k < max(r, 1):
         return Fraction(0)
@@ -211,6 +263,12 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     Equal to :func:`symhx.circuits.circuit_count` of the visit pattern ``shape + (1,)*(k-r)``;
     ``printed=True`` gives the paper's count instead (see :func:`class_ratio`).
 
+    Raises
+    ------
+    ValueError
+        A bad ``N``, ``shape`` or ``k``, or a count of more than about
+        :data:`symhx.circuits.MAX_COUNT_BITS` bits (``k * bit_length(N)``, checked first).
+
     >>> class_count(100, (3,), 1), class_count(100, (3,), 1, printed=True)
     (100, 0)
     >>> class_count(10, (2, 2), 4)      # eq. (40) at length 6: (1/8) 5!/2! * 10!/6!
@@ -221,6 +279,14 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     shape = check_shape(shape)  # validated even where the count is 0 (k outside 1..N)
     if k < 1 or k > N:
         return 0
+    if k * N.bit_length() > MAX_COUNT_BITS:  # the count has about k log2(N) bits
+        from symhx.validation import show_exact
+
+        raise ValueError(f"class_count(N={show_exact(N)}, k={show_exact(k)}) would have about "
+                         f"k * bit_length(N) = {show_exact(k * N.bit_length())} bits, beyond "
+                         f"the documented work limit k * bit_length(N) <= {MAX_COUNT_BITS} "
+                         f"(symhx.circuits.MAX_COUNT_BITS); use symhx.log_phi for the size of "
+                         f"such counts")
     val = class_ratio(shape, k, printed=printed) * Fraction(math.perm(N, k), k)
     assert val.denominator == 1
     return int(val)
@@ -266,7 +332,8 @@ def printed_count(eq: str, N: int, L: int, *, outside: str = "zero") -> Fraction
 
 def eq41_terms(N: int, k: int, *, printed: bool = False) -> dict[str, int]:
     """The five terms of eq. (41) at ``k`` distinct vertices, as counts of circuits:
-    ``phi(k)``, ``phi^1(k+1)``, ``phi^{1,0}(k+2)``, ``phi^2(k+2)``, ``phi^{1,0,0}(k+3)``.
+    ``phi(k)``, ``phi^1(k+1)``, ``phi^{1,0}(k+2)``, ``phi^2(k+2)``, ``phi^{1,0,0}(k+3)``
+    (the limits of :func:`class_count` apply).
 
     >>> eq41_terms(5, 1)
     {'phi': 5, 'phi^1': 5, 'phi^{1,0}': 5, 'phi^2': 0, 'phi^{1,0,0}': 5}
@@ -317,7 +384,10 @@ class Space:
     def max_parts(self) -> int:
         """Largest number of repeated vertices ``r`` of a class; ``Q*`` is the polynomial for
         ``k > max_parts``."""
-        return max(len(s) for s in self.shapes)
+        got = self._cache.get("max_parts")
+        if got is None:
+            got = self._cache["max_parts"] = max(len(s) for s in self.shapes)
+        return got
 
     def ratio(self, shape: tuple[int, ...], k: int) -> Fraction:
         """``count(N, shape, k) / phi_N(k)`` in this space (0 for a class not in it)."""
@@ -342,7 +412,7 @@ class Space:
             for s in self.shapes:
                 D = math.lcm(D, _C(s) * _S(s))
                 for k in range(1, len(s) + 1):
-                    D = math.lcm(D, class_ratio(s, k, printed=self.printed).denominator)
+                    D = math.lcm(D, _ratio_unchecked(s, k, self.printed).denominator)
             self._cache["D"] = D
         return self._cache["D"]
 
@@ -367,6 +437,16 @@ class Space:
             self._cache["coef"] = tuple(out)
         return self._cache["coef"]
 
+    def _shapes_with_parts(self, r: int) -> tuple[tuple[int, ...], ...]:
+        """The classes of the space with exactly ``r`` repeated vertices."""
+        by = self._cache.get("by_parts")
+        if by is None:
+            by = {}
+            for s in self.shapes:
+                by.setdefault(len(s), []).append(s)
+            by = self._cache["by_parts"] = {j: tuple(v) for j, v in by.items()}
+        return by.get(r, ())
+
     def U(self, k: int) -> tuple[int, ...]:
         """``U_e(k) = D * sum_{s: e_s = e} R*_s(k)`` for ``e = 0..max_excess`` (exact ints).
 
@@ -378,21 +458,29 @@ class Space:
         if got is not None:
             return got
         D = self.denominator
-        if k <= self.max_parts:  # boundary region: sum the classes one by one
+        if k <= self.max_parts:
+            # boundary region: the polynomial of the classes with r < k (the others are 0 or,
+            # at r = k, their Burnside value; r > k contributes 0)
             vals = [Fraction(0)] * (self.max_excess + 1)
-            for s in self.shapes:
-                vals[shape_excess(s)] += class_ratio(s, k, printed=self.printed)
+            for s in self._shapes_with_parts(k):
+                vals[shape_excess(s)] += _ratio_unchecked(s, k, self.printed)
             out = []
-            for v in vals:
+            for e, (v, pairs) in enumerate(zip(vals, self.coefficients, strict=True)):
                 v *= D
                 assert v.denominator == 1
-                out.append(int(v.numerator))
+                out.append(int(v.numerator) + _rising(k, e) * sum(
+                    c * _falling(k, r) for r, c in pairs if r < k))
             res = tuple(out)
-        else:
-            res = tuple(
-                _rising(k, e) * sum(c * _falling(k, r) for r, c in pairs)
-                for e, pairs in enumerate(self.coefficients)
-            )
+        else:  # falling(k, r) and rising(k, e) as running products, each once
+            fall = [1]
+            for i in range(self.max_parts):
+                fall.append(fall[-1] * (k - i))
+            out, rise = [], 1
+            for e, pairs in enumerate(self.coefficients):
+                if e:
+                    rise *= k + e - 1
+                out.append(rise * sum(c * fall[r] for r, c in pairs))
+            res = tuple(out)
         if len(cache) < 200_000:
             cache[k] = res
         return res
@@ -488,6 +576,8 @@ def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
     (2, 1, 1)
     """
     s = check_shape(shape)
+    k = check_int(k, "k")
     if k < len(s):
-        raise ValueError(f"class {s} needs at least {len(s)} distinct vertices")
+        raise ValueError(f"k must be >= {len(s)} for the class shape={s}: it needs at least "
+                         f"{len(s)} distinct vertices, got k={k}")
     return normalise_visits(s + (1,) * (k - len(s))) if k else ()

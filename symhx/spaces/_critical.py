@@ -15,8 +15,8 @@ positive above. (With the ``;distinct`` weighting ``h_k`` is ``(k-1) log p`` plu
 Hence, as for the simple space, the mode is 1 exactly for ``p < p_c = min_{k>=2} c_k`` and jumps
 to an argmin at ``p_c`` (if several ``c_k`` tie, to the one whose ``h_k`` grows fastest).
 
-Algorithm (seed, then verify; ``N`` up to a few 10**6: the float64 seed uses arrays of length N,
-memory ~ ``8 (m + 4) N`` bytes):
+Algorithm (seed, then verify; ``N (m + 1) <= MAX_SPACE_WORK``: the float64 seed uses arrays of
+length N, memory ~ ``8 (m + 4) N`` bytes):
 
 1. seed (decides nothing): float64 ``c_k`` for every k by a vectorised safeguarded Newton
    iteration; ``best`` = its argmin; its root refined with mpmath at ``dps`` + guard digits;
@@ -54,7 +54,7 @@ from symhx.certify import (
     to_arb,
 )
 from symhx.critical import CriticalPoint, discriminant_root, discriminant_root_q
-from symhx.spaces._classes import Space, parse_space
+from symhx.spaces._classes import Space, check_space_work, parse_space
 from symhx.spaces._dist import compare_weights, log_U_table
 from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, as_fraction
 
@@ -79,10 +79,10 @@ def root_estimates(space: Space | str, N: int) -> np.ndarray:
     >>> int(np.argmin(s)) + 2   # the jump of eq. (41) for N = 10 lands on k = 5
     5
     """
-    from scipy.special import gammaln
-
     sp = parse_space(space)
     N = check_N(N)
+    check_space_work(sp, N, "root_estimates")
+    from scipy.special import gammaln
     lu = log_U_table(sp, N)
     ks = np.arange(2, N + 1, dtype=float)
     G = gammaln(float(N)) - gammaln(N - ks + 1.0) - (ks - 1.0) * math.log(N)
@@ -286,8 +286,9 @@ def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEF
     Parameters
     ----------
     N : int
-        Vertices, ``2 <= N``; the float64 seed uses arrays of length N, so ``N`` up to a few
-        10**6.
+        Vertices, ``2 <= N``; the float64 seed uses arrays of ``N (m + 1)`` entries, so
+        ``N (m + 1) <= MAX_SPACE_WORK`` (``N <= 10**6`` for eq41; see
+        :func:`symhx.spaces.space_n_limit`), checked before any work.
     space : str or Space
         See :func:`symhx.spaces.parse_space`; ``"simple"`` is delegated to
         :func:`symhx.critical.critical_point`.
@@ -304,6 +305,12 @@ def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEF
         ``p_bounds`` a rigorous enclosure (Arb). ``p_d`` is the *simple* space's discriminant
         root (eq. 16), kept for reference only: it has no meaning for the other spaces.
 
+    Raises
+    ------
+    ValueError
+        ``N`` beyond the work limit :data:`symhx.spaces.MAX_SPACE_WORK`, a bad ``space``,
+        ``dps`` or ``weighting``.
+
     >>> cp = critical_point(101, space="eq41", dps=20)
     >>> cp.k_before, cp.k_after
     (1, 23)
@@ -319,6 +326,7 @@ def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEF
         from symhx.critical import critical_point as simple_cp
 
         return simple_cp(N, dps=dps)
+    check_space_work(sp, N, "critical_point")
     s_all = root_estimates(sp, N)  # float64 seed: decides nothing
     best = int(np.argmin(s_all)) + 2
     guard = 15 + 2 * digits_of(N)

@@ -63,8 +63,21 @@ from symhx.distribution import (
     binary_split,
     simple_modes,
 )
-from symhx.spaces._classes import Space, paper_label, parse_space, shape_excess
-from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, check_dps, check_N, check_p
+from symhx.spaces._classes import (
+    Space,
+    check_space_work,
+    paper_label,
+    parse_space,
+    shape_excess,
+)
+from symhx.validation import (
+    DEFAULT_DPS,
+    DEFAULT_SPACE,
+    check_dps,
+    check_N,
+    check_p,
+    show_exact,
+)
 
 __all__ = [
     "ClassDecomposition",
@@ -75,7 +88,9 @@ __all__ = [
     "modes",
 ]
 
-#: below this N the mpmath path computes every W(k) (no float screen)
+#: below this N the mpmath path computes every W(k) (no float screen); also the documented work
+#: limit of :func:`class_decomposition` on the mpmath path, which lists every ``P(X = k, class)``
+#: (``N * classes`` mpf values: N = 20000 over eq41 takes ~3 s)
 DIRECT_LIMIT = 20_000
 #: exact integer comparisons are attempted up to this many bits
 EXACT_BITS_LIMIT = 8_000_000
@@ -209,6 +224,7 @@ def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tup
         fr, p = check_p(p)
     if N == 1:
         return (1,)
+    check_space_work(space, N, "modes")
     if fr is None:
         return _irrational_modes(space, N, p)
     lw = log_W_float(space, N, _logp_float(fr))  # float64 seed: decides nothing
@@ -283,12 +299,29 @@ class SpaceDistribution(Distribution):
             raise TypeError(f"space must be a parsed symhx.spaces.Space (use parse_space), got "
                             f"{type(space).__name__} {space!r}")
         self._setup(N, p, dps)
+        check_space_work(space, self.N, "a distribution")
         self.sample_space = space
         self.space = space.name
+
+    def _check_exact_work(self, what: str, limit: int, name: str) -> None:
+        """Refuse (before any work) exact sums whose integers would be too large: the simple
+        space's measure with ``p``'s bits counted ``m + 1`` times (``Q*`` carries ``b**m``)."""
+        assert self.fr is not None
+        bits_p = self.fr.numerator.bit_length() + self.fr.denominator.bit_length()
+        work = self.N * (self.N.bit_length() + (self.sample_space.max_excess + 1) * bits_p)
+        if work > limit:
+            raise ValueError(
+                f"{what} in exact rational arithmetic over space {self.space!r} would need "
+                f"~{work:.2g} bit-terms for N={show_exact(self.N)}, p={show_exact(self.fr)} "
+                f"(documented work limit {limit}, symhx.distribution.{name}); pass p as a float "
+                f"or mpmath.mpf for the mpmath path at dps digits, or dps=None for float64")
 
     # ----------------------------------------------------------------- exact path
     @cached_property
     def _exact_moments(self) -> tuple[Fraction, Fraction, Fraction]:
+        from symhx.distribution import EXACT_WORK_LIMIT
+
+        self._check_exact_work("summing the distribution", EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")
         assert self.fr is not None
         sp, N = self.sample_space, self.N
         a, b = self.fr.numerator, self.fr.denominator
@@ -299,6 +332,9 @@ class SpaceDistribution(Distribution):
         return g, m1, m2
 
     def _exact_partial(self, k: int) -> Fraction:
+        from symhx.distribution import EXACT_WORK_LIMIT
+
+        self._check_exact_work("summing the distribution", EXACT_WORK_LIMIT, "EXACT_WORK_LIMIT")
         assert self.fr is not None
         sp = self.sample_space
         a, b = self.fr.numerator, self.fr.denominator
@@ -601,6 +637,13 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
 
     ``P(X = k, s) = Phi_{N,p}(k) w_e R*_s(k) / sum_j W(j)``; the classes add up to the pmf.
 
+    Raises
+    ------
+    ValueError
+        On the mpmath path (``p`` a float, mpf or irrational) ``N > DIRECT_LIMIT`` (20000, a
+        documented work limit: every ``k`` is listed); in exact arithmetic the limits of
+        :func:`distribution` (``EXACT_N_LIMIT``, ``EXACT_WORK_LIMIT``, ``MAX_SPACE_WORK``).
+
     >>> cd = class_decomposition(4, Fraction(1, 2), space="eq41")
     >>> sum(cd.totals.values()), cd.totals[(4,)]
     (Fraction(1, 1), Fraction(8, 75))
@@ -623,7 +666,10 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
             totals[s] = sum(row, Fraction(0))
         return ClassDecomposition(dist, sp.shapes, joint, totals)
     if N > DIRECT_LIMIT:
-        raise ValueError(f"class_decomposition lists every k; use N <= {DIRECT_LIMIT}")
+        raise ValueError(f"class_decomposition on the mpmath path lists every k: N="
+                         f"{show_exact(N)} is beyond the documented work limit N <= "
+                         f"{DIRECT_LIMIT} (symhx.spaces._dist.DIRECT_LIMIT); exact rational p "
+                         f"lists every k in Fractions, or raise that constant")
     guard = 10 + 2 * digits_of(N)
     ctx = mp()
     with ctx.workdps(dps + guard):

@@ -172,6 +172,8 @@ def _pattern_exact(repeats: tuple[int, ...], nmax: int = 10, brute_n: int = 4,
         M = sum(repeats)
         pairs = []
         for n in range(1, nmax + 1):
+            # below the boundary (length k < M) no circuit has the pattern: the count is 0
+            pairs += [(e.subs({N: n, k: kk}), 0) for kk in range(0, M)]
             for kk in range(max(M, 1), n + M + 1):
                 pat = repeats + (1,) * (kk - M)
                 pairs.append((e.subs({N: n, k: kk}), _circuit_count(n, pat)))

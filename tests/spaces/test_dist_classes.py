@@ -193,8 +193,6 @@ def test_class_decomposition_by_excess_precision_is_local() -> None:
             assert abs(got[e] - to_mp(want)) <= mpmath.mpf(10) ** -39 * to_mp(want), e
 
 
-@pytest.mark.xfail(strict=True, reason="class_decomposition's refusal of a large N on the "
-                   "mpmath path does not show the N it was given (only 'use N <= 20000')")
 def test_class_decomposition_refusal_shows_N():
     assert_refuses(class_decomposition, dist.DIRECT_LIMIT + 1, 0.001, space="eq41", dps=15,
                    arg="N", value=str(dist.DIRECT_LIMIT + 1),

@@ -38,16 +38,10 @@ TAMPER = {
     "higher", CHECKS, TAMPER, slow=frozenset({"29"}))
 
 
-BELOW_M = pytest.mark.xfail(
-    strict=True, reason="the exact check of eqs. (38)-(40), 'equals circuit_count for all k', "
-    "runs over k >= M only (symhx/symbolic/higher.py, _pattern_exact): the derived count 0 for "
-    "k < M is never verified")
-
-
 @pytest.mark.parametrize("label, branch", [
-    ("38", 0), ("38", 1), pytest.param("38", 2, marks=BELOW_M),
-    ("39", 0), ("39", 1), pytest.param("39", 2, marks=BELOW_M),
-    ("40", 0), ("40", 1), pytest.param("40", 2, marks=BELOW_M),
+    ("38", 0), ("38", 1), ("38", 2),
+    ("39", 0), ("39", 1), ("39", 2),
+    ("40", 0), ("40", 1), ("40", 2),
     ("41", 0), ("41", 1), ("41", 2), ("41-weighted", 0), ("41-weighted", 1),
     ("41-weighted", 2)])
 def test_every_branch_of_a_piecewise_count_is_verified(label, branch):

@@ -1114,16 +1114,15 @@ def _interactions() -> list[Any]:
             cases.append(P(_tiny_dps(what, N), id=f"{what}(N={label})-dps=1,2,3"))
     cases += [
         one(_thunk(symhx.pmf, 101, "1e-5000", 3), "pmf(101, '1e-5000', 3)"),
-        one(lambda: symhx.distribution_of(101, 0.02).rvs(10**12), "rvs(10**12) at N=101",
-            _known("7", "raw MemoryError")),
+        one(lambda: symhx.distribution_of(101, 0.02).rvs(10**12), "rvs(10**12) at N=101"),
         one(lambda: symhx.RayleighSum([1, 1]).rvs(-1), "RayleighSum([1, 1]).rvs(-1)"),
         one(lambda: symhx.RayleighSum([1, 1]).rvs(2.5), "RayleighSum([1, 1]).rvs(2.5)"),
         one(_thunk(symhx.critical_point, 2 * 10**7, space="eq41", dps=20),
-            "critical_point(2e7, eq41)", _known("5", "no API work limit")),
+            "critical_point(2e7, eq41)"),
         one(_thunk(symhx.critical_point, 10**6, space="excess<=25", dps=20),
-            "critical_point(1e6, excess<=25)", _known("5", "no API work limit")),
+            "critical_point(1e6, excess<=25)"),
         one(_thunk(symhx.asymptotic_critical_point, 10**100000, order="lambert"),
-            "asymptotic_critical_point(10**100000, lambert)", _known("6", "hang")),
+            "asymptotic_critical_point(10**100000, lambert)"),
         one(_thunk(symhx.phi, 10**30, 10**30), "phi(10**30, 10**30)"),
         one(_thunk(symhx.circuit_count, 10**1000, (1,) * 20000),
             "circuit_count(1e1000, 1*20000)"),
@@ -1145,14 +1144,12 @@ def test_hostile_interactions(calls):
 
 CLI_INTERACTIONS = [
     pytest.param(["critical", "10**3", "--dps", "1", "--json"], "0.001",
-                 marks=_known("9", "digits of a 1-digit binary rounding printed"),
                  id="critical 10**3 --dps 1"),
     pytest.param(["critical", "1e1000", "--dps", "2", "--json"], None,
                  id="critical 1e1000 --dps 2"),
     pytest.param(["distribution", "1e30", "0.5", "--float", "--dps", "1", "--json"], None,
                  id="distribution 1e30 0.5 --float --dps 1"),
     pytest.param(["spaces", "101", "1e-5000", "--space", "eq41"], None,
-                 marks=_known("5", "no work limit for tiny p in higher-order spaces"),
                  id="spaces 101 1e-5000 --space eq41"),
 ]
 

@@ -1,0 +1,28 @@
+"""``RayleighSum.rvs`` checks its size like every ``rvs`` (issue 28, item 7): a negative or
+fractional size names ``size``; more than ``MAX_DRAWS`` draws are refused at once."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+import symhx
+from tests.harness.errors import assert_refuses
+
+
+def test_rayleigh_sum_rvs_refuses_bad_sizes_naming_size():
+    r = symhx.RayleighSum([1, 1])
+    assert_refuses(r.rvs, -1, arg="size", value="-1", allowed=">= 0")
+    assert_refuses(r.rvs, 2.5, exc=TypeError, arg="size", value="2.5")
+    t0 = time.perf_counter()
+    assert_refuses(r.rvs, 10**12, arg="size", allowed="MAX_DRAWS")
+    assert time.perf_counter() - t0 < 1.0
+
+
+def test_rayleigh_sum_rvs_keeps_shapes_and_the_distribution():
+    r = symhx.RayleighSum([1, 2])
+    x = r.rvs((200, 50), random_state=3)
+    assert x.shape == (200, 50) and isinstance(r.rvs(random_state=3), float)
+    # independent: E[Rayleigh(s)] = s sqrt(pi/2), so E[S] = 3 sqrt(pi/2); 1e4 draws, sd ~ 1.3
+    assert abs(x.mean() - 3 * np.sqrt(np.pi / 2)) < 5 * 1.3 / 100
