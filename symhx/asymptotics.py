@@ -63,7 +63,7 @@ import mpmath
 
 from symhx._mpctx import export, local, mp
 from symhx._numeric import digits_of, log1m_series, stirling_ok, stirling_series
-from symhx.validation import check_choice, check_dps, check_int, check_N
+from symhx.validation import InputError, check_choice, check_dps, check_int, check_N
 
 __all__ = [
     "MAX_PD_TERMS",
@@ -98,7 +98,7 @@ DECAY: dict[str, str] = {
 def _check_N(N: Any) -> int:
     N = check_int(N, "N", minimum=2)
     if N < MIN_N:
-        raise ValueError(f"the asymptotic formulas need N >= {MIN_N}, got N={N}; "
+        raise InputError(f"the asymptotic formulas need N >= {MIN_N}, got N={N}; "
                          "use symhx.critical_point for small N")
     return N
 

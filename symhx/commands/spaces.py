@@ -5,11 +5,23 @@
 from __future__ import annotations
 
 import argparse
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from symhx.commands._common import dump_json, int_arg, int_show, mpstr, rational_arg
-from symhx.commands.core import DPS_HELP, N_HELP, P_HELP, add_dps, add_json, write_csv
+from symhx.commands._common import (
+    N_HELP,
+    P_HELP,
+    add_dps,
+    add_json,
+    dump_json,
+    int_arg,
+    int_show,
+    mpstr,
+    rational_arg,
+    rational_show,
+    write_csv,
+)
 from symhx.spaces import MAX_EXCESS
 from symhx.spaces.study import STUDY_N_LIMIT
 
@@ -47,10 +59,10 @@ def register(sub: Any) -> None:
     c.add_argument("--max-m", type=int_arg("--max-m", minimum=0, maximum=MAX_EXCESS), default=6,
                    help=f"largest excess m of the truncated spaces (at most {MAX_EXCESS}, "
                    "a work limit)")
-    c.add_argument("--p", action="append", default=None, type=str,
-                   help="a p value (exact decimal; repeatable; default: the paper's figure "
-                   "values)")
-    add_dps(c, default=20, help_text=DPS_HELP)
+    c.add_argument("--p", action="append", default=None, type=rational_arg("--p"),
+                   help=P_HELP + " (repeatable; default: the paper's figure values "
+                   "0.005, 0.01, 0.015, 0.04, 0.05)")
+    add_dps(c)
     add_json(c)
     c.set_defaults(func=cmd_convergence)
 
@@ -88,18 +100,16 @@ def cmd_spaces(args: argparse.Namespace) -> int:
     return 0
 
 
-def _convergence_rows(N: int, max_m: int, ps: list[str] | None, dps: int) -> list[dict]:
+def _convergence_rows(N: int, max_m: int, ps: list[Fraction] | None, dps: int) -> list[dict]:
+    """The study's rows as dicts; ``means`` keyed by each p as typed (``"0.005"``, ``"1/3"``)."""
     from symhx.spaces import DEFAULT_PS, convergence_study
 
-    rows = convergence_study(N, ms=range(0, max_m + 1), ps=ps or DEFAULT_PS, dps=dps)
+    texts = [rational_show(p) for p in ps] if ps else DEFAULT_PS  # exact strings, exact values
+    rows = convergence_study(N, ms=range(0, max_m + 1), ps=texts, dps=dps)
     return [r.as_dict() for r in rows]
 
 
 def cmd_convergence(args: argparse.Namespace) -> int:
-    from symhx.validation import check_p
-
-    for p in args.p or []:
-        check_p(p, "--p")
     rows = _convergence_rows(args.N, args.max_m, args.p, args.dps)
     if args.json:
         print(dump_json({"N": args.N, "rows": rows}))

@@ -55,6 +55,7 @@ from symhx.forcing.kernels_float import (
 )
 from symhx.forcing.kernels_mp import MAX_EXPONENT, mp_i2, mp_q_from_xy
 from symhx.validation import (
+    InputError,
     check_array,
     check_choice,
     check_dps,
@@ -96,7 +97,7 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
                 continue
             Omf, omf = float(Om), float(om)
             if Omf == omf:
-                raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
+                raise InputError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)")
             # |omega**2 - Omega**2| = |omega - Omega| (omega + Omega), divided one factor at a
             # time: the product under/overflows (or is subnormal, with lost digits) for tiny or
@@ -111,7 +112,7 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
             om2 = 2 if Om is None else mp_arg("Omega", Om) ** 2
             delta = om * om - om2
             if delta == 0:
-                raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
+                raise InputError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)")
             s1v = s0 if s1 is None else mp_arg("sigma1", s1)
             out.append(mpmath.sqrt(2) * s1v / abs(delta))
@@ -596,7 +597,7 @@ def _float_logsf(scales: Sequence[float], x: np.ndarray) -> np.ndarray:
     laplace, out = _regions(scales, x)
     if out.any():
         i = int(np.argmax(out))
-        raise ValueError(f"x = {float(x[i])!r}: log sf of Rayleigh scales spread over more than 21 "
+        raise InputError(f"x = {float(x[i])!r}: log sf of Rayleigh scales spread over more than 21 "
                          "orders of magnitude is beyond the float64 range; use dps=")
     res = np.empty(x.shape)
     q = ~laplace
@@ -727,7 +728,7 @@ class RayleighSum:
             raise TypeError(f"scales must be a sequence of Rayleigh scales, got {scales!r}")
         arr = np.asarray(scales, dtype=object).ravel()
         if arr.size == 0:
-            raise ValueError("scales: need at least one Rayleigh scale, got an empty sequence")
+            raise InputError("scales: need at least one Rayleigh scale, got an empty sequence")
         exact = []
         for i, s in enumerate(arr):
             exact.append(rational_arg(f"scales[{i}]", s))
@@ -825,7 +826,7 @@ class RayleighSum:
             var = mpmath.fsum(mpf_of(s) ** 2 for s in self._exact)
             e = xm * xm / (2 * var) if xm > 0 else mpmath.mpf(0)
         if e > MAX_EXPONENT:
-            raise ValueError(
+            raise InputError(
                 f"x: P(S > x) = exp(-E) with E ~ {mpmath.nstr(e, 3)} above the cap MAX_EXPONENT "
                 f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
                 "guard digits); logsf has no cap")
@@ -835,7 +836,7 @@ class RayleighSum:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
         if bad.any():
             i = int(np.argmax(bad))
-            raise ValueError(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
+            raise InputError(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
                              "float64 range; use dps=")
         return [float(s) for s in self.scales]
 
@@ -926,7 +927,7 @@ def _float_normalized(scales: list[float], x: np.ndarray) -> tuple[list[float], 
     e = math.frexp(top)[1]
     out = [math.ldexp(s, -e) for s in scales]
     if min(out) < 2.0**-500:
-        raise ValueError(f"the Rayleigh scales spread over more than float64 resolves here "
+        raise InputError(f"the Rayleigh scales spread over more than float64 resolves here "
                          f"({min(scales):.3g} to {top:.3g}): use dps=")
     with np.errstate(under="ignore", over="ignore"):   # x beyond the range: inf (far tail)
         return out, np.ldexp(x, -e), e

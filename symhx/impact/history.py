@@ -12,7 +12,7 @@ import numpy as np
 
 from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventLog
 from symhx.impact.model import PipeRow
-from symhx.validation import check_array, to_rational
+from symhx.validation import InputError, check_array, to_rational
 
 __all__ = ["GRAZE", "IMPACT", "RELEASE", "STICK", "History"]
 
@@ -112,7 +112,7 @@ class History:
             raise TypeError(f"t must be a rational or float number, got {t!r}")
         end = to_rational(self.t_end, "t_end")  # a rational: t_end was validated
         if end is None or not 0 <= fr <= end:
-            raise ValueError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
+            raise InputError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
         if self._wdps is not None:
             with mpmath.workdps(self._wdps):
                 t = mpmath.mpf(fr.numerator) / fr.denominator
@@ -141,7 +141,7 @@ class History:
         """
         ts = check_array(times, "times", nonnegative=True, allow_empty=True).ravel()
         if ts.size and ts.max() > float(self.t_end):
-            raise ValueError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {ts.max()!r}")
+            raise InputError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {ts.max()!r}")
         n = self.row.n
         if self.dps is not None:
             xs = np.empty((ts.size, n), dtype=object)

@@ -43,7 +43,7 @@ from fractions import Fraction
 from functools import lru_cache
 
 from symhx.circuits import necklaces_with_content, normalise_visits, partitions
-from symhx.validation import check_int, check_N
+from symhx.validation import InputError, check_int, check_N
 
 __all__ = [
     "EQ41_SHAPES",
@@ -98,7 +98,7 @@ def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
                         f"{shape!r}")
     s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
-        raise ValueError(f"a class lists the parts > 1 of a visit pattern, got {shape!r}")
+        raise InputError(f"a class lists the parts > 1 of a visit pattern, got {shape!r}")
     return s
 
 
@@ -114,7 +114,7 @@ def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
     """
     m = check_int(m, "maximum excess m", minimum=0)
     if m > MAX_EXCESS:
-        raise ValueError(f"maximum excess m={m} is beyond the documented work limit {MAX_EXCESS} "
+        raise InputError(f"maximum excess m={m} is beyond the documented work limit {MAX_EXCESS} "
                          f"(symhx.spaces._classes.MAX_EXCESS: excess<=25 already has 9296 "
                          f"classes and takes seconds per distribution); raise that constant "
                          f"to allow it")
@@ -245,12 +245,12 @@ def printed_count(eq: str, N: int, L: int, *, outside: str = "zero") -> Fraction
     if eq == "36":
         return Fraction(N) if L == 2 else Fraction(0)
     if eq not in PRINTED_RANGES:
-        raise ValueError(f"eq must be one of 35, 36, 38, 39, 40; got {eq!r}")
+        raise InputError(f"eq must be one of 35, 36, 38, 39, 40; got {eq!r}")
     shape, lo = PRINTED_RANGES[eq]
     if L < sum(shape) or (outside == "zero" and L < lo):
         return Fraction(0)
     if outside not in ("zero", "formula"):
-        raise ValueError(f"outside must be 'zero' or 'formula', got {outside!r}")
+        raise InputError(f"outside must be 'zero' or 'formula', got {outside!r}")
 
     def ff(n: int, j: int) -> int:  # n!/(n-j)!, 0 when j > n
         return math.perm(n, j) if 0 <= j <= n else 0
@@ -431,12 +431,12 @@ def _split_weighting(space: str, weighting: str | None) -> tuple[str, str]:
     if suffix.startswith("weight="):
         suffix = suffix[len("weight="):]
     if suffix and suffix not in WEIGHTINGS:
-        raise ValueError(f"unknown weighting {suffix!r} in space {space!r}; use "
+        raise InputError(f"unknown weighting {suffix!r} in space {space!r}; use "
                          f"';length' or ';distinct'")
     if weighting is not None and weighting not in WEIGHTINGS:
-        raise ValueError(f"weighting must be 'length' or 'distinct', got {weighting!r}")
+        raise InputError(f"weighting must be 'length' or 'distinct', got {weighting!r}")
     if suffix and weighting and suffix != weighting:
-        raise ValueError(f"space {space!r} conflicts with weighting={weighting!r}")
+        raise InputError(f"space {space!r} conflicts with weighting={weighting!r}")
     return base.strip(), (suffix or weighting or "length")
 
 
@@ -453,11 +453,11 @@ def _parse(base: str, weighting: str) -> Space:
     mt = _SPACE_RE.match(base)
     if mt:
         if len(mt.group(1)) > 6:
-            raise ValueError(f"maximum excess m in {base[:40]!r} is beyond the documented work "
+            raise InputError(f"maximum excess m in {base[:40]!r} is beyond the documented work "
                              f"limit {MAX_EXCESS} (symhx.spaces._classes.MAX_EXCESS)")
         m = int(mt.group(1))
         return Space(f"excess<={m}" + suffix, "excess", m, weighting, shapes_up_to(m))
-    raise ValueError(
+    raise InputError(
         f"unknown sample space {base!r}: use 'simple', 'eq41', 'eq41-printed' or 'excess<=m' "
         f"(m >= 0), optionally followed by ';length' (default) or ';distinct'"
     )
@@ -489,5 +489,5 @@ def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
     """
     s = check_shape(shape)
     if k < len(s):
-        raise ValueError(f"class {s} needs at least {len(s)} distinct vertices")
+        raise InputError(f"class {s} needs at least {len(s)} distinct vertices")
     return normalise_visits(s + (1,) * (k - len(s))) if k else ()

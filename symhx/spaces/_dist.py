@@ -64,7 +64,7 @@ from symhx.distribution import (
     simple_modes,
 )
 from symhx.spaces._classes import Space, paper_label, parse_space, shape_excess
-from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, check_dps, check_N, check_p
+from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, InputError, check_dps, check_N, check_p
 
 __all__ = [
     "ClassDecomposition",
@@ -135,7 +135,7 @@ def _logp_float_of(p: Any, fr: Fraction | None) -> float:
         ball = real_ball(p)
         lo_hi = rational_bracket(ball) if ball > 0 else None
     if lo_hi is None:
-        raise ValueError(f"p={p} cannot be enclosed at 128 bits (is it positive and finite?)")
+        raise InputError(f"p={p} cannot be enclosed at 128 bits (is it positive and finite?)")
     return _logp_float(lo_hi[0])
 
 
@@ -164,7 +164,7 @@ def _rational(p: Any, fr: Fraction | None) -> Fraction:
     if fr is None:
         fr, p = check_p(p)
     if fr is None:
-        raise ValueError(f"p={p} is irrational: an exact weight needs a rational p (pass an "
+        raise InputError(f"p={p} is irrational: an exact weight needs a rational p (pass an "
                          f"int, Fraction, decimal string, float or mpf)")
     return fr
 
@@ -623,7 +623,7 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
             totals[s] = sum(row, Fraction(0))
         return ClassDecomposition(dist, sp.shapes, joint, totals)
     if N > DIRECT_LIMIT:
-        raise ValueError(f"class_decomposition lists every k; use N <= {DIRECT_LIMIT}")
+        raise InputError(f"class_decomposition lists every k; use N <= {DIRECT_LIMIT}")
     guard = 10 + 2 * digits_of(N)
     ctx = mp()
     with ctx.workdps(dps + guard):
