@@ -89,3 +89,9 @@ def test_debug_flag_does_not_change_a_good_run(capsys):
     plain = capsys.readouterr().out
     assert main(["circuits", "3"]) == 0
     assert capsys.readouterr().out == plain
+
+
+def test_an_integer_beyond_pythons_str_digit_limit_parses(capsys):
+    """Python refuses int(str) beyond 4300 digits; the CLI lifts that limit while it parses."""
+    assert main(["circuits", "1" * 5000, "--visits", "1,1", "--json"]) == 0
+    assert '"N": "' + "1" * 5000 + '"' in capsys.readouterr().out
