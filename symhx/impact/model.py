@@ -101,7 +101,7 @@ def check_horizon(t: Any, name: str, omega: float = 1.0, *, allow_zero: bool = F
     >>> check_horizon(1e7, "t_end")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: t_end = 10000000.0 is too long: omega * t_end must be <= 100000 ...
+    symhx.validation.InputError: t_end = 10000000.0 is too long: omega * t_end must be <= 100000 ...
     """
     fr = check_real(t, name, low=0, low_open=not allow_zero)
     if fr * Fraction(omega) > MAX_HORIZON:
@@ -246,7 +246,7 @@ class PipeRow:
     ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... choose Omega[i] != omega
+    symhx.validation.InputError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... choose Omega[i] != omega
     """
 
     n: int
