@@ -5,6 +5,10 @@ that says it is a bug, and the traceback only with ``--debug`` or ``SYMHX_DEBUG`
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+
 import pytest
 
 import symhx.critical
@@ -95,3 +99,21 @@ def test_an_integer_beyond_pythons_str_digit_limit_parses(capsys):
     """Python refuses int(str) beyond 4300 digits; the CLI lifts that limit while it parses."""
     assert main(["circuits", "1" * 5000, "--visits", "1,1", "--json"]) == 0
     assert '"N": "' + "1" * 5000 + '"' in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("debug", [False, True])
+def test_a_bug_in_a_real_process_is_exit_1_with_traceback_only_under_debug(debug):
+    """The CLI in a child process whose critical_point is broken as a bug would be."""
+    code = ("import sys, symhx.critical as c\n"
+            "def broken(*a, **k):\n    raise ValueError('bad internal state')\n"
+            "c.critical_point = broken\n"
+            "from symhx.cli import main\nsys.exit(main(['critical', '10']))\n")
+    env = {k: v for k, v in os.environ.items() if k != DEBUG_ENV}
+    if debug:
+        env[DEBUG_ENV] = "1"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120, env=env)
+    assert proc.returncode == 1 and proc.stdout == ""
+    assert proc.stderr.splitlines()[-1] == ("symhx critical: internal error: ValueError: bad "
+                                            f"internal state ({REPORT_HINT})")
+    assert ("Traceback" in proc.stderr) is debug
