@@ -6,7 +6,7 @@ contributes its part of ``symhx paper`` (the main job: recompute the paper's num
 into a folder). Modules run in the order of their ``ORDER`` attribute.
 
 Errors: :func:`main` is the one top-level handler. Every error is one line on stderr,
-``symhx CMD: error: ...``, never a traceback:
+``symhx CMD: error: ...``, never a traceback unless asked for:
 
 * exit code **2** for bad input: argparse errors, :class:`symhx.validation.InputError` (what
   symhx raises for every refused input: a value out of range, a documented work limit), and
