@@ -674,7 +674,8 @@ class SimpleDistribution(Distribution):
         """log Phi(k) at the working precision (caller sets it)."""
         # log Phi(k) = k log p + log N + lgamma(N) - lgamma(N-k+1) - log k, written without
         # the O(N log N) lgamma terms: lgamma(N) - lgamma(N-k+1) = G(N, k-1) + (k-1) log N
-        return (k * self._logp + k * self._logN + _at_global_prec(G_mp, self.N, k - 1) - mpmath.log(k))
+        return (k * self._logp + k * self._logN + _at_global_prec(G_mp, self.N, k - 1)
+                - mpmath.log(k))
 
     @cached_property
     def _ctx(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:

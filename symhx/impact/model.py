@@ -246,7 +246,7 @@ class PipeRow:
     ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    symhx.validation.InputError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... choose Omega[i] != omega
+    symhx.validation.InputError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... != omega
     """
 
     n: int
