@@ -57,6 +57,7 @@ TOP_GROUPS = (
     ("Impact probability from the forcing", ("forcing",)),
     ("Impact simulation", ("impact",)),
     ("Higher-order sample spaces", ("spaces",)),
+    ("Errors", ("validation",)),
 )
 
 

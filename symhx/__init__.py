@@ -27,6 +27,8 @@ __version__ = "0.2.0"
 
 # public name -> module that defines it
 _EXPORTS: dict[str, str] = {
+    # the error every refused input raises (a ValueError)
+    "InputError": "validation",
     # graph
     "vertices_row": "graph",
     "vertices_lattice": "graph",

@@ -1,9 +1,8 @@
 """Internal numeric helpers: guard digits, Stirling's series, and the cancellation-free
 log-falling-factorial ``G(N, K)`` shared by the distribution, critical and asymptotics modules.
 
-Certified (ball-arithmetic) signs live in :mod:`symhx.certify` (python-flint Arb); the names
-``certified_sign``, ``bits_for`` and ``UndecidedError`` are re-exported here for the layers that
-import them from this module.
+Certified (ball-arithmetic) signs live in :mod:`symhx.certify` (python-flint Arb) and argument
+validation in :mod:`symhx.validation`; import those names from there (one address per name).
 
 Precision convention (see :mod:`symhx._mpctx`): the mpmath helpers here (:func:`G_mp`,
 :func:`mp_value`, :func:`stirling_series`, :func:`log1m_series`, :func:`G_direct`) take no
@@ -30,38 +29,18 @@ import mpmath
 from mpmath import libmp
 
 from symhx._mpctx import local, mp
+from symhx.certify import arb_prec, real_ball, rel_width_ok
+from symhx.validation import InputError
 
 __all__ = [
+    "G_direct",
     "G_mp",
-    "UndecidedError",
-    "as_fraction",
-    "bits_for",
-    "certified_sign",
-    "check_N",
-    "check_dps",
-    "check_p",
     "digits_of",
     "log1m_series",
     "mp_value",
+    "stirling_ok",
     "stirling_series",
 ]
-
-from symhx.certify import (
-    UndecidedError,
-    arb_prec,
-    bits_for,
-    certified_sign,
-    real_ball,
-    rel_width_ok,
-)
-from symhx.validation import (  # noqa: F401  (re-exported for the layers below the API)
-    MAX_DPS,
-    as_fraction,
-    check_dps,
-    check_N,
-    check_p,
-    is_exact_type,
-)
 
 
 def digits_of(N: int) -> int:
@@ -90,7 +69,7 @@ def mp_value(p: Any, fr: Fraction | None) -> mpmath.mpf:
                 man, exp = ball.mid().man_exp()
                 return ctx.make_mpf(libmp.from_man_exp(int(man), int(exp), prec, "n"))
         if bits > 64 * (prec + 32):
-            raise ValueError(f"p={p} cannot be evaluated to {prec} bits: its rigorous "
+            raise InputError(f"p={p} cannot be evaluated to {prec} bits: its rigorous "
                              f"enclosure stays wide (is it 0?)")
         bits *= 2
 

@@ -56,7 +56,7 @@ from symhx.site_distribution import SitesDistribution, site_modes
 from symhx.sites import SiteClasses, as_site_classes, is_site_input
 from symhx.spaces import Space, SpaceDistribution, parse_space, space_modes
 from symhx.spaces import critical_point as space_critical_point
-from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, check_dps, check_N, check_p
+from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, InputError, check_dps, check_N, check_p
 
 __all__ = [
     "CriticalPoint",
@@ -479,7 +479,7 @@ def critical_point(N: Any, *, weights: Any = None, space: SpaceLike = DEFAULT_SP
     work = 20 if d is None else d
     if weights is not None:
         if sp.base != "simple":
-            raise ValueError(f"weights (a direction of site probabilities) are supported over "
+            raise InputError(f"weights (a direction of site probabilities) are supported over "
                              f"the simple space only, got space={sp.name!r}; pass "
                              f"space='simple'")
         dcp = direction_critical_point(N, weights, dps=work)

@@ -63,7 +63,7 @@ import mpmath
 
 from symhx._mpctx import export, local, mp
 from symhx._numeric import digits_of, log1m_series, stirling_ok, stirling_series
-from symhx.validation import check_choice, check_dps, check_int, check_N, show_exact
+from symhx.validation import InputError, check_choice, check_dps, check_int, check_N, show_exact
 
 __all__ = [
     "MAX_FORMULA_DIGITS",
@@ -110,7 +110,7 @@ MAX_RELAXED_DIGITS = 5_000
 def _check_N(N: Any) -> int:
     N = check_int(N, "N", minimum=2)
     if N < MIN_N:
-        raise ValueError(f"the asymptotic formulas need N >= {MIN_N}, got N={N}; "
+        raise InputError(f"the asymptotic formulas need N >= {MIN_N}, got N={N}; "
                          "use symhx.critical_point for small N")
     return N
 
@@ -121,7 +121,7 @@ def _check_work(N: int, order: str) -> None:
     limit, name = ((MAX_RELAXED_DIGITS, "MAX_RELAXED_DIGITS") if relaxed
                    else (MAX_FORMULA_DIGITS, "MAX_FORMULA_DIGITS"))
     if N >= 10**limit:
-        raise ValueError(
+        raise InputError(
             f"N={show_exact(N)} is beyond the documented work limit of order={order!r}: "
             f"N < 10**{limit} (symhx.asymptotics.{name}; the working precision carries every "
             f"digit of N); raise that constant to allow it")

@@ -32,7 +32,7 @@ from functools import lru_cache
 import mpmath
 
 from symhx._mpctx import export, mp
-from symhx.validation import DEFAULT_DPS, check_dps, check_int
+from symhx.validation import DEFAULT_DPS, InputError, check_dps, check_int
 
 __all__ = [
     "MAX_CIRCUIT_LENGTH",
@@ -82,8 +82,8 @@ def _short(value: int) -> str:
     return str(value)
 
 
-def _refuse(what: str, value: int, limit: int, constant: str) -> ValueError:
-    return ValueError(f"{what}={_short(value)} is beyond the documented work limit {limit} "
+def _refuse(what: str, value: int, limit: int, constant: str) -> InputError:
+    return InputError(f"{what}={_short(value)} is beyond the documented work limit {limit} "
                       f"(symhx.circuits.{constant}); raise that constant to allow it")
 
 
@@ -133,7 +133,7 @@ def log_phi(N: int, k: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
     k = _int(k, "k", 1)
     dps = check_dps(dps)
     if k > N:
-        raise ValueError(f"k must be <= N, got k={_short(k)}, N={_short(N)}")
+        raise InputError(f"k must be <= N, got k={_short(k)}, N={_short(N)}")
     # loggamma(N+1) - loggamma(N-k+1) cancels ~log10(N) digits
     guard = 10 + int(N.bit_length() * 0.30103) + 1
     ctx = mp()  # this thread's context (symhx._mpctx): threads never share a precision
@@ -171,9 +171,9 @@ def normalise_visits(visits: Iterable[int]) -> tuple[int, ...]:
                         f"{type(visits).__name__} {visits!r}")
     vs = tuple(sorted((check_int(v, "visits entry") for v in visits), reverse=True))
     if not vs:
-        raise ValueError("visits must not be empty")
+        raise InputError("visits must not be empty")
     if vs[-1] < 1:
-        raise ValueError(f"every visit multiplicity must be >= 1, got {vs}")
+        raise InputError(f"every visit multiplicity must be >= 1, got {vs}")
     return vs
 
 
@@ -345,13 +345,13 @@ def enumerate_circuits(N: int, L: int) -> Iterator[tuple[int, ...]]:
     L = _int(L, "L", 1)
     # exact integer tests (L may be huge)
     if L > MAX_ENUMERATION_LENGTH:
-        raise ValueError(f"L={_short_length(L)} is beyond the documented limit "
+        raise InputError(f"L={_short_length(L)} is beyond the documented limit "
                          f"{MAX_ENUMERATION_LENGTH} (symhx.circuits.MAX_ENUMERATION_LENGTH: the "
                          f"enumeration nests L generators)")
     # N**L >= 2**L: a long L is refused before N**L is formed (MAX_ENUMERATION_LENGTH may
     # have been raised by the user)
     if N > 1 and (L > MAX_ENUMERATION.bit_length() or N**L > MAX_ENUMERATION):
-        raise ValueError(f"N**L = {N}**{_short_length(L)} words is beyond the documented work "
+        raise InputError(f"N**L = {N}**{_short_length(L)} words is beyond the documented work "
                          f"limit {MAX_ENUMERATION} (symhx.circuits.MAX_ENUMERATION); raise that "
                          f"constant to allow it")
     return _enumerate(N, L)

@@ -6,12 +6,15 @@ contributes its part of ``symhx paper`` (the main job: recompute the paper's num
 into a folder). Modules run in the order of their ``ORDER`` attribute.
 
 Errors: :func:`main` is the one top-level handler. Every error is one line on stderr,
-``symhx CMD: error: ...``, never a traceback:
+``symhx CMD: error: ...``, never a traceback unless asked for:
 
-* exit code **2** for bad input: argparse errors, ``ValueError``, ``TypeError`` and
-  ``OverflowError`` raised by the validation of the arguments, and ``OSError`` (e.g. an
-  unwritable ``--out`` or ``--csv``);
-* exit code **1** for an internal error (anything else), with a request to report it;
+* exit code **2** for bad input: argparse errors, :class:`symhx.validation.InputError` (what
+  symhx raises for every refused input: a value out of range, a documented work limit), and
+  ``OSError`` (e.g. an unwritable ``--out`` or a missing file);
+* exit code **1** for an internal error (any other exception, a plain ``ValueError`` or
+  ``TypeError`` included): one line saying it is a bug, with a request to report it; the
+  traceback too with ``--debug`` or the environment variable :data:`DEBUG_ENV` set (to
+  anything but ``""`` or ``0``);
 * exit code 130 on Ctrl-C.
 
 Help: every option shows its default (``symhx CMD --help``).
@@ -20,15 +23,21 @@ Help: every option shows its default (``symhx CMD --help``).
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import traceback
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
 from symhx import __version__
 from symhx.commands import command_modules
+from symhx.validation import InputError
 
 #: where internal errors should be reported
 REPORT_HINT = "this is a bug in symhx; please report it with the command line you ran"
+#: environment variable that, set (to anything but "" or "0"), prints an internal error's traceback
+DEBUG_ENV = "SYMHX_DEBUG"
+DEBUG_HELP = f"print the traceback of an internal error (or set {DEBUG_ENV}=1)"
 
 
 def _no_default(action: argparse.Action) -> bool:
@@ -79,10 +88,14 @@ def build_parser() -> argparse.ArgumentParser:
         "N = pipes + 1); numbers such as 0.02, 2e-2 or 1/50 are exact rationals.",
     )
     parser.add_argument("--version", action="version", version=f"symhx {__version__}")
+    parser.add_argument("--debug", action="store_true", help=DEBUG_HELP)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for mod in command_modules():
         mod.register(sub)
+    for command in sub.choices.values():  # also after the command: symhx CMD ... --debug
+        command.add_argument("--debug", action="store_true", dest="debug_after",
+                             help=DEBUG_HELP)
     parser.set_defaults(_subparsers=sub.choices)
     return parser
 
@@ -92,8 +105,23 @@ def _one_line(exc: BaseException) -> str:
     return text if len(text) <= 2000 else text[:1997] + "..."
 
 
+def _debug_env() -> bool:
+    return os.environ.get(DEBUG_ENV, "") not in ("", "0")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit code (see the module docstring)."""
+    old_limit = sys.get_int_max_str_digits() if hasattr(sys, "get_int_max_str_digits") else None
+    if old_limit is not None:  # exact huge integers parse and print in full, never raise midway
+        sys.set_int_max_str_digits(0)
+    try:
+        return _run(argv)
+    finally:
+        if old_limit is not None:
+            sys.set_int_max_str_digits(old_limit)
+
+
+def _run(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     try:
         args, extra = parser.parse_known_args(argv)
@@ -102,10 +130,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version, or a usage error already printed (one line)
         return exc.code if isinstance(exc.code, int) else 2
     prog = f"symhx {args.command}"
-    old_limit = sys.get_int_max_str_digits() if hasattr(sys, "get_int_max_str_digits") else None
     try:
-        if old_limit is not None:  # exact huge integers print in full, never raise mid-output
-            sys.set_int_max_str_digits(0)
         rc = args.func(args)
     except KeyboardInterrupt:
         print(f"{prog}: interrupted", file=sys.stderr)
@@ -116,7 +141,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         except OSError:  # pragma: no cover
             pass
         return 0
-    except (ValueError, TypeError, OverflowError) as exc:  # bad input
+    except InputError as exc:  # bad input, refused by symhx
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except OSError as exc:  # unwritable --out / --csv, missing file, ...
@@ -125,12 +150,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{prog}: error: {msg}", file=sys.stderr)
         return 2
     except Exception as exc:  # internal error: one line and a request to report it
+        if args.debug or getattr(args, "debug_after", False) or _debug_env():
+            traceback.print_exc(file=sys.stderr)
         print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} ({REPORT_HINT})",
               file=sys.stderr)
         return 1
-    finally:
-        if old_limit is not None:
-            sys.set_int_max_str_digits(old_limit)
     return int(rc or 0)
 
 

@@ -72,6 +72,7 @@ from symhx.certify import (
 )
 from symhx.validation import (
     DEFAULT_DPS,
+    InputError,
     as_fraction,
     check_dps,
     check_int,
@@ -641,9 +642,9 @@ class ModePath:
         irrational jump point is certified by Arb balls."""
         fr = as_fraction(p)
         if fr is None or fr <= 0:
-            raise ValueError(f"p must be a positive rational, float or mpf, got {p!r}")
+            raise InputError(f"p must be a positive rational, float or mpf, got {p!r}")
         if fr > self.p_max:
-            raise ValueError(f"p must be <= p_max = {self.p_max} of this path, got {p!r}")
+            raise InputError(f"p must be <= p_max = {self.p_max} of this path, got {p!r}")
         k = 1
         for i, (bp, _, right) in enumerate(self.breakpoints):
             above = (compare_with_critical(self.critical, fr) > 0 if i == 0
@@ -708,7 +709,7 @@ def mode_path(N: int, *, p_max: Any = 1, dps: int = DEFAULT_DPS) -> ModePath:
     dps = _dps(dps)
     pm = as_fraction(p_max, "p_max")
     if pm is None or pm <= 0:
-        raise ValueError(f"p_max must be a positive number, got {p_max!r}")
+        raise InputError(f"p_max must be a positive number, got {p_max!r}")
     cp = critical_point(N, dps=dps)
     if compare_with_critical(cp, pm) < 0:
         return ModePath(N, cp, (), pm)
@@ -716,7 +717,7 @@ def mode_path(N: int, *, p_max: Any = 1, dps: int = DEFAULT_DPS) -> ModePath:
     last = _breakpoints_below(N, cp.k_after, pm) if cp.k_after < N else cp.k_after - 1
     count = last - cp.k_after + 2
     if count > MAX_BREAKPOINTS:
-        raise ValueError(
+        raise InputError(
             f"mode_path(N={_fmt_int(N)}, p_max={p_max!r}) would list {count} breakpoints "
             f"(more than MAX_BREAKPOINTS = {MAX_BREAKPOINTS}); choose a smaller p_max")
     bps: list[tuple[Any, int, int]] = [(pc, 1, cp.k_after)]

@@ -67,6 +67,7 @@ from symhx.certify import (
 )
 from symhx.validation import (
     DEFAULT_DPS,
+    InputError,
     check_dps,
     check_int,
     check_N,
@@ -200,7 +201,7 @@ class Distribution:
         self.dps = check_dps(dps, allow_none=True)
         self.exact = self.dps is not None and is_exact_type(p)
         if self.exact and self.N > EXACT_N_LIMIT:
-            raise ValueError(
+            raise InputError(
                 f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT} "
                 f"(symhx.distribution.EXACT_N_LIMIT); got N={_n_show(self.N)}. Pass p as a "
                 f"float or mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
@@ -210,7 +211,7 @@ class Distribution:
     def _check_mp_cap(self, what: str, limit: int, name: str) -> None:
         """Refuse (before any work) an mpmath-path computation beyond its documented N limit."""
         if self.N > limit:
-            raise ValueError(
+            raise InputError(
                 f"{what} on the mpmath path is limited to N <= {_n_show(limit)} "
                 f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
                 f"Use dps=None (float64, N <= {FLOAT_N_LIMIT}), mode()/modes() (any N) or "
@@ -222,7 +223,7 @@ class Distribution:
         work = self.N * (self.N.bit_length() + self.fr.numerator.bit_length()
                          + self.fr.denominator.bit_length())
         if work > limit:
-            raise ValueError(
+            raise InputError(
                 f"{what} in exact rational arithmetic would need ~{work:.2g} bit-terms for "
                 f"N={_n_show(self.N)}, p={_p_show(self.fr)} (documented work limit {limit}, "
                 f"symhx.distribution.{name}); pass p as a float or mpmath.mpf for the mpmath "
@@ -336,7 +337,7 @@ class Distribution:
     @cached_property
     def _ftab(self) -> dict[str, np.ndarray]:
         if self.N > FLOAT_N_LIMIT:
-            raise ValueError(
+            raise InputError(
                 f"the float64 path (dps=None) and rvs() tabulate the whole support; "
                 f"N={_n_show(self.N)} is above symhx.distribution.FLOAT_N_LIMIT="
                 f"{FLOAT_N_LIMIT}. Use an int dps for the mpmath path, or raise FLOAT_N_LIMIT if "

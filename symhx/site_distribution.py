@@ -51,7 +51,7 @@ from symhx.site_weights import (
     exact_weights,
 )
 from symhx.sites import SiteClasses, show_int
-from symhx.validation import DEFAULT_DPS, check_dps, check_N
+from symhx.validation import DEFAULT_DPS, InputError, check_dps, check_N
 
 __all__ = ["MODES_MAX_BITS", "SitesDistribution", "site_modes"]
 
@@ -69,7 +69,7 @@ def _arb_to_mpf(x: arb, prec: int) -> Any:
 
 def _check_N_fits(N: int, what: str) -> None:
     if N > BALL_TABLE_N_LIMIT:
-        raise ValueError(
+        raise InputError(
             f"{what} with several site classes tabulates every k = 1..N; N={show_int(N)} is "
             f"above the documented work limit symhx.site_weights.BALL_TABLE_N_LIMIT = "
             f"{BALL_TABLE_N_LIMIT} (one class, a scalar p, has no such limit)")
@@ -87,7 +87,7 @@ def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, 
     """
     N = check_N(N, minimum=1)
     if classes.N != N:
-        raise ValueError(f"the site classes hold {classes.N} sites, but N = {show_int(N)}")
+        raise InputError(f"the site classes hold {classes.N} sites, but N = {show_int(N)}")
     if classes.exact:
         nums, _ = exact_weights(classes, space)
         top = max(nums)
@@ -133,7 +133,7 @@ class SitesDistribution(Distribution):
             raise TypeError(f"classes must be a symhx.SiteClasses, got "
                             f"{type(classes).__name__} {classes!r}")
         if classes.N != self.N:
-            raise ValueError(f"the site classes hold {classes.N} sites, but N = {self.N}")
+            raise InputError(f"the site classes hold {classes.N} sites, but N = {self.N}")
         self.classes = classes
         self.p = classes
         self.fr = None
@@ -146,7 +146,7 @@ class SitesDistribution(Distribution):
         if self.exact:
             bits = exact_table_bits(classes)
             if bits > EXACT_TABLE_BITS_LIMIT:
-                raise ValueError(
+                raise InputError(
                     f"exact (rational) arithmetic with site classes would hold ~{bits:.2g} bits"
                     f" for N={self.N} (documented work limit "
                     f"symhx.site_weights.EXACT_TABLE_BITS_LIMIT = {EXACT_TABLE_BITS_LIMIT:.2g});"

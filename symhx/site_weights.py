@@ -68,6 +68,7 @@ from flint import arb, fmpz, fmpz_poly
 
 from symhx.certify import arb_prec, to_arb
 from symhx.sites import SiteClasses, show_int
+from symhx.validation import InputError
 
 __all__ = [
     "BALL_TABLE_N_LIMIT",
@@ -214,7 +215,7 @@ def check_pattern_work(space: Any, c: int) -> None:
     """
     work = pattern_work(space, c)
     if work > SITE_PATTERN_LIMIT:
-        raise ValueError(
+        raise InputError(
             f"space {space.name!r} with {c} site classes: its classes and their distributions "
             f"among the site classes make {work} pairs, more than the documented work limit "
             f"symhx.site_weights.SITE_PATTERN_LIMIT = {SITE_PATTERN_LIMIT} (a smaller excess "
@@ -383,7 +384,7 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
     """
     bits = exact_table_bits(sc)
     if bits > EXACT_TABLE_BITS_LIMIT:
-        raise ValueError(
+        raise InputError(
             f"exact weights with site classes would hold ~{bits:.2g} bits for N={sc.N} "
             f"(documented work limit symhx.site_weights.EXACT_TABLE_BITS_LIMIT = "
             f"{EXACT_TABLE_BITS_LIMIT:.2g}); pass the probabilities as floats or mpf for the "
@@ -670,7 +671,7 @@ def ball_weights(sc: SiteClasses, space: Any = SIMPLE, prec: int = 128) -> list[
     """
     N = sc.N
     if N > BALL_TABLE_N_LIMIT:
-        raise ValueError(
+        raise InputError(
             f"weights with site classes tabulate every k; N={show_int(N)} is above the "
             f"documented work limit symhx.site_weights.BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}")
     classes = _class_list(sc)

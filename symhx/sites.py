@@ -34,7 +34,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from symhx.validation import check_int, check_p, is_exact_type, short_value
+from symhx.validation import InputError, check_int, check_p, is_exact_type, short_value
 
 __all__ = ["MAX_SITE_SEQUENCE", "SiteClasses", "as_site_classes", "is_site_input", "show_int"]
 
@@ -139,9 +139,9 @@ class SiteClasses:
         pr = self._sequence(probabilities, "probabilities",
                             "a sequence of one probability per class such as (0.01, '0.02')")
         if not sz:
-            raise ValueError("sizes must hold at least one class, got an empty sequence")
+            raise InputError("sizes must hold at least one class, got an empty sequence")
         if len(pr) != len(sz):
-            raise ValueError(f"probabilities must hold one value per class: sizes has {len(sz)} "
+            raise InputError(f"probabilities must hold one value per class: sizes has {len(sz)} "
                              f"classes, probabilities has {len(pr)} values")
         sizes_t = tuple(check_int(n, f"sizes[{i}]", minimum=1) for i, n in enumerate(sz))
         values = []
@@ -156,15 +156,15 @@ class SiteClasses:
         if names is not None:
             nm = self._sequence(names, "names", "a sequence of one str per class")
             if len(nm) != len(sz):
-                raise ValueError(f"names must hold one str per class: sizes has {len(sz)} "
+                raise InputError(f"names must hold one str per class: sizes has {len(sz)} "
                                  f"classes, names has {len(nm)}")
             for i, x in enumerate(nm):
                 if not isinstance(x, str):
                     raise TypeError(f"names[{i}] must be a str, got {type(x).__name__} {x!r}")
                 if not x.strip():
-                    raise ValueError(f"names[{i}] must be a non-empty str, got {x!r}")
+                    raise InputError(f"names[{i}] must be a non-empty str, got {x!r}")
             if len(set(nm)) != len(nm):
-                raise ValueError(f"names must be distinct, got {tuple(nm)!r}")
+                raise InputError(f"names must be distinct, got {tuple(nm)!r}")
             names_t = tuple(nm)
         flags = tuple(is_exact_type(p) for p in pr)
         object.__setattr__(self, "sizes", sizes_t)
@@ -180,7 +180,7 @@ class SiteClasses:
         if isinstance(x, (str, bytes)) or not hasattr(x, "__iter__") or isinstance(x, dict):
             raise TypeError(f"{name} must be {allowed}, got {type(x).__name__} {x!r}"[:300])
         if isinstance(x, np.ndarray) and x.ndim != 1:
-            raise ValueError(f"{name} must be one-dimensional, got an array of shape {x.shape}")
+            raise InputError(f"{name} must be one-dimensional, got an array of shape {x.shape}")
         return list(x)
 
     # ------------------------------------------------------------------ value semantics
@@ -260,12 +260,12 @@ class SiteClasses:
         """
         size = len(probabilities) if hasattr(probabilities, "__len__") else None
         if size is not None and size > MAX_SITE_SEQUENCE:
-            raise ValueError(f"{name} has {size} entries, more than "
+            raise InputError(f"{name} has {size} entries, more than "
                              f"symhx.sites.MAX_SITE_SEQUENCE = {MAX_SITE_SEQUENCE}; give "
                              f"SiteClasses(sizes, probabilities) instead")
         seq = cls._sequence(probabilities, name, "a sequence of one probability per site")
         if not seq:
-            raise ValueError(f"{name} must hold at least one probability, got an empty sequence")
+            raise InputError(f"{name} must hold at least one probability, got an empty sequence")
         order: dict[Fraction, list[Any]] = {}
         for i, p in enumerate(seq):
             fr, _ = check_p(p, f"{name}[{i}]")
@@ -304,7 +304,7 @@ class SiteClasses:
             label, eq, rest = item.rpartition("=") if "=" in item else ("", "", item)
             size, colon, prob = rest.partition(":")
             if not colon or not size.strip() or not prob.strip() or (eq and not label.strip()):
-                raise ValueError(f"{name} must be size:probability pairs separated by commas, "
+                raise InputError(f"{name} must be size:probability pairs separated by commas, "
                                  f"optionally named (name=size:probability), such as "
                                  f"'2:0.01,99:0.02'; item {i} is {item!r}")
             if size.strip() == "rest":
@@ -315,14 +315,14 @@ class SiteClasses:
             probs.append(prob.strip())
             names.append(label.strip())
         if any(names) and not all(names):
-            raise ValueError(f"{name} must name every class or none, got {text!r}")
+            raise InputError(f"{name} must name every class or none, got {text!r}")
         if None in sizes:
             if sizes.count(None) > 1 or N is None:
-                raise ValueError(f"{name} may hold one size 'rest' (N minus the other sizes) "
+                raise InputError(f"{name} may hold one size 'rest' (N minus the other sizes) "
                                  f"where N is known, got {text!r}")
             left = N - sum(n for n in sizes if n is not None)
             if left < 1:
-                raise ValueError(f"{name}: the size 'rest' would be {show_int(left)} (N = "
+                raise InputError(f"{name}: the size 'rest' would be {show_int(left)} (N = "
                                  f"{show_int(N)} minus the other sizes); it must be >= 1")
             sizes = [left if n is None else n for n in sizes]
         return cls(sizes, probs, names if all(names) else None)
@@ -376,7 +376,7 @@ def as_site_classes(x: Any, N: int, name: str = "p") -> SiteClasses:
     """
     if isinstance(x, SiteClasses):
         if x.N != N:
-            raise ValueError(f"{name} has sizes summing to N = {show_int(x.N)}, but "
+            raise InputError(f"{name} has sizes summing to N = {show_int(x.N)}, but "
                              f"N = {show_int(N)}: the class sizes must add up to N")
         return x
     if not is_site_input(x):
@@ -384,7 +384,7 @@ def as_site_classes(x: Any, N: int, name: str = "p") -> SiteClasses:
                         f"probabilities, got {type(x).__name__} {x!r}"[:300])
     n = len(x)
     if n != N:
-        raise ValueError(f"{name} must hold one probability per site (N = {show_int(N)}), got "
+        raise InputError(f"{name} must hold one probability per site (N = {show_int(N)}), got "
                          f"a sequence of {n}; use symhx.SiteClasses(sizes, probabilities) for "
                          f"classes")
     return SiteClasses.from_sites(x, name)

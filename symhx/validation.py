@@ -3,7 +3,8 @@
 Every public function and every CLI command converts its arguments here, so that one argument
 means the same thing everywhere (API and CLI) and bad input always raises a clear error:
 
-* :class:`ValueError` for a value of the right kind outside what is allowed, and
+* :class:`InputError` (a :class:`ValueError`) for a value of the right kind outside what is
+  allowed, and
   :class:`TypeError` for a wrong kind of object; every message names the argument, shows the
   value and says what is allowed.  Arrays report the first bad index.
 * ``bool`` is never a number (``True`` is rejected wherever an int or a real is expected).
@@ -67,6 +68,7 @@ __all__ = [
     "MAX_DECIMAL_EXPONENT",
     "MAX_DPS",
     "MAX_SAMPLE_SIZE",
+    "InputError",
     "as_fraction",
     "brief_repr",
     "check_N",
@@ -102,6 +104,25 @@ MAX_DECIMAL_EXPONENT = 100_000
 #: exponent that exact value has more than ~10**6 digits, so it is refused (the same guard as
 #: :data:`MAX_DECIMAL_EXPONENT`; ``mpf('1e-100000')`` is well inside).
 MAX_BINARY_EXPONENT = 3_400_000
+
+
+class InputError(ValueError):
+    """A user input that symhx refuses: a value of the right kind outside what is allowed, or
+    beyond a documented work limit.  The message names the argument, shows the value and says
+    what is allowed.
+
+    Every refusal of symhx raises this type (a subclass of :class:`ValueError`, so ``except
+    ValueError`` still catches it); the command line reports it as a usage error (exit code 2)
+    and any other exception as an internal error (exit code 1).  A wrong kind of object is still
+    a plain :class:`TypeError`.
+
+    >>> check_int("2.5", "N")
+    Traceback (most recent call last):
+        ...
+    symhx.validation.InputError: N must be an integer, got '2.5'
+    >>> issubclass(InputError, ValueError)
+    True
+    """
 
 
 def short_value(fr: Fraction) -> str:
@@ -161,7 +182,7 @@ def check_size(size: Any, name: str = "size") -> tuple[int, ...] | None:
     total = math.prod(shape)
     if total > MAX_SAMPLE_SIZE:
         shown = show_exact(total) if len(shape) == 1 else repr(shape)[:80]
-        raise ValueError(f"{name}={shown} asks "
+        raise InputError(f"{name}={shown} asks "
                          f"for {show_exact(total)} draws, beyond the documented limit of "
                          f"{MAX_SAMPLE_SIZE:.0e} draws per call ({name} <= MAX_SAMPLE_SIZE, "
                          f"symhx.validation.MAX_SAMPLE_SIZE); draw in chunks or raise that "
@@ -244,7 +265,7 @@ def _parse_string(text: str, name: str, integer: bool = False) -> Fraction:
     s = text.strip()
     if _BAD_UNDERSCORE.search(s):   # Python's rule: one underscore, between two digits
         kind = "an integer" if integer else "a number"
-        raise ValueError(f"{name} must be {kind}; an underscore may only separate two digits, "
+        raise InputError(f"{name} must be {kind}; an underscore may only separate two digits, "
                          f"got {text!r}")
     s = s.replace("_", "")
     m = _RATIO.match(s)
@@ -252,7 +273,7 @@ def _parse_string(text: str, name: str, integer: bool = False) -> Fraction:
         num, den = int(m.group(1)), int(m.group(2))
         if den == 0:
             kind = "an integer" if integer else "a finite number"
-            raise ValueError(f"{name} must be {kind}, got {text!r} (division by zero)")
+            raise InputError(f"{name} must be {kind}, got {text!r} (division by zero)")
         return Fraction(num, den)
     m = _POWER.match(s)
     if m:
@@ -260,13 +281,13 @@ def _parse_string(text: str, name: str, integer: bool = False) -> Fraction:
         # base**exp >= 2**(exp * (bit_length - 1)): refused before it is computed when that bound
         # is already >= 2**_LIMIT_BITS > 10**(MAX_DECIMAL_EXPONENT + 1); otherwise exactly
         if exp * (base.bit_length() - 1) >= _LIMIT_BITS or base**exp >= _DECIMAL_LIMIT:
-            raise ValueError(_exponent_error(name, text))
+            raise InputError(_exponent_error(name, text))
         return Fraction(base**exp)
     if _DECIMAL.match(s):
         return _decimal_to_fraction(Decimal(s), name, text)
     kind = ("an integer such as 7, 10**100 or '1e100'" if integer
             else "a number such as 0.02, 2e-2, 1/50 or 10**100")
-    raise ValueError(f"{name} must be {kind}, got {text!r}")
+    raise InputError(f"{name} must be {kind}, got {text!r}")
 
 
 def _exponent_error(name: str, shown: Any) -> str:
@@ -277,7 +298,7 @@ def _exponent_error(name: str, shown: Any) -> str:
 def _decimal_to_fraction(dec: Decimal, name: str, shown: Any) -> Fraction:
     """The exact value of a finite Decimal whose decimal exponent is within the cap."""
     if dec and abs(dec.adjusted()) > MAX_DECIMAL_EXPONENT:
-        raise ValueError(_exponent_error(name, shown))
+        raise InputError(_exponent_error(name, shown))
     return Fraction(dec)
 
 
@@ -285,7 +306,7 @@ def _mpf_tuple_to_fraction(t: tuple, name: str, shown: Any) -> Fraction:
     """The exact value of a finite mpf tuple ``(sign, man, exp, bc)`` within the binary cap."""
     sign, man, exp, bc = t
     if man and abs(exp + bc) > MAX_BINARY_EXPONENT:
-        raise ValueError(f"{name}={shown} is beyond the exact-conversion range "
+        raise InputError(f"{name}={shown} is beyond the exact-conversion range "
                          f"2**+-{MAX_BINARY_EXPONENT} (symhx.validation.MAX_BINARY_EXPONENT)")
     return _binary_fraction(sign, man, exp)
 
@@ -314,16 +335,16 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
         return _parse_string(x, name)
     if isinstance(x, float):
         if not math.isfinite(x):
-            raise ValueError(f"{name} must be finite, got {x!r}")
+            raise InputError(f"{name} must be finite, got {x!r}")
         return Fraction(x)
     if isinstance(x, Decimal):
         if not x.is_finite():
-            raise ValueError(f"{name} must be finite, got {x!r}")
+            raise InputError(f"{name} must be finite, got {x!r}")
         return _decimal_to_fraction(x, name, x)
     if is_mpf(x):  # an mpf of any context (global, or a thread's private one)
         t = x._mpf_
         if not t[1] and t != libmp.fzero:  # inf, -inf, nan
-            raise ValueError(f"{name} must be finite, got {x!r}")
+            raise InputError(f"{name} must be finite, got {x!r}")
         return _mpf_tuple_to_fraction(t, name, libmp.to_str(t, 5))
     if _sympy_number(x):
         if _sympy_is(x, "is_Rational"):
@@ -332,7 +353,7 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
             return _mpf_tuple_to_fraction(x._mpf_, name, x)
         if _sympy_is(x, "is_number") and (x.is_infinite or type(x).__name__ == "NaN"):
             # oo, -oo, zoo and nan: the value is the problem, as for a float inf or nan
-            raise ValueError(f"{name} must be finite, got {x!r}")
+            raise InputError(f"{name} must be finite, got {x!r}")
         if _sympy_is(x, "is_number") and x.is_real and x.is_finite:
             return None
         raise TypeError(f"{name} must be a finite real number, got sympy object {x!r}")
@@ -340,7 +361,7 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
         return Fraction(int(x))
     if isinstance(x, np.floating):  # float16 ... longdouble: the exact value, not float(x)
         if not np.isfinite(x):
-            raise ValueError(f"{name} must be finite, got {x!r}")
+            raise InputError(f"{name} must be finite, got {x!r}")
         return Fraction(*x.as_integer_ratio())
     if isinstance(x, np.ndarray) and x.ndim == 0:
         return to_rational(x[()], name)
@@ -385,7 +406,7 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
     fr = to_rational(p, name)
     if fr is not None:
         if fr <= 0:
-            raise ValueError(f"{name} must be > 0, got {brief_repr(p)}")
+            raise InputError(f"{name} must be > 0, got {brief_repr(p)}")
         return fr, p
     # the sign, proved on a rigorous Arb ball of the expression with rising precision (sympy's
     # evalf runs special functions in mpmath's global, process-wide context, and plain evalf
@@ -395,13 +416,15 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
     try:
         sign = real_sign(p, max_bits=IRRATIONAL_SIGN_BITS)
     except UndecidedError:
-        raise ValueError(f"{name} must be > 0, got {brief_repr(p)} (its sign cannot be decided "
+        raise InputError(f"{name} must be > 0, got {brief_repr(p)} (its sign cannot be decided "
                          f"numerically: simplify it)") from None
     except TypeError as exc:
         raise TypeError(f"{name} must be a real number symhx can enclose rigorously, got "
                         f"sympy object {p!r}: {exc}") from None
+    except ValueError as exc:  # not real or not finite (I, oo, a complex power)
+        raise InputError(f"{name} must be a finite real number > 0, got {p!r} ({exc})") from None
     if sign <= 0:
-        raise ValueError(f"{name} must be > 0, got {brief_repr(p)}")
+        raise InputError(f"{name} must be > 0, got {brief_repr(p)}")
     return None, p
 
 
@@ -414,10 +437,10 @@ def check_real(x: Any, name: str, *, low: float | None = None, high: float | Non
         raise TypeError(f"{name} must be a rational or float number, got {_show(x)}")
     if low is not None and (fr < Fraction(low) or (low_open and fr == Fraction(low))):
         rel = ">" if low_open else ">="
-        raise ValueError(f"{name} must be {rel} {brief_repr(low)}, got {brief_repr(x)}")
+        raise InputError(f"{name} must be {rel} {brief_repr(low)}, got {brief_repr(x)}")
     if high is not None and (fr > Fraction(high) or (high_open and fr == Fraction(high))):
         rel = "<" if high_open else "<="
-        raise ValueError(f"{name} must be {rel} {brief_repr(high)}, got {brief_repr(x)}")
+        raise InputError(f"{name} must be {rel} {brief_repr(high)}, got {brief_repr(x)}")
     return fr
 
 
@@ -431,13 +454,13 @@ def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | N
     if isinstance(x, str):
         fr = _parse_string(x, name, integer=True)
         if fr.denominator != 1:
-            raise ValueError(f"{name} must be an integer, got {x!r}")
+            raise InputError(f"{name} must be an integer, got {x!r}")
         v = fr.numerator
     elif isinstance(x, Fraction) or _sympy_is(x, "is_Rational"):
         # a non-integral rational is a value of the right kind out of range: ValueError
         fr = Fraction(x)  # sympy's Rational is a numbers.Rational
         if fr.denominator != 1:
-            raise ValueError(f"{name} must be an integer, got {x!r}")
+            raise InputError(f"{name} must be an integer, got {x!r}")
         v = fr.numerator
     else:
         try:
@@ -449,9 +472,9 @@ def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | N
                     f"write e.g. 10**100 or the string '1e100')") from None
             raise TypeError(f"{name} must be an integer, got {_show(x)}") from None
     if minimum is not None and v < minimum:
-        raise ValueError(f"{name} must be >= {brief_repr(minimum)}, got {brief_repr(v)}")
+        raise InputError(f"{name} must be >= {brief_repr(minimum)}, got {brief_repr(v)}")
     if maximum is not None and v > maximum:
-        raise ValueError(f"{name} must be <= {brief_repr(maximum)}, got {brief_repr(v)}")
+        raise InputError(f"{name} must be <= {brief_repr(maximum)}, got {brief_repr(v)}")
     return v
 
 
@@ -477,7 +500,7 @@ def check_dps(dps: Any, *, allow_none: bool = False, name: str = "dps") -> int |
     except TypeError:
         raise TypeError(f"{name} must be {allowed}, got {_show(dps)}") from None
     if not 1 <= d <= MAX_DPS:
-        raise ValueError(f"{name} must be {allowed}, got {brief_repr(d)} "
+        raise InputError(f"{name} must be {allowed}, got {brief_repr(d)} "
                          f"(the cap is symhx.validation.MAX_DPS)")
     return d
 
@@ -500,7 +523,7 @@ def check_choice(x: Any, name: str, allowed: Iterable[Any]) -> Any:
                 return o
         except Exception:  # pragma: no cover - objects whose == raises
             continue
-    raise ValueError(f"{name} must be one of {options}, got {x!r}")
+    raise InputError(f"{name} must be one of {options}, got {x!r}")
 
 
 # --------------------------------------------------------------------------- float arrays
@@ -538,7 +561,7 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
             return float(fr)
         except OverflowError:
             if finite:
-                raise ValueError(f"{name} must be within the float64 range (magnitude below "
+                raise InputError(f"{name} must be within the float64 range (magnitude below "
                                  f"1.8e308), got {_show(val)}{at(idx)}") from None
             return math.inf if fr > 0 else -math.inf
 
@@ -549,18 +572,18 @@ def check_array(x: Any, name: str, *, positive: bool = False, nonnegative: bool 
                           dtype=np.float64).reshape(arr.shape)
     arr = np.asarray(arr, dtype=np.float64)  # no copy of a float64 array
     if arr.size == 0 and not allow_empty:
-        raise ValueError(f"{name} is empty: give at least one value")
+        raise InputError(f"{name} is empty: give at least one value")
 
     def first_bad(mask: np.ndarray) -> str:
         idx = np.argwhere(mask)[0]
         return f"{float(arr[tuple(idx)])!r}{at(idx)}"
 
     if finite and not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {first_bad(~np.isfinite(arr))}")
+        raise InputError(f"{name} must be finite, got {first_bad(~np.isfinite(arr))}")
     if np.any(np.isnan(arr)):
-        raise ValueError(f"{name} must not be NaN, got {first_bad(np.isnan(arr))}")
+        raise InputError(f"{name} must not be NaN, got {first_bad(np.isnan(arr))}")
     if positive and not np.all(arr > 0):
-        raise ValueError(f"{name} must be > 0, got {first_bad(~(arr > 0))}")
+        raise InputError(f"{name} must be > 0, got {first_bad(~(arr > 0))}")
     if nonnegative and not np.all(arr >= 0):
-        raise ValueError(f"{name} must be >= 0, got {first_bad(~(arr >= 0))}")
+        raise InputError(f"{name} must be >= 0, got {first_bad(~(arr >= 0))}")
     return arr

@@ -14,10 +14,12 @@ strict JSON output, and the display of exact and mpmath values.
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import math
 from collections.abc import Callable
 from fractions import Fraction
+from pathlib import Path
 from typing import Any
 
 import mpmath
@@ -25,6 +27,11 @@ from mpmath import libmp
 
 from symhx import validation as V
 from symhx._mpctx import export, is_mpf, local, mp
+
+#: help texts of the options shared by the sub-commands
+N_HELP = "number of vertices N = pipes + 1 (exact integer: 101, 1e100 or 10**100)"
+P_HELP = "impact probability p > 0, exact: 0.02, 2e-2 and 1/50 are all exactly 1/50"
+DPS_HELP = "significant decimal digits of the results"
 
 #: integers with more digits than this are shown as ``d.ddd...e+NN (D digits)`` in text output
 MAX_INT_DIGITS_SHOWN = 60
@@ -35,7 +42,7 @@ def _arg_type(fn: Callable[[str], Any], what: str) -> Callable[[str], Any]:
     def convert(text: str) -> Any:
         try:
             return fn(text)
-        except (ValueError, TypeError, OverflowError) as exc:
+        except V.InputError as exc:  # anything else is a bug: argparse reports it as invalid
             raise argparse.ArgumentTypeError(str(exc)) from None
 
     convert.__name__ = what  # argparse names the type in some messages
@@ -49,9 +56,9 @@ def int_arg(name: str, minimum: int | None = None, maximum: int | None = None
     def conv(text: str) -> int:
         v = V.check_int(text, name)
         if minimum is not None and v < minimum:
-            raise ValueError(f"{name} must be >= {int_show(minimum)}, got {int_show(v)}")
+            raise V.InputError(f"{name} must be >= {int_show(minimum)}, got {int_show(v)}")
         if maximum is not None and v > maximum:
-            raise ValueError(f"{name} must be <= {int_show(maximum)}, got {int_show(v)}")
+            raise V.InputError(f"{name} must be <= {int_show(maximum)}, got {int_show(v)}")
         return v
 
     return _arg_type(conv, name)
@@ -64,7 +71,7 @@ def rational_arg(name: str, positive: bool = True) -> Callable[[str], Fraction]:
         fr = V.to_rational(text, name)
         assert fr is not None  # strings are always rational
         if positive and fr <= 0:
-            raise ValueError(f"{name} must be > 0, got {text!r}")
+            raise V.InputError(f"{name} must be > 0, got {text!r}")
         return fr
 
     return _arg_type(conv, name)
@@ -118,8 +125,38 @@ def dps_arg(text: str) -> int:
     """argparse ``type=`` for ``--dps`` (:func:`symhx.validation.check_dps`)."""
     try:
         return V.check_dps(V.check_int(text, "dps"))
-    except (ValueError, TypeError) as exc:
+    except V.InputError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def add_dps(parser: Any, default: int | None = V.DEFAULT_DPS, help_text: str = DPS_HELP) -> None:
+    """The ``--dps`` option (validated by :func:`symhx.validation.check_dps`)."""
+    parser.add_argument("--dps", type=dps_arg, default=default, metavar="DPS", help=help_text)
+
+
+def add_json(parser: Any) -> None:
+    parser.add_argument("--json", action="store_true",
+                        help="print strict JSON instead of text (no NaN/Infinity; big numbers "
+                        "as decimal strings)")
+
+
+def rational_show(fr: Fraction) -> str:
+    """A rational argument as the user would type it: a plain decimal when it has one of at most
+    30 digits, else ``a/b``.
+
+    >>> rational_show(Fraction(1, 200)), rational_show(Fraction(3)), rational_show(Fraction(1, 3))
+    ('0.005', '3', '1/3')
+    """
+    d = fr.denominator
+    twos, fives = (d & -d).bit_length() - 1, 0
+    while d % 5 ** (fives + 1) == 0:
+        fives += 1
+    if d != 2**twos * 5**fives or max(twos, fives) > 30:
+        return f"{fr.numerator}/{fr.denominator}"
+    places = max(twos, fives)
+    digits = str(abs(fr.numerator) * 10**places // fr.denominator).rjust(places + 1, "0")
+    whole, frac = digits[:len(digits) - places], digits[len(digits) - places:]
+    return ("-" if fr < 0 else "") + whole + ("." + frac if places else "")
 
 
 # --------------------------------------------------------------------------- JSON
@@ -314,3 +351,12 @@ def csv_num(x: Any) -> Any:
     if isinstance(x, float):
         return f"{x:.17g}"
     return x
+
+
+def write_csv(path: Path, header: list[str], rows: list[list[Any]]) -> None:
+    """A CSV with a header; numbers as 17-significant-digit floats (:func:`csv_num`)."""
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(header)
+        for row in rows:
+            w.writerow([csv_num(v) for v in row])

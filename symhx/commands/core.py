@@ -4,7 +4,6 @@ core part of ``symhx paper`` (which also drives every other section, see :func:`
 from __future__ import annotations
 
 import argparse
-import csv
 import json
 import sys
 import time
@@ -14,9 +13,11 @@ from typing import Any
 
 from symhx._mpctx import export, mp
 from symhx.commands._common import (
+    N_HELP,
+    P_HELP,
     SITES_HELP,
-    csv_num,
-    dps_arg,
+    add_dps,
+    add_json,
     dump_json,
     int_arg,
     int_show,
@@ -26,8 +27,9 @@ from symhx.commands._common import (
     sites_for,
     sites_json,
     sites_show,
+    write_csv,
 )
-from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE
+from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, InputError
 
 ORDER = 10
 
@@ -43,33 +45,6 @@ MAX_PHI_TABLE_N = 2000
 #: ``distribution N p --table`` (one row P(X = k) per k = 1..N) is refused above this N, before
 #: any work (a row limit: N = 10**4 rows print in ~1 s; a huge N would run for ever)
 MAX_PMF_TABLE_N = 10_000
-
-N_HELP = "number of vertices N = pipes + 1 (exact integer: 101, 1e100 or 10**100)"
-P_HELP = "impact probability p > 0, exact: 0.02, 2e-2 and 1/50 are all exactly 1/50"
-DPS_HELP = "significant decimal digits of the results"
-
-
-def parse_int(text: str) -> int:
-    """An exact integer argument (``101``, ``1e100``, ``10**100``) through
-    :func:`symhx.validation.check_int` (for other command modules; prefer :func:`int_arg`)."""
-    return int_arg("N")(text)
-
-
-def parse_p(text: str) -> Fraction:
-    """An exact positive rational argument through :func:`symhx.validation.to_rational`."""
-    return rational_arg("p")(text)
-
-
-def add_dps(parser: Any, default: int | None = DEFAULT_DPS, help_text: str = DPS_HELP) -> None:
-    """The ``--dps`` option (validated by :func:`symhx.validation.check_dps`)."""
-    parser.add_argument("--dps", type=dps_arg, default=default, metavar="DPS", help=help_text)
-
-
-def add_json(parser: Any) -> None:
-    parser.add_argument("--json", action="store_true",
-                        help="print strict JSON instead of text (no NaN/Infinity; big numbers "
-                        "as decimal strings)")
-
 
 def register(sub: Any) -> None:
     c = sub.add_parser("critical", help="critical point p_c, the jump of the mode and p_d "
@@ -181,13 +156,13 @@ def p_or_sites(args: argparse.Namespace) -> tuple[Any, Any]:
     """``(p, sites)`` of a command taking ``p`` or ``--sites`` (exactly one of them); with
     ``--float`` as mpf of ``--dps`` + 10 digits."""
     if args.sites is not None and args.p is not None:
-        raise ValueError(f"give either p or --sites, not both (got p = {args.p} and --sites "
+        raise InputError(f"give either p or --sites, not both (got p = {args.p} and --sites "
                          f"{args.sites})")
     if args.sites is not None:
         sites = sites_for(args.sites, args.N)
         return (sites_for(sites, args.N, args.dps) if args.float else sites), sites
     if args.p is None:
-        raise ValueError("p is missing: give an impact probability p (e.g. 0.02) or --sites "
+        raise InputError("p is missing: give an impact probability p (e.g. 0.02) or --sites "
                          "size:probability pairs (e.g. 2:0.01,99:0.02)")
     p: Any = args.p
     if args.float:
@@ -201,7 +176,7 @@ def cmd_distribution(args: argparse.Namespace) -> int:
     from symhx.api import distribution_of
 
     if args.table and args.N > MAX_PMF_TABLE_N:
-        raise ValueError(f"--table lists one row per k: N={int_show(args.N)} is beyond the "
+        raise InputError(f"--table lists one row per k: N={int_show(args.N)} is beyond the "
                          f"documented row limit N <= {MAX_PMF_TABLE_N} "
                          f"(symhx.commands.core.MAX_PMF_TABLE_N); omit --table")
     p, sites = p_or_sites(args)
@@ -240,7 +215,7 @@ def cmd_circuits(args: argparse.Namespace) -> int:
         try:
             visits = tuple(int(v) for v in args.visits.split(","))
         except ValueError:
-            raise ValueError(f"--visits must be comma-separated positive integers such as "
+            raise InputError(f"--visits must be comma-separated positive integers such as "
                              f"2,1,1, got {args.visits!r}") from None
         count = C.circuit_count(args.N, visits)
         if args.json:
@@ -266,7 +241,7 @@ def cmd_circuits(args: argparse.Namespace) -> int:
         print(f"  {'total':<30s} {int_show(total)}")
         return 0
     if args.N > MAX_PHI_TABLE_N:
-        raise ValueError(f"the table of phi_N(k) is for N <= {MAX_PHI_TABLE_N} "
+        raise InputError(f"the table of phi_N(k) is for N <= {MAX_PHI_TABLE_N} "
                          f"(got N = {int_show(args.N)}); use --visits 1,1,... for one k")
     phi = {k: C.phi(args.N, k) for k in range(1, args.N + 1)}
     total = C.total_simple_circuits(args.N)
@@ -299,15 +274,6 @@ def cmd_mode_path(args: argparse.Namespace) -> int:
 
 
 # --------------------------------------------------------------------------- paper
-def write_csv(path: Path, header: list[str], rows: list[list[Any]]) -> None:
-    """A CSV with a header; numbers as 17-significant-digit floats (:func:`csv_num`)."""
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(header)
-        for row in rows:
-            w.writerow([csv_num(v) for v in row])
-
-
 def paper(out: Path, full: bool) -> list[str]:
     """Core numbers: p_d, p_c, the jump and the mode path for N = 101; a table over N;
     figures 1-6. JSON files at full precision, CSV files with 17-digit floats."""

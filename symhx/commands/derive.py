@@ -11,8 +11,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from symhx.commands._common import dump_json, int_arg, int_show, mpstr
-from symhx.commands.core import add_dps, add_json, write_csv
+from symhx.commands._common import add_dps, add_json, dump_json, int_arg, int_show, mpstr, write_csv
+from symhx.validation import InputError
 
 ORDER = 30
 
@@ -58,10 +58,10 @@ def cmd_derive(args: argparse.Namespace) -> int:
     elif args.labels:
         unknown = [lab for lab in args.labels if lab not in cat]
         if unknown:
-            raise ValueError(f"unknown label(s) {', '.join(unknown)}; try 'symhx derive --list'")
+            raise InputError(f"unknown label(s) {', '.join(unknown)}; try 'symhx derive --list'")
         chosen = list(args.labels)
     else:
-        raise ValueError("give equation labels (e.g. 16) or --all; 'symhx derive --list' lists")
+        raise InputError("give equation labels (e.g. 16) or --all; 'symhx derive --list' lists")
 
     if args.json:
         out = [derivation(lab).as_dict(verify=args.verify) for lab in chosen]
@@ -100,7 +100,7 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
     orders = ORDERS if args.order == "all" else (args.order,)
     for o in orders:
         if o not in ORDERS:
-            raise ValueError(f"--order must be one of {', '.join(ORDERS)} or all, got {o!r}")
+            raise InputError(f"--order must be one of {', '.join(ORDERS)} or all, got {o!r}")
     if args.table:
         rows = error_table(dps=max(args.dps, 120), orders=orders)
         if args.json:
@@ -112,7 +112,7 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
             print(format_error_table(rows))
         return 0
     if args.N is None:
-        raise ValueError("give N (e.g. 1e10) or --table")
+        raise InputError("give N (e.g. 1e10) or --table")
     res = [asymptotic_critical_point(args.N, order=o, dps=args.dps) for o in orders]
     exact = None
     if args.exact:

@@ -15,6 +15,7 @@ import numpy as np
 
 from symhx._mpctx import export, local, mp
 from symhx.commands._common import jsonable, mpstr
+from symhx.validation import InputError
 
 ORDER = 40
 
@@ -23,7 +24,7 @@ def _omega_arg(text: str) -> Any:
     """``1.5`` -> one component; ``1.5,2.5`` -> several components (eq. 22)."""
     parts = [t.strip() for t in text.split(",") if t.strip()]
     if not parts:
-        raise ValueError(f"expected a number or a comma separated list, got {text!r}")
+        raise InputError(f"expected a number or a comma separated list, got {text!r}")
     return parts if len(parts) > 1 else parts[0]
 
 
@@ -68,13 +69,13 @@ def _values(args: argparse.Namespace) -> list[Any]:
         try:
             a, b, n = float(args.grid[0]), float(args.grid[1]), int(args.grid[2])
         except ValueError:
-            raise ValueError(f"--grid: need START STOP NUM numbers, got {args.grid}") from None
+            raise InputError(f"--grid: need START STOP NUM numbers, got {args.grid}") from None
         if not (0 < a < math.inf and 0 < b < math.inf and 1 <= n <= 100_000):
-            raise ValueError("--grid: need 0 < START, STOP < inf and 1 <= NUM <= 100000, got "
+            raise InputError("--grid: need 0 < START, STOP < inf and 1 <= NUM <= 100000, got "
                              f"{args.grid}")
         vals += [float(v) for v in np.logspace(math.log10(a), math.log10(b), n)]
     if not vals:
-        raise ValueError("give sigma values or --grid START STOP NUM")
+        raise InputError("give sigma values or --grid START STOP NUM")
     return vals
 
 
@@ -88,7 +89,7 @@ def _kwargs(args: argparse.Namespace) -> dict[str, Any]:
 
 def _omega_scalar(name: str, text: str) -> str:
     if "," in text:
-        raise ValueError(f"{name} takes one number, got {text!r}")
+        raise InputError(f"{name} takes one number, got {text!r}")
     return text.strip()
 
 
@@ -154,7 +155,7 @@ def cmd_p_sigma(args: argparse.Namespace) -> int:
         try:
             fh = open(args.csv, "w", newline="")
         except OSError as exc:
-            raise ValueError(f"--csv: cannot write {str(args.csv)!r}: {exc.strerror}") from None
+            raise InputError(f"--csv: cannot write {str(args.csv)!r}: {exc.strerror}") from None
         with fh:
             w = csv.writer(fh)
             w.writerow(list(rows[0]))

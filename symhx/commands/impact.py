@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from symhx.commands._common import dump_json
+from symhx.validation import InputError
 
 ORDER = 50
 
@@ -151,7 +152,7 @@ def cmd_ensemble(args: argparse.Namespace) -> int:
     from symhx.impact import ensemble
 
     if args.workers < 1:
-        raise ValueError(f"--workers must be >= 1, got {args.workers}")
+        raise InputError(f"--workers must be >= 1, got {args.workers}")
     sigmas = PAPER_SIGMAS if args.paper else args.sigmas
     runs = PAPER_RUNS if args.paper else args.runs
     with executor_for(args.workers, args.scheduler) as ex:

@@ -5,31 +5,31 @@
 from __future__ import annotations
 
 import argparse
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 from symhx.commands._common import (
+    N_HELP,
+    P_HELP,
     SITES_HELP,
+    add_dps,
+    add_json,
     dump_json,
     int_arg,
     int_show,
     mpstr,
     rational_arg,
+    rational_show,
     sites_arg,
     sites_json,
     sites_show,
-)
-from symhx.commands.core import (
-    DPS_HELP,
-    N_HELP,
-    P_HELP,
-    add_dps,
-    add_json,
-    p_or_sites,
     write_csv,
 )
+from symhx.commands.core import p_or_sites
 from symhx.spaces import MAX_EXCESS, MAX_SPACE_WORK
 from symhx.spaces.study import STUDY_N_LIMIT
+from symhx.validation import InputError
 
 ORDER = 60
 
@@ -70,10 +70,10 @@ def register(sub: Any) -> None:
     c.add_argument("--max-m", type=int_arg("--max-m", minimum=0, maximum=MAX_EXCESS), default=6,
                    help=f"largest excess m of the truncated spaces (at most {MAX_EXCESS}, "
                    "a work limit)")
-    c.add_argument("--p", action="append", default=None, type=str,
-                   help="a p value (exact decimal; repeatable; default: the paper's figure "
-                   "values)")
-    add_dps(c, default=20, help_text=DPS_HELP)
+    c.add_argument("--p", action="append", default=None, type=rational_arg("--p"),
+                   help=P_HELP + " (repeatable; default: the paper's figure values "
+                   "0.005, 0.01, 0.015, 0.04, 0.05)")
+    add_dps(c)
     add_json(c)
     c.set_defaults(func=cmd_convergence)
 
@@ -83,7 +83,7 @@ def _spaces_sites(args: argparse.Namespace) -> int:
     from symhx.api import distribution_of
 
     if args.classes:
-        raise ValueError("--classes (the probability of each class of the space) is not "
+        raise InputError("--classes (the probability of each class of the space) is not "
                          "available with --sites; drop one of them")
     p, sites = p_or_sites(args)
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
@@ -141,18 +141,16 @@ def cmd_spaces(args: argparse.Namespace) -> int:
     return 0
 
 
-def _convergence_rows(N: int, max_m: int, ps: list[str] | None, dps: int) -> list[dict]:
+def _convergence_rows(N: int, max_m: int, ps: list[Fraction] | None, dps: int) -> list[dict]:
+    """The study's rows as dicts; ``means`` keyed by each p as typed (``"0.005"``, ``"1/3"``)."""
     from symhx.spaces import DEFAULT_PS, convergence_study
 
-    rows = convergence_study(N, ms=range(0, max_m + 1), ps=ps or DEFAULT_PS, dps=dps)
+    texts = [rational_show(p) for p in ps] if ps else DEFAULT_PS  # exact strings, exact values
+    rows = convergence_study(N, ms=range(0, max_m + 1), ps=texts, dps=dps)
     return [r.as_dict() for r in rows]
 
 
 def cmd_convergence(args: argparse.Namespace) -> int:
-    from symhx.validation import check_p
-
-    for p in args.p or []:
-        check_p(p, "--p")
     rows = _convergence_rows(args.N, args.max_m, args.p, args.dps)
     if args.json:
         print(dump_json({"N": args.N, "rows": rows}, args.dps))

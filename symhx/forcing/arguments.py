@@ -28,7 +28,7 @@ import numpy as np
 
 from symhx._mpctx import export, is_mpf
 from symhx._mpctx import mp as thread_mp
-from symhx.validation import brief_repr, check_array, check_dps, to_rational
+from symhx.validation import InputError, brief_repr, check_array, check_dps, to_rational
 
 __all__ = [
     "IRRATIONAL_EXTRA_DIGITS",
@@ -115,7 +115,7 @@ def rational_arg(name: str, value: Any, digits: int = 40) -> Fraction:
     if fr is None:  # a real sympy irrational such as sqrt(2)
         fr = Fraction(str(value.evalf(digits)))
     if not fr > 0:
-        raise ValueError(f"{name} must be > 0, got {brief_repr(value)}")
+        raise InputError(f"{name} must be > 0, got {brief_repr(value)}")
     return fr
 
 
@@ -129,11 +129,11 @@ def float_arg(name: str, value: Any, *, positive: bool = True) -> np.ndarray:
         arr = value.astype(np.float64, copy=False)
         fin = np.isfinite(arr)
         if not fin.all():
-            raise ValueError(f"{name} must be finite, got {float(arr[~fin].flat[0])!r}"
+            raise InputError(f"{name} must be finite, got {float(arr[~fin].flat[0])!r}"
                              f"{bad_index(arr, ~fin)}")
         if positive and not (arr > 0).all():
             bad = ~(arr > 0)
-            raise ValueError(f"{name} must be > 0, got {float(arr[bad].flat[0])!r}"
+            raise InputError(f"{name} must be > 0, got {float(arr[bad].flat[0])!r}"
                              f"{bad_index(arr, bad)}")
         return arr
     if is_array(value):
@@ -144,10 +144,10 @@ def float_arg(name: str, value: Any, *, positive: bool = True) -> np.ndarray:
     try:
         x = float(fr)
     except OverflowError:
-        raise ValueError(f"{name} = {brief_repr(value)} is outside the float64 range; "
+        raise InputError(f"{name} = {brief_repr(value)} is outside the float64 range; "
                          f"use dps=") from None
     if fr != 0 and x == 0.0:
-        raise ValueError(f"{name} = {brief_repr(value)} underflows float64; use dps=")
+        raise InputError(f"{name} = {brief_repr(value)} underflows float64; use dps=")
     return np.asarray(x)
 
 
@@ -206,7 +206,7 @@ class ForcingParams:
             Omega = Omega[0]
             if is_components(sigma1):
                 if len(sigma1) != 1:
-                    raise ValueError(
+                    raise InputError(
                         f"sigma1: {len(sigma1)} values for 1 forcing component (Omega)")
                 sigma1 = sigma1[0]
         exact = dps is not None
@@ -215,7 +215,7 @@ class ForcingParams:
             if v is None:
                 raise TypeError(f"{name} must be a real number, got None")
         if isinstance(Omega, np.ndarray) and Omega.size == 0:
-            raise ValueError("Omega: an empty array of forcing frequencies (give a scalar, a "
+            raise InputError("Omega: an empty array of forcing frequencies (give a scalar, a "
                              "list of components or None for the paper's sqrt(2))")
 
         digits = (dps or 0) + IRRATIONAL_EXTRA_DIGITS  # for sympy irrational inputs
@@ -230,9 +230,9 @@ class ForcingParams:
 
         if is_components(Omega):
             if not Omega:
-                raise ValueError("Omega: an empty list of forcing components")
+                raise InputError("Omega: an empty list of forcing components")
             if len(Omega) + 1 > MAX_SCALES:
-                raise ValueError(f"Omega: {len(Omega)} forcing components, more than "
+                raise InputError(f"Omega: {len(Omega)} forcing components, more than "
                                  f"MAX_SCALES - 1 = {MAX_SCALES - 1} (a sum of at most "
                                  f"MAX_SCALES = {MAX_SCALES} Rayleigh amplitudes, eq. 22)")
             if any(is_array(o) for o in Omega):
@@ -240,7 +240,7 @@ class ForcingParams:
             om_t = tuple(conv(f"Omega[{i}]", o) for i, o in enumerate(Omega))
             if is_components(sigma1):
                 if len(sigma1) != len(Omega):
-                    raise ValueError(f"sigma1: {len(sigma1)} values for {len(Omega)} forcing "
+                    raise InputError(f"sigma1: {len(sigma1)} values for {len(Omega)} forcing "
                                      "components (Omega)")
                 s1 = tuple(conv(f"sigma1[{i}]", s) for i, s in enumerate(sigma1))
             else:
@@ -296,5 +296,5 @@ def elementwise(fp: ForcingParams, fn: Callable[[ForcingParams], Any], dtype: An
         try:
             out[idx] = fn(one)
         except ValueError as exc:
-            raise ValueError(f"{exc} at index {idx if len(idx) > 1 else idx[0]}") from None
+            raise type(exc)(f"{exc} at index {idx if len(idx) > 1 else idx[0]}") from None
     return out

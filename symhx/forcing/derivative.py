@@ -13,7 +13,7 @@ from symhx.forcing.kernels_float import UV, i2_float, i3_float, uv_forcing
 from symhx.forcing.kernels_mp import estimate, guard_digits, mp_i2, mp_i3, mp_xy_forcing
 from symhx.forcing.probability import with_params_doc
 from symhx.forcing.rayleigh import RayleighSum, scales_of
-from symhx.validation import check_dps
+from symhx.validation import InputError, check_dps
 
 __all__ = ["dp_dsigma"]
 
@@ -84,7 +84,7 @@ def _dp_mp(fp: ForcingParams, dps: int) -> mpmath.mpf:
 
 def _dp_multi(fp: ForcingParams, dps: int | None) -> Any:
     if fp.sigma1 is not None:
-        raise ValueError(
+        raise InputError(
             "sigma1: dp_dsigma with several components supports only sigma1=None "
             "(all sigma_i = sigma)"
         )

@@ -14,7 +14,7 @@ import numpy as np
 from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import ForcingParams, exported, float_arg, is_array, mpf_of
 from symhx.forcing.probability import evaluate, impact_probability
-from symhx.validation import check_dps, to_rational
+from symhx.validation import InputError, check_dps, to_rational
 
 __all__ = ["sigma_for_impact_probability"]
 
@@ -28,7 +28,7 @@ def _target(p: Any, digits: int) -> Fraction:
         if fr > Fraction(1, 2):
             fr = 1 - Fraction(str((1 - p).evalf(digits)))
     if not 0 < fr < 1:
-        raise ValueError(f"p must be in (0, 1), got {p!r}")
+        raise InputError(f"p must be in (0, 1), got {p!r}")
     return fr
 
 
@@ -89,14 +89,14 @@ def sigma_for_impact_probability(
             if bad.any():
                 idx = tuple(int(j) for j in np.argwhere(bad)[0])
                 where = idx[0] if len(idx) == 1 else idx
-                raise ValueError(f"p must be in (0, 1), got {float(pa[idx])!r} at index {where}")
+                raise InputError(f"p must be in (0, 1), got {float(pa[idx])!r} at index {where}")
             out = np.empty(pa.shape)
             for idx in np.ndindex(pa.shape):
                 out[idx] = _inverse_float(float(pa[idx]), fp)
             return out
         pf = float(_target(p, 40))
         if not 0.0 < pf < 1.0:
-            raise ValueError(f"p = {p!r} rounds to {pf} in float64; use dps=")
+            raise InputError(f"p = {p!r} rounds to {pf} in float64; use dps=")
         return _inverse_float(pf, fp)
 
     def one(pv: Any) -> mpmath.mpf:
@@ -109,7 +109,7 @@ def sigma_for_impact_probability(
             try:
                 out[idx] = one(pa[idx])
             except ValueError as exc:
-                raise ValueError(f"{exc} at index {idx if len(idx) > 1 else idx[0]}") from None
+                raise type(exc)(f"{exc} at index {idx if len(idx) > 1 else idx[0]}") from None
         return out
     return one(p)
 
@@ -163,7 +163,7 @@ def _inverse_float(p: float, fp: ForcingParams) -> float:
     f = _inverse_objective(p, fp)
     br = _bracket(f, math.log(float(fp.d)), 12, _FLOAT_LS)
     if br is None:
-        raise ValueError(f"p = {p!r} is not reachable for these parameters (sigma1 fixed?)")
+        raise InputError(f"p = {p!r} is not reachable for these parameters (sigma1 fixed?)")
     ls = brentq(f, br[0], br[1], xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
     return math.exp(ls)
 
@@ -194,7 +194,7 @@ def _inverse_mp(exact: Fraction, fp: ForcingParams, dps: int) -> mpmath.mpf:
         if s0 is None:  # far outside float64: bracket, then bisect in ln(sigma)
             br = _bracket(f, thread_mp().log(mpf_of(fp.d)), 15)  # |ln(sigma/d)| < 2**15
             if br is None:
-                raise ValueError(f"{'1 - p' if upper else 'p'} = {thread_mp().nstr(tail, 10)} is "
+                raise InputError(f"{'1 - p' if upper else 'p'} = {thread_mp().nstr(tail, 10)} is "
                                  "not reachable for these parameters (no root with "
                                  "|ln(sigma/d)| < 32767)")
             lo, hi = br

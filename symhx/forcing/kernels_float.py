@@ -14,6 +14,7 @@ import numpy as np
 from scipy import special as sc
 
 from symhx.forcing.arguments import ForcingParams, bad_index
+from symhx.validation import InputError
 
 __all__ = [
     "SQRT_PI",
@@ -52,7 +53,7 @@ def delta_float(omega: np.ndarray, Omega: np.ndarray | None) -> np.ndarray:
     if Omega is not None and np.any(bad):  # an underflowed product is no resonance
         bad = bad & (omega == Omega)
     if np.any(bad):
-        raise ValueError(
+        raise InputError(
             "Omega: resonance Omega == omega (infinite forced amplitude)"
             f"{bad_index(np.asarray(delta), np.asarray(bad))}"
         )

@@ -14,6 +14,7 @@ from symhx._mpctx import local
 from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import mp_arg
 from symhx.forcing.kernels_float import SQRT_PI
+from symhx.validation import InputError
 
 __all__ = [
     "MAX_EXPONENT",
@@ -76,7 +77,7 @@ def mp_xy_forcing(sigma, sigma1, omega, Omega, d) -> tuple[mpmath.mpf, mpmath.mp
     om2 = 2 if Omega is None else mp_arg("Omega", Omega) ** 2
     delta = om * om - om2
     if delta == 0:
-        raise ValueError("Omega: resonance Omega == omega (infinite forced amplitude)")
+        raise InputError("Omega: resonance Omega == omega (infinite forced amplitude)")
     return dd * dd / (4 * s0 * s0), (dd * delta) ** 2 / (4 * s1 * s1)
 
 
@@ -135,7 +136,7 @@ def guard_digits(e: float) -> int:
     Raises ValueError when ``e`` exceeds :data:`MAX_EXPONENT` (before any mpmath work).
     """
     if not e <= MAX_EXPONENT:
-        raise ValueError(
+        raise InputError(
             f"sigma, d: the forcing gives p = exp(-E) with E ~ "
             f"{'> 1e308' if e == math.inf else format(e, '.3g')} above the cap "
             f"MAX_EXPONENT = {MAX_EXPONENT:.3g} of the mpmath evaluation (d/sigma must stay "

@@ -27,7 +27,7 @@ from symhx.forcing.kernels_mp import (
 )
 from symhx.forcing.rawmp import from_xy_raw, single_mp_fast
 from symhx.forcing.rayleigh import RayleighSum, scales_of
-from symhx.validation import check_dps
+from symhx.validation import InputError, check_dps
 
 __all__ = [
     "WANTS",
@@ -87,7 +87,7 @@ def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:
         if dps is None:
             scales = scales_of(f)
             if not all(math.isfinite(s) for s in scales):
-                raise ValueError("a forced component's Rayleigh scale sigma1 / |omega**2 - "
+                raise InputError("a forced component's Rayleigh scale sigma1 / |omega**2 - "
                                  "Omega**2| is beyond float64 here: use dps=")
             S = RayleighSum(scales)
             return getattr(S, kind)(float(f.d))
@@ -329,13 +329,13 @@ def naive_impact_probability(
         Om2 = 2.0 if Omega is None else float(np.float64(float_arg("Omega", Omega)) ** 2)
         k = float((np.float64(om) * om - Om2) ** 2)
     if k == 0:
-        raise ValueError("Omega: resonance Omega == omega (infinite forced amplitude)")
+        raise InputError("Omega: resonance Omega == omega (infinite forced amplitude)")
     den = 4 * s0 * s0 * s1 * s1
     # the literal integrand needs k, 1/(4 s0^2 s1^2), d**2/sigma**2 and k d**2/sigma1**2 as
     # normal float64 numbers: refuse the rest up front (impact_probability has no such limits)
     if not (math.isfinite(k) and 1e-300 < den < 1e300 and 1e-300 < dd * dd < 1e300
             and math.isfinite(k / den) and math.isfinite(k * dd * dd / (s1 * s1))):
-        raise ValueError(
+        raise InputError(
             f"naive_impact_probability: sigma={sigma!r}, sigma1={sigma1!r}, omega={omega!r}, "
             f"Omega={Omega!r}, d={d!r} are outside the float64 range of the literal eq. (27) "
             "integrand; use impact_probability")

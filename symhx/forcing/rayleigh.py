@@ -53,6 +53,7 @@ from symhx.forcing.kernels_float import (
 )
 from symhx.forcing.kernels_mp import MAX_EXPONENT, mp_i2, mp_q_from_xy
 from symhx.validation import (
+    InputError,
     check_array,
     check_choice,
     check_dps,
@@ -106,7 +107,7 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
                 continue
             Omf, omf = float(Om), float(om)
             if Omf == omf:
-                raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
+                raise InputError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)")
             # |omega**2 - Omega**2| = |omega - Omega| (omega + Omega), divided one factor at a
             # time: the product under/overflows (or is subnormal, with lost digits) for tiny or
@@ -121,7 +122,7 @@ def scales_of(fp: ForcingParams, work_dps: int | None = None) -> tuple[Any, ...]
             om2 = 2 if Om is None else mp_arg("Omega", Om) ** 2
             delta = om * om - om2
             if delta == 0:
-                raise ValueError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
+                raise InputError(f"{_om_name(fp, i)}: resonance Omega == omega (infinite forced "
                                  "amplitude)")
             s1v = s0 if s1 is None else mp_arg("sigma1", s1)
             out.append(thread_mp().sqrt(2) * s1v / abs(delta))
@@ -668,9 +669,9 @@ class RayleighSum:
             raise TypeError(f"scales must be a sequence of Rayleigh scales, got {scales!r}")
         arr = np.asarray(scales, dtype=object).ravel()
         if arr.size == 0:
-            raise ValueError("scales: need at least one Rayleigh scale, got an empty sequence")
+            raise InputError("scales: need at least one Rayleigh scale, got an empty sequence")
         if arr.size > MAX_SCALES:
-            raise ValueError(f"scales: {arr.size} Rayleigh scales, more than MAX_SCALES = "
+            raise InputError(f"scales: {arr.size} Rayleigh scales, more than MAX_SCALES = "
                              f"{MAX_SCALES} (the documented limit of the sum's evaluation)")
         exact = []
         for i, s in enumerate(arr):
@@ -786,7 +787,7 @@ class RayleighSum:
         """The cap of the mpmath path of three or more scales, before any work."""
         n = len(set(self._exact))
         if len(self._exact) >= 3 and n * dps > MAX_MP_SUM_WORK:
-            raise ValueError(
+            raise InputError(
                 f"dps: {dps} digits for {n} distinct Rayleigh scales (work {n * dps}) is above "
                 f"the cap MAX_MP_SUM_WORK = {MAX_MP_SUM_WORK} (distinct scales x dps) of the "
                 "mpmath evaluation of a sum of three or more scales")
@@ -799,7 +800,7 @@ class RayleighSum:
             var = thread_mp().fsum(mpf_of(s) ** 2 for s in self._exact)
             e = xm * xm / (2 * var) if xm > 0 else thread_mp().mpf(0)
         if e > MAX_EXPONENT:
-            raise ValueError(
+            raise InputError(
                 f"x: P(S > x) = exp(-E) with E ~ {thread_mp().nstr(e, 3)} above the cap "
                 f"MAX_EXPONENT "
                 f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
@@ -810,7 +811,7 @@ class RayleighSum:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
         if bad.any():
             i = int(np.argmax(bad))
-            raise ValueError(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
+            raise InputError(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
                              "float64 range; use dps=")
         return [float(s) for s in self.scales]
 
@@ -864,7 +865,7 @@ def _check_size(size: Any) -> tuple[int, ...] | None:
     shape = tuple(check_int(d, "size", minimum=0) for d in dims)
     total = math.prod(shape)
     if total > MAX_DRAWS:
-        raise ValueError(f"size: {total} draws, more than MAX_DRAWS = {MAX_DRAWS:.0e}")
+        raise InputError(f"size: {total} draws, more than MAX_DRAWS = {MAX_DRAWS:.0e}")
     return shape
 
 

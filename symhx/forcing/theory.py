@@ -9,7 +9,7 @@ import numpy as np
 from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import ForcingParams, float_arg
 from symhx.forcing.probability import evaluate
-from symhx.validation import check_dps, check_N
+from symhx.validation import InputError, check_dps, check_N
 
 __all__ = ["THEORY_MAX_N", "THEORY_P_FLOOR", "TheoryCurve", "theory_curve"]
 
@@ -77,7 +77,7 @@ def theory_curve(
     N = check_N(N)
     if N > THEORY_MAX_N:
         shown = f"{N}" if N < 10**30 else f"an integer of {len(str(N))} digits"
-        raise ValueError(f"N must be <= THEORY_MAX_N = 10**15, got {shown}")
+        raise InputError(f"N must be <= THEORY_MAX_N = 10**15, got {shown}")
     dps = check_dps(dps)
     s = np.atleast_1d(float_arg("sigma", sigma))
     fp = ForcingParams.validated(1, sigma1, omega, Omega, d, dps=dps)
@@ -101,7 +101,7 @@ def theory_curve(
             m_val = float(symhx.mean(N, floor, space=space, dps=dps))
             mo_val = int(symhx.mode(N, floor, space=space))
             if m_val != 1.0 or mo_val != 1:  # pragma: no cover - N <= THEORY_MAX_N
-                raise ValueError(f"sigma={sv!r}: p below {THEORY_P_FLOOR} is not in the "
+                raise InputError(f"sigma={sv!r}: p below {THEORY_P_FLOOR} is not in the "
                                  f"p -> 0 limit for N={N}")
             means.append(m_val)
             modes_.append(mo_val)

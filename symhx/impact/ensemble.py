@@ -51,7 +51,7 @@ import numpy as np
 from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.fast import count_impacts
 from symhx.impact.model import SQRT2, PipeRow, check_horizon, check_pipes
-from symhx.validation import check_int, check_real, check_seed, short_value
+from symhx.validation import InputError, check_int, check_real, check_seed, short_value
 
 
 def _float(x: Any, name: str) -> float:
@@ -61,7 +61,7 @@ def _float(x: Any, name: str) -> float:
     except OverflowError:
         f = math.inf
     if not math.isfinite(f):
-        raise ValueError(f"{name} = {short_value(Fraction(x))} is beyond the float64 range")
+        raise InputError(f"{name} = {short_value(Fraction(x))} is beyond the float64 range")
     return f
 
 __all__ = [
@@ -386,7 +386,7 @@ def _check_sigmas(sigmas: Any) -> list[float]:
         raise TypeError(f"sigmas must be a sequence of numbers, got {type(sigmas).__name__} "
                         f"{sigmas!r}")
     if len(sigmas) == 0:
-        raise ValueError("sigmas must be a non-empty sequence of numbers >= 0, got []")
+        raise InputError("sigmas must be a non-empty sequence of numbers >= 0, got []")
     return [_float(check_real(s, f"sigmas[{i}]", low=0), f"sigmas[{i}]")
             for i, s in enumerate(sigmas)]
 
@@ -462,10 +462,10 @@ def ensemble(
     sig = _check_sigmas(sigmas)
     runs = check_int(runs, "runs", minimum=1)
     if runs > MAX_RUNS:
-        raise ValueError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
+        raise InputError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
                          f"symhx.impact.ensemble.MAX_RUNS), got {runs}")
     if len(sig) * runs > MAX_TOTAL_RUNS:
-        raise ValueError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
+        raise InputError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
                          f"symhx.impact.ensemble.MAX_TOTAL_RUNS = {MAX_TOTAL_RUNS}")
     n = check_pipes(n)
     seed_i = check_seed(seed)
@@ -479,7 +479,7 @@ def ensemble(
     check_horizon(float(t_tr_x + t_w_x), "(t_transient + t_window)", om)
     t_tr, t_w = float(t_tr_x), float(t_w_x)
     if t_w == 0 or (t_tr + t_w) - t_tr <= 0:
-        raise ValueError(f"t_window = {t_window!r} is too short: t_transient + t_window must "
+        raise InputError(f"t_window = {t_window!r} is too short: t_transient + t_window must "
                          f"exceed t_transient = {t_tr!r} in float64")
     if sigma0 is None or (isinstance(sigma0, (Sequence, np.ndarray))
                           and not isinstance(sigma0, (str, bytes))):
@@ -487,7 +487,7 @@ def ensemble(
             _float(check_real(v, f"sigma0[{i}]", low=0), f"sigma0[{i}]")
             for i, v in enumerate(sigma0)]
         if len(s0s) != len(sig):
-            raise ValueError(f"sigma0 must be None, a number or one number per sigma "
+            raise InputError(f"sigma0 must be None, a number or one number per sigma "
                              f"({len(sig)}), got {len(s0s)} values")
     else:
         s0s = [_float(check_real(sigma0, "sigma0", low=0), "sigma0")] * len(sig)
@@ -797,7 +797,7 @@ def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 40
     sig = _float(check_real(sigma, "sigma", low=0, low_open=True), "sigma")
     gaps = check_int(gaps, "gaps", minimum=1)
     if gaps > MAX_GAPS:
-        raise ValueError(f"gaps must be <= {MAX_GAPS} (the work cap "
+        raise InputError(f"gaps must be <= {MAX_GAPS} (the work cap "
                          f"symhx.impact.ensemble.MAX_GAPS), got {gaps}")
     seed_i = check_seed(seed)
     om = _float(check_real(omega, "omega", low=0, low_open=True), "omega")
@@ -813,7 +813,7 @@ def free_flight_closure_fraction(sigma: float, gaps: int, *, horizon: float = 40
     except OverflowError:
         ok = False
     if not ok:
-        raise ValueError(f"sigma = {sigma!r} is too large for the float64 engine (the "
+        raise InputError(f"sigma = {sigma!r} is too large for the float64 engine (the "
                          "amplitudes overflow); use a smaller sigma")
     rng = np.random.default_rng(seed_i)
     eng = Engine(row, FloatContext(), v_stick=0.0)

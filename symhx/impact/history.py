@@ -14,7 +14,7 @@ import numpy as np
 from symhx._mpctx import export, local, mp
 from symhx.impact.engine import GRAZE, IMPACT, KIND_NAMES, RELEASE, STICK, EventLog
 from symhx.impact.model import PipeRow, exact_to_mpf
-from symhx.validation import check_array, to_rational
+from symhx.validation import InputError, check_array, to_rational
 
 __all__ = ["GRAZE", "IMPACT", "RELEASE", "STICK", "History"]
 
@@ -139,7 +139,7 @@ class History:
             raise TypeError(f"t must be a rational or float number, got {t!r}")
         end = to_rational(self.t_end, "t_end")  # a rational: t_end was validated
         if end is None or not 0 <= fr <= end:
-            raise ValueError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
+            raise InputError(f"t must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
         if self._wdps is not None:
             ctx = mp()   # this thread's own context: safe next to other threads
             with ctx.workdps(self._wdps):
@@ -181,7 +181,7 @@ class History:
             return xs, vs
         ts = check_array(times, "times", nonnegative=True, allow_empty=True).ravel()
         if ts.size and ts.max() > float(self.t_end):
-            raise ValueError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {ts.max()!r}")
+            raise InputError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {ts.max()!r}")
         F = np.asarray(self._freqs, dtype=float)
         arg = np.outer(ts, F)
         cs, sn = np.cos(arg), np.sin(arg)
@@ -214,7 +214,7 @@ class History:
             if fr is None:
                 raise TypeError(f"times must hold rational or float numbers, got {t!r}")
             if end is None or not 0 <= fr <= end:
-                raise ValueError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
+                raise InputError(f"times must lie in [0, t_end] = [0, {self.t_end}], got {t!r}")
             out.append(fr)
         return out
 

@@ -31,7 +31,7 @@ import numpy as np
 from mpmath import libmp
 
 from symhx._mpctx import is_mpf
-from symhx.validation import check_int, check_real, check_seed, to_rational
+from symhx.validation import InputError, check_int, check_real, check_seed, to_rational
 
 __all__ = ["MAX_EVENTS", "MAX_HORIZON", "MAX_PIPES", "MAX_SCALE", "SQRT2", "PipeRow",
            "SimulationError", "check_horizon", "check_pipes", "exact_to_mpf"]
@@ -106,11 +106,11 @@ def check_horizon(t: Any, name: str, omega: float = 1.0, *, allow_zero: bool = F
     >>> check_horizon(1e7, "t_end")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: t_end = 10000000.0 is too long: omega * t_end must be <= 100000 ...
+    symhx.validation.InputError: t_end = 10000000.0 is too long: omega * t_end must be <= 100000 ...
     """
     fr = check_real(t, name, low=0, low_open=not allow_zero)
     if fr * Fraction(omega) > MAX_HORIZON:
-        raise ValueError(
+        raise InputError(
             f"{name} = {t!r} is too long: omega * {name} must be <= {MAX_HORIZON} (about "
             f"{MAX_HORIZON // 6:,} periods; the work cap symhx.impact.model.MAX_HORIZON), got "
             f"omega = {omega!r}")
@@ -125,7 +125,7 @@ def check_pipes(n: Any, name: str = "n") -> int:
     """
     n = check_int(n, name, minimum=1)
     if n > MAX_PIPES:
-        raise ValueError(f"{name} must be <= {MAX_PIPES} pipes (the work cap "
+        raise InputError(f"{name} must be <= {MAX_PIPES} pipes (the work cap "
                          f"symhx.impact.model.MAX_PIPES), got {n}")
     return n
 
@@ -134,7 +134,7 @@ def _check_scale(value: float, name: str, positive: bool = False) -> None:
     """``|value| <= MAX_SCALE`` (and ``>= 1 / MAX_SCALE`` for the positive scales)."""
     if abs(value) > MAX_SCALE or (positive and abs(value) < 1 / MAX_SCALE):
         rng = f"[{1 / MAX_SCALE:g}, {MAX_SCALE:g}]" if positive else f"<= {MAX_SCALE:g} in size"
-        raise ValueError(f"{name} = {value!r} is outside the range {rng} that the engines "
+        raise InputError(f"{name} = {value!r} is outside the range {rng} that the engines "
                          "resolve (symhx.impact.model.MAX_SCALE); rescale the units")
 
 
@@ -148,14 +148,14 @@ def _scalar(value: Any, name: str) -> tuple[float, Any]:
     if fr is None:   # sympy irrational: its own evaluation (duck-typed; sympy is not imported)
         f = float(value)
         if not math.isfinite(f):
-            raise ValueError(f"{name} must be finite, got {value!r}")
+            raise InputError(f"{name} must be finite, got {value!r}")
         return f, value
     try:
         f = float(fr)
     except OverflowError:
         f = math.inf
     if not math.isfinite(f):
-        raise ValueError(f"{name} = {value!r} is beyond the float64 range")
+        raise InputError(f"{name} = {value!r} is beyond the float64 range")
     return f, fr
 
 
@@ -194,10 +194,10 @@ def _array(value: Any, name: str, shape: tuple[int, ...]) -> tuple[np.ndarray, n
         if arr.ndim == 1 and len(shape) == 2 and shape[1] == 1 and arr.shape == (shape[0],):
             arr = arr.reshape(shape)
         if arr.shape != shape:
-            raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
+            raise InputError(f"{name} must have shape {shape}, got {arr.shape}")
         if not np.all(np.isfinite(arr)):
             idx = tuple(int(i) for i in np.argwhere(~np.isfinite(arr))[0])
-            raise ValueError(f"{name} must be finite, got {arr[idx]!r} at index {idx}")
+            raise InputError(f"{name} must be finite, got {arr[idx]!r} at index {idx}")
         if value.dtype.kind in "iu" and np.any(np.abs(value) > 2**53):
             return arr, np.vectorize(Fraction, otypes=[object])(value)
         return arr, None
@@ -209,7 +209,7 @@ def _array(value: Any, name: str, shape: tuple[int, ...]) -> tuple[np.ndarray, n
     if src.ndim == 1 and len(shape) == 2 and shape[1] == 1 and src.shape == (shape[0],):
         src = src.reshape(shape)
     if src.shape != shape:
-        raise ValueError(f"{name} must have shape {shape}, got {src.shape}")
+        raise InputError(f"{name} must have shape {shape}, got {src.shape}")
     arr = np.empty(shape, dtype=np.float64)
     for idx in np.ndindex(*shape):
         label = name + "".join(f"[{i}]" for i in idx)
@@ -257,7 +257,7 @@ class PipeRow:
     ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... choose Omega[i] != omega
+    symhx.validation.InputError: Omega[0] = 1.0 equals omega = 1.0 (resonance): ... != omega
     """
 
     n: int
@@ -287,26 +287,26 @@ class PipeRow:
         n = check_pipes(n)
         omega_f, omega_x = _scalar(omega, "omega")
         if not omega_f > 0:
-            raise ValueError(f"omega must be > 0, got {omega!r}")
+            raise InputError(f"omega must be > 0, got {omega!r}")
         d_f, d_x = _scalar(d, "d")
         if not d_f > 0:
-            raise ValueError(f"d must be > 0, got {d!r}")
+            raise InputError(f"d must be > 0, got {d!r}")
         r, r_x = _scalar(restitution, "restitution")
         if (isinstance(r_x, Fraction) and not 0 <= r_x <= 1) or not 0.0 <= r <= 1.0:
-            raise ValueError(f"restitution must lie in [0, 1], got {restitution!r}")
+            raise InputError(f"restitution must lie in [0, 1], got {restitution!r}")
         if isinstance(Omega, (str, bytes)) or not isinstance(Omega, (Sequence, np.ndarray)):
             Omega = (Omega,)
         Omega = tuple(Omega)
         if len(Omega) < 1:
-            raise ValueError("Omega must hold at least one forcing frequency")
+            raise InputError("Omega must hold at least one forcing frequency")
         Omega_x, Omega_f = [], []
         for i, w in enumerate(Omega):
             wf, wx = _scalar(w, f"Omega[{i}]")
             Omega_f.append(wf)
             if wf < 0:
-                raise ValueError(f"Omega[{i}] must be >= 0, got {w!r}")
+                raise InputError(f"Omega[{i}] must be >= 0, got {w!r}")
             if wx == omega_x or abs(wf * wf - omega_f * omega_f) <= 1e-12 * omega_f * omega_f:
-                raise ValueError(
+                raise InputError(
                     f"Omega[{i}] = {wf!r} equals omega = {omega_f!r} (resonance): the forced "
                     "response is unbounded; choose Omega[i] != omega"
                 )
@@ -327,7 +327,7 @@ class PipeRow:
         walls = np.concatenate(([0.0], x, [(n + 1) * d_f]))
         if not np.all(np.diff(walls) > 0):
             bad = int(np.argmin(np.diff(walls)))
-            raise ValueError(
+            raise InputError(
                 f"x0 must be strictly increasing inside (0, (n + 1) d) = (0, {(n + 1) * d_f!r}): "
                 f"pipes overlap at site {bad}"
             )
@@ -353,7 +353,7 @@ class PipeRow:
         (Fraction(1, 2), Fraction(3, 10), 0.5)
         """
         if name not in self._exact:
-            raise ValueError(f"name must be one of {sorted(self._exact)}, got {name!r}")
+            raise InputError(f"name must be one of {sorted(self._exact)}, got {name!r}")
         val = self._exact[name]
         if val is None:
             return getattr(self, name)
@@ -428,24 +428,24 @@ class PipeRow:
         om, _ = _scalar(omega, "omega")
         d_f, _ = _scalar(d, "d")
         if not om > 0:
-            raise ValueError(f"omega must be > 0, got {omega!r}")
+            raise InputError(f"omega must be > 0, got {omega!r}")
         if not d_f > 0:
-            raise ValueError(f"d must be > 0, got {d!r}")
+            raise InputError(f"d must be > 0, got {d!r}")
         _check_scale(om, "omega", positive=True)
         _check_scale(d_f, "d", positive=True)
         right = (n + 1) * d_f   # finite: d <= MAX_SCALE and n <= MAX_PIPES
         _scalar(restitution, "restitution")   # range checked by the constructor
         if len(Omega) < 1:
-            raise ValueError("Omega must hold at least one forcing frequency")
+            raise InputError("Omega must hold at least one forcing frequency")
         Om = np.array([_scalar(w, f"Omega[{i}]")[0] for i, w in enumerate(Omega)])
         den = om * om - Om * Om
         if np.any(np.abs(den) <= 1e-12 * om * om):
             i = int(np.argmin(np.abs(den)))
-            raise ValueError(f"Omega[{i}] = {float(Om[i])!r} equals omega = {om!r} (resonance): "
+            raise InputError(f"Omega[{i}] = {float(Om[i])!r} equals omega = {om!r} (resonance): "
                              "the forced response is unbounded; choose Omega[i] != omega")
 
-        def too_large(scale: float) -> ValueError:
-            return ValueError(
+        def too_large(scale: float) -> InputError:
+            return InputError(
                 f"could not draw non-overlapping initial positions: with sigma={sigma!r}, "
                 f"sigma0={sigma0!r}, omega={omega!r}, Omega={Omega!r} the random displacements "
                 f"(scale ~{scale:.3g}) are too large for the spacing d={d!r}; use a smaller "

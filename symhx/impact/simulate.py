@@ -10,7 +10,7 @@ from symhx.impact import fast
 from symhx.impact.engine import V_STICK_FLOAT64, Engine, MPContext, default_v_stick, work_dps
 from symhx.impact.history import History
 from symhx.impact.model import MAX_EVENTS, MAX_HORIZON, PipeRow, SimulationError, check_horizon
-from symhx.validation import check_choice, check_dps, check_int, check_real
+from symhx.validation import InputError, check_choice, check_dps, check_int, check_real
 
 __all__ = ["default_v_stick", "simulate", "work_dps"]
 
@@ -91,7 +91,7 @@ def simulate(
     else:
         max_events = check_int(max_events, "max_events", minimum=1)
         if max_events > MAX_EVENTS:
-            raise ValueError(f"max_events must be <= {MAX_EVENTS} (a recorded history of that "
+            raise InputError(f"max_events must be <= {MAX_EVENTS} (a recorded history of that "
                              "many events needs gigabytes; the cap "
                              f"symhx.impact.model.MAX_EVENTS), got {max_events}")
     vs_x: Any
@@ -107,7 +107,7 @@ def simulate(
         except OverflowError:
             vs = math.inf
         if not 0 < vs < math.inf:
-            raise ValueError(f"v_stick = {v_stick!r} is outside the float64 range (> 0, finite) "
+            raise InputError(f"v_stick = {v_stick!r} is outside the float64 range (> 0, finite) "
                              "of the float64 engine: give a positive float64 number, or use dps")
     if dps is None:
         if engine in ("auto", "c"):

@@ -18,6 +18,7 @@ from symhx._mpctx import mp
 from symhx.api import distribution_of
 from symhx.critical import critical_point, mode_path
 from symhx.plots._style import COLUMN_WIDTH, styled
+from symhx.validation import InputError
 
 __all__ = ["plot_distributions", "plot_f_and_phi", "plot_jump_mechanism", "plot_mode_path"]
 
@@ -34,7 +35,7 @@ def _panel_axes(n: int, axes: Any, ncols: int, size: tuple[float, float]) -> tup
         return fig, flat[:n]
     flat = list(np.ravel(axes))
     if len(flat) < n:
-        raise ValueError(f"axes: need {n} axes, got {len(flat)}")
+        raise InputError(f"axes: need {n} axes, got {len(flat)}")
     return flat[0].figure, flat[:n]
 
 
@@ -262,7 +263,7 @@ def plot_jump_mechanism(N: int = 101, *, kmax: int | None = None, axes: Any = No
     ['(a)', '(b)', '(c)', '(d)']
     """
     if not isinstance(N, int) or isinstance(N, bool) or N < 4:
-        raise ValueError(f"N must be an integer >= 4 (a jump with p_c > p_d), got {N!r}")
+        raise InputError(f"N must be an integer >= 4 (a jump with p_c > p_d), got {N!r}")
     cp = critical_point(N, dps=30)
     pd, pc = float(cp.p_d), float(cp.p)
     k_top = kmax or min(N, int(np.ceil(1.6 * cp.k_after)) + 1)

@@ -8,6 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from symhx.plots._style import COLUMN_WIDTH, styled
+from symhx.validation import InputError
 
 __all__ = ["plot_p_sigma", "plot_theory_mean_vs_p"]
 
@@ -150,7 +151,7 @@ def plot_theory_mean_vs_p(
     s = np.logspace(np.log10(0.03), 0, 60) if sigma is None else np.asarray(sigma, dtype=float)
     tc = theory_curve(s, N=N, sigma1=sigma1, omega=omega, Omega=Omega, d=d, space=space, dps=dps)
     if against not in ("p", "sigma"):
-        raise ValueError(f"against must be 'p' or 'sigma', got {against!r}")
+        raise InputError(f"against must be 'p' or 'sigma', got {against!r}")
     x = tc.p if against == "p" else tc.sigma
     fig, ax = _ax(ax)
     ax.plot(x, tc.mean, "-", lw=2, label=f"theory (graph model, N = {N})")

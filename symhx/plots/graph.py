@@ -23,6 +23,7 @@ from matplotlib.path import Path
 
 from symhx.graph import vertices_row
 from symhx.plots._style import COLUMN_WIDTH, styled
+from symhx.validation import InputError
 
 __all__ = ["impact_labels", "plot_impact_graph", "plot_pipe_row"]
 
@@ -130,7 +131,7 @@ def plot_impact_graph(n: int = 3, *, ax=None, labels: list[str] | None = None):
     N = vertices_row(n)
     labels = impact_labels(n) if labels is None else list(labels)
     if len(labels) != N:
-        raise ValueError(f"need {N} labels, got {len(labels)}")
+        raise InputError(f"need {N} labels, got {len(labels)}")
     fig, ax = _new_axes(ax, (4.8, 4.8))
     r_vertex = 0.17 if N <= 6 else 0.12
     pos = []

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from symhx.plots._style import PNG_DPI, styled
+from symhx.validation import InputError
 
 __all__ = ["PAPER_FIGURES", "PAPER_N", "PNG_DPI", "paper_figure", "save_paper_figure",
            "stored_ensemble"]
@@ -95,7 +96,7 @@ def paper_figure(number: int, *, ensemble: Any = None) -> Any:
     '$n = 3$ pipes, $N = n + 1 = 4$ possible impacts (sites $i = 0, \\\\ldots, 3$)'
     """
     if isinstance(number, bool) or number not in PAPER_FIGURES:
-        raise ValueError(f"number: the paper's figures are 1 to 13, got {number!r}")
+        raise InputError(f"number: the paper's figures are 1 to 13, got {number!r}")
     if number in _SIMULATED and ensemble is None:
         ensemble = stored_ensemble()
     if number == 1:

@@ -48,7 +48,7 @@ from symhx.circuits import (
     normalise_visits,
     partitions,
 )
-from symhx.validation import check_int, check_N
+from symhx.validation import InputError, check_int, check_N
 
 __all__ = [
     "EQ41_SHAPES",
@@ -114,7 +114,7 @@ def check_shape(shape: tuple[int, ...] | list[int]) -> tuple[int, ...]:
                         f"{shape!r:.80}")
     s = tuple(sorted((check_int(x, "shape entry") for x in shape), reverse=True))
     if any(x < 2 for x in s):
-        raise ValueError(f"shape (a class) must list the parts > 1 of a visit pattern (the "
+        raise InputError(f"shape (a class) must list the parts > 1 of a visit pattern (the "
                          f"vertices visited more than once), got shape={shape!r:.80}")
     return s
 
@@ -133,7 +133,7 @@ def shapes_up_to(m: int) -> tuple[tuple[int, ...], ...]:
     if m > MAX_EXCESS:
         from symhx.validation import show_exact
 
-        raise ValueError(f"maximum excess m={show_exact(m)} is beyond the documented work limit "
+        raise InputError(f"maximum excess m={show_exact(m)} is beyond the documented work limit "
                          f"{MAX_EXCESS} "
                          f"(symhx.spaces._classes.MAX_EXCESS: excess<=25 already has 9296 "
                          f"classes and takes seconds per distribution); raise that constant "
@@ -166,7 +166,7 @@ def check_space_work(space: Space, N: int, what: str) -> None:
         return
     from symhx.validation import show_exact
 
-    raise ValueError(
+    raise InputError(
         f"N={show_exact(N)} is beyond the documented work limit of {what} over space "
         f"{space.name!r}: N <= {space_n_limit(space)} (N * (m + 1) <= MAX_SPACE_WORK = "
         f"{MAX_SPACE_WORK} with m = {space.max_excess}, symhx.spaces.MAX_SPACE_WORK); raise "
@@ -282,7 +282,7 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     if k * N.bit_length() > MAX_COUNT_BITS:  # the count has about k log2(N) bits
         from symhx.validation import show_exact
 
-        raise ValueError(f"class_count(N={show_exact(N)}, k={show_exact(k)}) would have about "
+        raise InputError(f"class_count(N={show_exact(N)}, k={show_exact(k)}) would have about "
                          f"k * bit_length(N) = {show_exact(k * N.bit_length())} bits, beyond "
                          f"the documented work limit k * bit_length(N) <= {MAX_COUNT_BITS} "
                          f"(symhx.circuits.MAX_COUNT_BITS); use symhx.log_phi for the size of "
@@ -311,12 +311,12 @@ def printed_count(eq: str, N: int, L: int, *, outside: str = "zero") -> Fraction
     if eq == "36":
         return Fraction(N) if L == 2 else Fraction(0)
     if eq not in PRINTED_RANGES:
-        raise ValueError(f"eq must be one of 35, 36, 38, 39, 40; got {eq!r}")
+        raise InputError(f"eq must be one of 35, 36, 38, 39, 40; got {eq!r}")
     shape, lo = PRINTED_RANGES[eq]
     if L < sum(shape) or (outside == "zero" and L < lo):
         return Fraction(0)
     if outside not in ("zero", "formula"):
-        raise ValueError(f"outside must be 'zero' or 'formula', got {outside!r}")
+        raise InputError(f"outside must be 'zero' or 'formula', got {outside!r}")
 
     def ff(n: int, j: int) -> int:  # n!/(n-j)!, 0 when j > n
         return math.perm(n, j) if 0 <= j <= n else 0
@@ -519,12 +519,12 @@ def _split_weighting(space: str, weighting: str | None) -> tuple[str, str]:
     if suffix.startswith("weight="):
         suffix = suffix[len("weight="):]
     if suffix and suffix not in WEIGHTINGS:
-        raise ValueError(f"unknown weighting {suffix!r} in space {space!r}; use "
+        raise InputError(f"unknown weighting {suffix!r} in space {space!r}; use "
                          f"';length' or ';distinct'")
     if weighting is not None and weighting not in WEIGHTINGS:
-        raise ValueError(f"weighting must be 'length' or 'distinct', got {weighting!r}")
+        raise InputError(f"weighting must be 'length' or 'distinct', got {weighting!r}")
     if suffix and weighting and suffix != weighting:
-        raise ValueError(f"space {space!r} conflicts with weighting={weighting!r}")
+        raise InputError(f"space {space!r} conflicts with weighting={weighting!r}")
     return base.strip(), (suffix or weighting or "length")
 
 
@@ -541,11 +541,11 @@ def _parse(base: str, weighting: str) -> Space:
     mt = _SPACE_RE.match(base)
     if mt:
         if len(mt.group(1)) > 6:
-            raise ValueError(f"maximum excess m in {base[:40]!r} is beyond the documented work "
+            raise InputError(f"maximum excess m in {base[:40]!r} is beyond the documented work "
                              f"limit {MAX_EXCESS} (symhx.spaces._classes.MAX_EXCESS)")
         m = int(mt.group(1))
         return Space(f"excess<={m}" + suffix, "excess", m, weighting, shapes_up_to(m))
-    raise ValueError(
+    raise InputError(
         f"unknown sample space {base!r}: use 'simple', 'eq41', 'eq41-printed' or 'excess<=m' "
         f"(m >= 0), optionally followed by ';length' (default) or ';distinct'"
     )
@@ -578,6 +578,6 @@ def visits_of(shape: tuple[int, ...], k: int) -> tuple[int, ...]:
     s = check_shape(shape)
     k = check_int(k, "k")
     if k < len(s):
-        raise ValueError(f"k must be >= {len(s)} for the class shape={s}: it needs at least "
+        raise InputError(f"k must be >= {len(s)} for the class shape={s}: it needs at least "
                          f"{len(s)} distinct vertices, got k={k}")
     return normalise_visits(s + (1,) * (k - len(s))) if k else ()

@@ -43,7 +43,7 @@ from typing import Any
 import numpy as np
 
 from symhx._mpctx import export, mp
-from symhx._numeric import G_mp, check_dps, check_N, digits_of
+from symhx._numeric import G_mp, digits_of
 from symhx.certify import (
     G_arb,
     UndecidedError,
@@ -56,7 +56,7 @@ from symhx.certify import (
 from symhx.critical import CriticalPoint, discriminant_root, discriminant_root_q
 from symhx.spaces._classes import Space, check_space_work, parse_space
 from symhx.spaces._dist import compare_weights, log_U_table
-from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, as_fraction
+from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, as_fraction, check_dps, check_N
 
 __all__ = ["critical_point", "root_estimates"]
 

@@ -73,6 +73,7 @@ from symhx.spaces._classes import (
 from symhx.validation import (
     DEFAULT_DPS,
     DEFAULT_SPACE,
+    InputError,
     check_dps,
     check_N,
     check_p,
@@ -150,7 +151,7 @@ def _logp_float_of(p: Any, fr: Fraction | None) -> float:
         ball = real_ball(p)
         lo_hi = rational_bracket(ball) if ball > 0 else None
     if lo_hi is None:
-        raise ValueError(f"p={p} cannot be enclosed at 128 bits (is it positive and finite?)")
+        raise InputError(f"p={p} cannot be enclosed at 128 bits (is it positive and finite?)")
     return _logp_float(lo_hi[0])
 
 
@@ -179,7 +180,7 @@ def _rational(p: Any, fr: Fraction | None) -> Fraction:
     if fr is None:
         fr, p = check_p(p)
     if fr is None:
-        raise ValueError(f"p={p} is irrational: an exact weight needs a rational p (pass an "
+        raise InputError(f"p={p} is irrational: an exact weight needs a rational p (pass an "
                          f"int, Fraction, decimal string, float or mpf)")
     return fr
 
@@ -310,7 +311,7 @@ class SpaceDistribution(Distribution):
         bits_p = self.fr.numerator.bit_length() + self.fr.denominator.bit_length()
         work = self.N * (self.N.bit_length() + (self.sample_space.max_excess + 1) * bits_p)
         if work > limit:
-            raise ValueError(
+            raise InputError(
                 f"{what} in exact rational arithmetic over space {self.space!r} would need "
                 f"~{work:.2g} bit-terms for N={show_exact(self.N)}, p={show_exact(self.fr)} "
                 f"(documented work limit {limit}, symhx.distribution.{name}); pass p as a float "
@@ -666,7 +667,7 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
             totals[s] = sum(row, Fraction(0))
         return ClassDecomposition(dist, sp.shapes, joint, totals)
     if N > DIRECT_LIMIT:
-        raise ValueError(f"class_decomposition on the mpmath path lists every k: N="
+        raise InputError(f"class_decomposition on the mpmath path lists every k: N="
                          f"{show_exact(N)} is beyond the documented work limit N <= "
                          f"{DIRECT_LIMIT} (symhx.spaces._dist.DIRECT_LIMIT); exact rational p "
                          f"lists every k in Fractions, or raise that constant")

@@ -16,7 +16,7 @@ from symhx._numeric import mp_value
 from symhx.spaces._classes import MAX_EXCESS, WEIGHTINGS
 from symhx.spaces._critical import critical_point
 from symhx.spaces._dist import distribution
-from symhx.validation import check_choice, check_dps, check_int, check_N, check_p
+from symhx.validation import InputError, check_choice, check_dps, check_int, check_N, check_p
 
 __all__ = ["DEFAULT_PS", "STUDY_N_LIMIT", "ConvergenceRow", "convergence_study"]
 
@@ -82,20 +82,20 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     N = check_N(N)
     if N > STUDY_N_LIMIT:
         shown = N if N < 10**15 else f"~10**{len(str(N)) - 1}"
-        raise ValueError(f"N={shown} is beyond the documented work limit N <= {STUDY_N_LIMIT} "
+        raise InputError(f"N={shown} is beyond the documented work limit N <= {STUDY_N_LIMIT} "
                          f"of convergence_study (symhx.spaces.study.STUDY_N_LIMIT: one "
                          f"critical-point search per space); raise that constant to allow it")
     dps = check_dps(dps)
     weighting = check_choice(weighting, "weighting", WEIGHTINGS)
     if isinstance(ms, range) and ms \
             and max(ms[0], ms[-1]) > MAX_EXCESS:  # refuse a huge range before listing it
-        raise ValueError(f"ms={ms!r:.60} goes beyond the documented work limit m <= {MAX_EXCESS} "
+        raise InputError(f"ms={ms!r:.60} goes beyond the documented work limit m <= {MAX_EXCESS} "
                          f"(symhx.spaces._classes.MAX_EXCESS)")
     ms = tuple(check_int(m, "each maximum excess m of ms", minimum=0, maximum=MAX_EXCESS)
                for m in _sequence(ms, "ms"))
     ps = tuple(_sequence(ps, "ps"))
     if not ps:
-        raise ValueError("ps must hold at least one p value (decimal strings), got none")
+        raise InputError("ps must hold at least one p value (decimal strings), got none")
     exact = [check_p(p, "each p of ps")[0] for p in ps]
     extra = tuple(check_choice(s, "each extra space", ("eq41", "eq41-printed"))
                   for s in _sequence(extra, "extra"))

@@ -10,6 +10,7 @@ from typing import Any
 
 from symhx.circuits import necklaces_with_content, normalise_visits
 from symhx.spaces._classes import PRINTED_RANGES, check_shape, class_count, printed_count
+from symhx.validation import InputError
 
 __all__ = [
     "boundary_table",
@@ -76,7 +77,7 @@ def printed_formula(eq: str) -> Any:
         "40": sp.Rational(1, 8) * f(L - 1) / f(L - 4) * f(N) / f(N - (L - 2)),
     }
     if eq not in forms:
-        raise ValueError(f"eq must be one of {sorted(forms)}, got {eq!r}")
+        raise InputError(f"eq must be one of {sorted(forms)}, got {eq!r}")
     return forms[eq]
 
 

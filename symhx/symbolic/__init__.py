@@ -44,6 +44,7 @@ from symhx.symbolic._core import (
     p,
     sym_equal,
 )
+from symhx.validation import InputError
 
 __all__ = [
     "Check",
@@ -120,7 +121,7 @@ def derivation(label: str) -> Derivation:
     except KeyError:
         pass
     if key not in SPECS:
-        raise ValueError(f"unknown derivation {label!r}; known: {', '.join(labels())}")
+        raise InputError(f"unknown derivation {label!r}; known: {', '.join(labels())}")
     with _LOCK:  # sympy's caches are not built for concurrent first use
         if key not in _BUILT:
             _BUILT[key] = SPECS[key].make()

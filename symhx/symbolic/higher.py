@@ -39,6 +39,7 @@ from symhx.symbolic._core import (
     sym_equal,
 )
 from symhx.symbolic.simple import phi as phi_simple
+from symhx.validation import InputError
 
 __all__ = ["pattern_count", "pattern_count_general"]
 
@@ -130,7 +131,7 @@ def pattern_count(repeats: tuple[int, ...], kk: sp.Expr = k) -> sp.Expr:
     """
     repeats = tuple(sorted(repeats, reverse=True))
     if any(m < 2 for m in repeats):
-        raise ValueError("repeats must be multiplicities >= 2")
+        raise InputError("repeats must be multiplicities >= 2")
     return _pattern_piecewise(repeats).subs(k, kk)
 
 

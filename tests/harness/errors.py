@@ -1,5 +1,6 @@
-"""The refusal contract of every public function: a bad value raises ``ValueError`` (a wrong kind
-of object ``TypeError``) whose message names the argument, shows the offending value and says
+"""The refusal contract of every public function: a bad value raises
+:class:`symhx.validation.InputError` (a ``ValueError``; a wrong kind of object ``TypeError``) whose
+message names the argument, shows the offending value and says
 what is allowed.  Tests check those three parts, not the whole sentence.
 
 >>> import symhx
@@ -14,10 +15,12 @@ from typing import Any
 
 import pytest
 
+from symhx.validation import InputError
+
 __all__ = ["assert_refuses"]
 
 
-def assert_refuses(fn: Callable[..., Any], *args: Any, exc: type[BaseException] = ValueError,
+def assert_refuses(fn: Callable[..., Any], *args: Any, exc: type[BaseException] = InputError,
                    arg: str | Iterable[str], value: str | None = None,
                    allowed: str | Iterable[str] | None = None, **kwargs: Any) -> str:
     """Call ``fn(*args, **kwargs)``, require ``exc`` and return its message.

@@ -360,6 +360,7 @@ NOT_CALLABLE = {
     "default_v_stick": "fuzzed as impact.default_v_stick",
     "EventKind": "enum of event kinds (IMPACT, GRAZE, STICK, RELEASE), a class",
     "SimulationError": "exception class raised by the impact engines",
+    "InputError": "exception class (a ValueError) of every refused input",
     "work_dps": "fuzzed as impact.work_dps",
 }
 

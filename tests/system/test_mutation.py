@@ -55,7 +55,8 @@ def test_tests_of_a_module_are_its_mirror_files_and_their_named_extras(tmp_path)
 def test_every_module_of_the_package_is_a_mutation_target():
     modules = mutation.all_modules()
     assert "symhx/impact/_fast.c" in modules and "symhx/graph.py" in modules
-    assert mutation.mirror_tests("symhx/cli.py") == ["tests/test_cli.py"]
+    assert mutation.mirror_tests("symhx/cli.py") == ["tests/test_cli.py",
+                                                      "tests/test_cli_errors.py"]
     assert "tests/commands/test_common.py" in mutation.mirror_tests("symhx/commands/_common.py")
 
 
