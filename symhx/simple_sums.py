@@ -142,11 +142,12 @@ class SimpleSums:
             self._logc = ctx.log(c)
             self._logu_hi = ctx.log(self.u)
         self._logu = ctx.log(self.u)
-        self._um = ctx.mpf(self.u)
-        self._cm = ctx.mpf(c)
+        self._um = _exact(ctx, self.u)
+        self._cm = _exact(ctx, c)
         self._magc = ctx.mag(self._cm)
         self._half = ctx.mpf(0.5)
         self._Ymp = ctx.mpf(STIRLING_MIN)
+        self._xg = _to_mpf(ctx, 2 * N * self.a + self.a - 2 * self.b, 2 * self.a)  # N+1/2-1/p
         with ctx.extraprec(64 + self.u.bit_length()):
             self._l2pi = ctx.log(2 * ctx.pi) / 2
         self._Su = self._S(self._um)
@@ -228,8 +229,7 @@ class SimpleSums:
             dm = d
             vm = ctx.fsub(self._um, d, exact=True)  # consistent with d to the last bit
             xm = x
-        u = self.u
-        lf = self._lgamma_diff(dm, vm) + self._Su - self._S(vm)
+        lf = self.Dg(dm, vm)
         # log(x/c): a series for |d| << c, else log x - log c (both with a few extra bits:
         # mpmath's log near 1 takes a slow path)
         mc = ctx.mag(dm) - self._magc
@@ -251,8 +251,12 @@ class SimpleSums:
                 lx = ctx.log(self._cm + dm if mc < 0 else xm) - self._logc
             finally:
                 ctx.prec = prec
-        del u
-        return dm * self._L1 + lf - lx
+        return lf - lx
+
+    def Dg(self, dm: Any, vm: Any) -> Any:
+        """``log(g(x)/g(c))`` with ``g(x) = x Phi(x)`` (entire in x), from the offset
+        ``d = x - c`` and ``v = N + 1 - x`` (``v > 0``; ``x`` may be negative)."""
+        return dm * self._L1 + self._lgamma_diff(dm, vm) + self._Su - self._S(vm)
 
     def _lgamma_diff(self, dm: Any, vm: Any) -> Any:
         """``u B(d/u) + log1p(-d/u)/2 = -(v - 1/2) log(v/u) - d`` (``v = u - d``) to absolute
@@ -281,7 +285,7 @@ class SimpleSums:
         # (v - 1/2) log(v/u) cancels against d down to ~ d t/2: log v needs mag(v log v)
         # bits beyond the absolute accuracy wanted (one unit of the larger of 1, d t)
         mv = max(0, ctx.mag(vm))
-        extra = mv + mv.bit_length() + 12 + max(0, -ctx.mag(dm * t))
+        extra = max(12, mv + mv.bit_length() + 12 - ctx.mag(dm * t))
         prec = ctx.prec
         ctx.prec = prec + extra
         try:
@@ -380,37 +384,47 @@ class SimpleSums:
     def _level_cut(self, lo: int, hi: int, level: Any, increasing: bool, guess: int) -> int:
         """On ``[lo, hi]`` where ``D`` is monotone: the first ``k`` with ``D(k) >= level``
         (increasing) or the last one (decreasing); the caller ensures ``D(hi)`` (increasing) or
-        ``D(lo)`` (decreasing) is ``>= level``.  Safeguarded Newton on the continuous ``D``."""
+        ``D(lo)`` (decreasing) is ``>= level``.  Newton steps from either end of the bracket
+        (whichever lands inside; convex and concave stretches are both monotone from one side),
+        else a geometric or arithmetic bisection: a few dozen evaluations at any N."""
         ctx = mp()
-        # bracket [x0, x1]: on the "below" side x0 (increasing: D(x0) < level) ... invariant
-        if increasing:
-            good, bad = hi, lo
-        else:
-            good, bad = lo, hi
+        good, bad = (hi, lo) if increasing else (lo, hi)
         if self.D(bad) >= level:
             return bad
-        x = min(max(guess, min(lo, hi)), max(lo, hi))
-        for _ in range(200):
-            if abs(good - bad) <= 1:
-                break
-            if not (min(good, bad) < x < max(good, bad)):
-                x = (good + bad) // 2
+        dgood = self.D(good) - level
+        x = guess
+        if min(good, bad) < x < max(good, bad):
             dx = self.D(x) - level
             if dx >= 0:
-                good = x
+                good, dgood = x, dx
             else:
                 bad = x
+        dbad = self.D(bad) - level
+        for _ in range(400):
             if abs(good - bad) <= 1:
                 break
-            slope = self.dD(x)
-            nxt = None
-            if slope != 0:
-                step = -dx / slope
-                if abs(step) < 4 * self.N:
-                    nxt = x + int(ctx.nint(step))
-                    if nxt == x:
-                        nxt = x + (1 if (bad > good) == (dx >= 0) else -1)
-            x = nxt if nxt is not None else (good + bad) // 2
+            lo_, hi_ = min(good, bad), max(good, bad)
+            cand = None
+            for x0, f0 in ((good, dgood), (bad, dbad)):
+                s = self.dD(x0)
+                if s:
+                    step = -f0 / s
+                    if abs(step) < hi_ - lo_:
+                        c1 = x0 + int(ctx.nint(step))
+                        if lo_ < c1 < hi_:
+                            cand = c1
+                            break
+            if cand is None:
+                if hi_ > 4 * max(lo_, 1):
+                    cand = math.isqrt(max(lo_, 1) * hi_)  # geometric bisection
+                else:
+                    cand = (lo_ + hi_) // 2
+                cand = min(max(cand, lo_ + 1), hi_ - 1)
+            dx = self.D(cand) - level
+            if dx >= 0:
+                good, dgood = cand, dx
+            else:
+                bad, dbad = cand, dx
         return good
 
     def runs(self) -> list[tuple[int, int]]:
@@ -419,17 +433,23 @@ class SimpleSums:
             return self._runs
         ctx = mp()
         N = self.N
-        with ctx.workprec(max(96, int(3.33 * len(str(N))) + 64)):
+        with ctx.workprec(128):
             level = -(self.W * _LN10 + math.log(N) + 10)
             out: list[tuple[int, int]] = []
             top = self.top if (self.top is not None and self.top > 1) else None
             m = self.valley() if top else N
             if self.D(1) >= level:
-                e1 = self._level_cut(1, m, level, False, 1)
+                head_level = level
+                if top is None and self.a * N < self.b:
+                    # no hump and N p < 1: every ratio Phi(k+1)/Phi(k) is below N p, so the
+                    # dropped tail is at most f(e1)/(1 - N p) (not N f(e1))
+                    npm = _to_mpf(ctx, self.a * N, self.b)
+                    head_level = -(self.W * _LN10 + 10) + ctx.log(1 - npm)
+                e1 = self._level_cut(1, m, head_level, False, 1)
                 out.append((1, e1))
             if top is not None and self.D(top) >= level:
                 sig = self._sigma_at(top)
-                span = int(sig * math.sqrt(2 * -level) * 1.05) + 2
+                span = int(ctx.nint(sig * ctx.sqrt(2 * -level) * 1.05)) + 2
                 s2 = self._level_cut(m, top, level, True, max(m, top - span))
                 e2 = self._level_cut(top, N, level, False, min(N, top + span))
                 if out and out[-1][1] >= s2 - 1:
@@ -439,52 +459,80 @@ class SimpleSums:
         self._runs = out
         return out
 
-    def _sigma_at(self, k: int) -> float:
+    def _sigma_at(self, k: int) -> Any:
         """``1/sqrt(-D''(k))`` (a width of the hump at its top), as a float."""
         ctx = mp()
         with ctx.workprec(64):
             c2 = self.taylor(k, 2)[2]
-        return float(1 / ctx.sqrt(-2 * c2)) if c2 < 0 else 1.0
+        return 1 / ctx.sqrt(-2 * c2) if c2 < 0 else ctx.mpf(1)
 
     # ------------------------------------------------------------------ bounds
-    def _log_gmax(self, xlo: Any, xhi: Any) -> Any:
-        """``log max g`` on ``[xlo, xhi]`` (``g = x f`` is log-concave, peak near
-        ``N + 1/2 - 1/p``), relative to ``Phi(c)``."""
+    def _dg_at(self, x: Any) -> Any:
         ctx = mp()
-        xg = self.N + ctx.mpf(0.5) - _to_mpf(ctx, self.b, self.a)
-        x = min(max(xg, xlo), xhi)
-        if x >= self.N + 1:  # pragma: no cover - guarded by the callers
-            x = ctx.mpf(self.N)
-        d = x - self.c
-        return self.D(x, d) + ctx.log(x)
+        d = x - self._cm
+        return self.Dg(d, ctx.fsub(self._um, d, exact=True))
 
-    def _log_bound(self, dlo: Any, dhi: Any, y: Any, kinds: tuple[int, ...]) -> list[Any] | None:
-        """Upper bounds of ``log |f(z) w_j(z)|`` on the box ``c + [dlo, dhi] + i[-y, y]``
-        (``None`` if the box leaves ``0 < Re z < N + 1``)."""
+    def _max_dg(self, xlo: Any, xhi: Any) -> Any:
+        """``max log(g/g(c))`` on ``[xlo, xhi]`` (``g`` log-concave, peak near
+        ``x_g = N + 1/2 - 1/p``)."""
+        x = min(max(self._xg, xlo), xhi)
+        return self._dg_at(x)
+
+    def _log_bound(self, kind: str, mid: Any, ell: Any, a: Any, b: Any,
+                   kinds: tuple[int, ...]) -> list[Any] | None:
+        """Upper bounds of ``log |integrand_j|`` on the Bernstein ellipse (semi-axes ``a ell``,
+        ``b ell``) around the panel ``mid +/- ell``: in ``x`` (``kind = "x"``, offsets from
+        ``c``; integrand ``f w_j``) or in ``s = log x`` (integrand ``x f w_j = c g/g(c) w_j``,
+        ``g`` entire, so only the disc ``|x| <= R = exp(mid + a ell)`` matters).  ``None``
+        if the region reaches ``Re x <= 0`` (x panels) or ``Re x >= N + 1``."""
         ctx = mp()
-        xlo = self.c + dlo
-        vlo = self.u - dhi
-        if xlo <= 0 or vlo <= 0:
+        if kind == "x":
+            xlo = self._cm + mid - a * ell
+            xhi = self._cm + mid + a * ell
+            y = b * ell
+            if xlo <= 0:
+                return None
+            R = max(abs(mid - a * ell), abs(mid + a * ell)) + y
+            base_lo = xlo
+        else:
+            R = ctx.exp(mid + a * ell)
+            xlo, xhi = -R, R
+            y = R
+            base_lo = None
+        vlo = self._um - (xhi - self._cm)
+        if vlo <= 1:
             return None
-        xhi = self.c + dhi
-        lg = self._log_gmax(xlo, xhi)
+        lg = self._max_dg(xlo, xhi)
         psi1 = 1 / vlo + 1 / (vlo * vlo)
-        lf = lg - ctx.log(xlo) + y * y * psi1 / 2
+        vert = y * y * psi1 / 2
+        if kind == "x":
+            lf = lg + vert - ctx.log(base_lo / self._cm)
+        else:
+            lf = lg + vert + self._logc
         out = []
-        R = max(abs(dlo), abs(dhi)) + y
         for j in kinds:
             if j == 0:
                 out.append(lf)
             elif j == 1:
-                out.append(lf + ctx.log(R + 1))
+                out.append(lf + ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
             elif j == 2:
-                out.append(lf + 2 * ctx.log(R + 1))
-            else:  # |D(z)| <= max|D| + y max|D'| + y**2 (psi' + 1/x**2)/2 on the box
-                dd = [abs(self.D(xlo, dlo)), abs(self.D(xhi, dhi)), abs(lg - ctx.log(xhi))]
-                sl = [abs(self.dD(xlo, dlo)), abs(self.dD(xhi, dhi))]
-                bd = max(dd) + y * max(sl) + y * y * (psi1 + 1 / (xlo * xlo)) / 2 + 1
-                out.append(lf + ctx.log(bd))
+                out.append(lf + 2 * ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
+            else:  # |D(z)| <= |Dg(z)| + |log(z/c)|, |Dg(x+iy)| <= max|Dg| + y max|Dg'| + y**2 psi'/2
+                dgs = [abs(self._dg_at(xlo)), abs(self._dg_at(xhi)), abs(lg)]
+                slopes = [abs(self._dgd(xlo)), abs(self._dgd(xhi))]
+                bd = max(dgs) + y * max(slopes) + vert
+                if kind == "x":
+                    bd += abs(ctx.log(xhi / self._cm)) + abs(ctx.log(xlo / self._cm)) + 2
+                else:
+                    bd += abs(mid) + (a + b) * ell + abs(self._logc) + 4
+                out.append(lf + ctx.log(bd + 1))
         return out
+
+    def _dgd(self, x: Any) -> Any:
+        """``(log g)'(x) = log p + psi(N + 1 - x)`` (bounds only: float-level accuracy)."""
+        ctx = mp()
+        v = self._um - (x - self._cm)
+        return self._L1 + ctx.digamma(v) - self._logu_hi
 
     def _plan_panel(self, kind: str, lo: Any, hi: Any, log_target: list[Any],
                     kinds: tuple[int, ...]) -> int | None:
@@ -495,27 +543,18 @@ class SimpleSums:
         ell = (hi - lo) / 2
         mid = (hi + lo) / 2
         best = None
+        lell = float(ctx.log(ell))
         for rho in _RHOS:
             a = (rho + 1 / rho) / 2
             b = (rho - 1 / rho) / 2
-            if kind == "x":
-                bounds = self._log_bound(mid - a * ell, mid + a * ell, b * ell, kinds)
-            else:
-                tau = b * ell
-                if tau > 1.2:
-                    continue
-                xl = ctx.exp(mid - a * ell) * ctx.cos(tau)
-                xh = ctx.exp(mid + a * ell)
-                bounds = self._log_bound(xl - self.c, xh - self.c, xh * ctx.sin(tau), kinds)
-                if bounds is not None:
-                    bounds = [v - ctx.log(ctx.cos(tau)) + ctx.log(xh) for v in bounds]
+            bounds = self._log_bound(kind, mid, ell, ctx.mpf(a), ctx.mpf(b), kinds)
             if bounds is None:
                 continue
             lr = math.log(rho)
             for n in GL_SIZES:
                 if best is not None and n >= best:
                     break
-                fac = gl_error_factor(n, lr) + float(ctx.log(ell))
+                fac = gl_error_factor(n, lr) + lell
                 if all(fac + float(bv) <= float(t) for bv, t in zip(bounds, log_target,
                                                                        strict=True)):
                     best = n
@@ -588,6 +627,20 @@ class SimpleSums:
         if B - A + 1 <= self.direct_terms:
             return self._direct(A, B, kinds)
         K0 = max(A, 4 * self.W)
+        ctx = mp()
+        rmin = 0.45 * self.W + 3  # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
+        with ctx.workprec(64):
+            # Euler-Maclaurin needs f smooth on a disc of radius min(x/2, 2/|D'(x)|) >= rmin
+            # at both ends (where f decays like exp(D'(x) t))
+            def radius(x: int) -> Any:
+                s = abs(self.dD(x))
+                return min(ctx.mpf(x) / 2, 2 / s) if s else ctx.mpf(x) / 2
+
+            while K0 < B and radius(K0) < rmin and K0 < 64 * self.W:
+                K0 = min(B, 2 * K0)
+            smooth = radius(K0) >= rmin and radius(B) >= rmin
+        if B - K0 + 1 <= self.direct_terms or K0 >= B or not smooth:
+            return self._direct(A, B, kinds)
         head = self._direct(A, K0 - 1, kinds) if K0 > A else [mp().mpf(0) for _ in kinds]
         tail = self._em(K0, B, kinds)
         return [h + t for h, t in zip(head, tail, strict=True)]
@@ -595,32 +648,33 @@ class SimpleSums:
     def _scales(self, A: int, B: int, kinds: tuple[int, ...]) -> list[float]:
         """The size of each weight that its sum's error is measured against (``log``)."""
         top = self.top if self.top is not None else 1
-        sig = self._sigma_at(top) if top > 1 else 1.0
+        ctx = mp()
+        sig = self._sigma_at(top) if top > 1 else ctx.mpf(1)
         T = self.W * _LN10
-        width = max(sig, (B - A) / (4 * T), 1.0)
+        width = max(sig, ctx.mpf(B - A) / (4 * T), ctx.mpf(1))
         out = []
         for j in kinds:
             if j == 0 or j == 3:
                 out.append(0.0)
             elif j == 1:
-                out.append(math.log(max(self.c, width)))
+                out.append(float(ctx.log(max(self._cm, width))))
             else:
-                out.append(2 * math.log(width))
+                out.append(float(2 * ctx.log(width)))
         return out
 
     def _em(self, A: int, B: int, kinds: tuple[int, ...]) -> list[Any]:
         """Euler-Maclaurin on ``[A, B]`` (``A >= 4 (dps + guard)``, f smooth on the scale of A)."""
         ctx = mp()
         eps_log = -(self.W * _LN10) - 3
-        with ctx.workprec(max(96, int(3.33 * len(str(self.N))) + 64)):
+        with ctx.workprec(128):
             low = self._lower(A, B)
             scales = self._scales(A, B, kinds)
         top = self.top if self.top is not None else 0
         N, c = self.N, self.c
-        xg = N + 0.5 - self.b / self.a if self.a * N > self.b else 0.0
+        xg = self._xg  # N + 1/2 - 1/p
         # s-region [A, Xs] near the pole at 0, x-region [Xs, B]
         if top and A < top <= B + 1 and xg / 4 > A:
-            Xs = min(B, int(xg / 4))
+            Xs = min(B, int(xg / 4))  # int() of an mpf is exact
         elif top and A >= xg / 4:
             Xs = A
         else:
@@ -631,7 +685,7 @@ class SimpleSums:
             pieces.append(("s", ctx.log(A), ctx.log(Xs)))
         if B > Xs:
             pieces.append(("x", ctx.mpf(Xs - c), ctx.mpf(B - c)))
-        lowprec = max(96, int(3.33 * len(str(N))) + 64)
+        lowprec = 128
         for kind, lo, hi in pieces:
             span = hi - lo
             stack = [(lo, hi)]
@@ -677,14 +731,23 @@ class SimpleSums:
                     else:
                         total[i] += fv * Dv
         # endpoint terms: (F(A) + F(B))/2 + sum_m B_2m/(2m)! (F^(2m-1)(B) - F^(2m-1)(A))
+        # Cauchy discs of radius r around [A, B]: r = min(A/2, 2/|D'(A)|) keeps
+        # max|f| on them within e**2 of f at the centre near A (f decays at most like
+        # exp(D'(A) x) there); in the hump r ~ sigma
+        with ctx.workprec(64):
+            slope = abs(self.dD(A))
+            lrA = min(math.log(A / 2), math.log(2 / float(slope)) if slope else math.inf)
         M = 1
-        while em_remainder_factor(M, A / 2) > eps_log - 5 and M < 200:
+        while em_remainder_factor(M, lrA) + 2 > eps_log - 5 and M < 200:
             M += 1
         corr = [ctx.mpf(0) for _ in kinds]
         for x0, sign in ((A, -1), (B, 1)):
-            r0 = min(x0 / 2, max(1.0, self._sigma_at(top)) if top else x0 / 2)
+            with ctx.workprec(64):
+                lr0 = ctx.log(ctx.mpf(x0) / 2)
+                if top:
+                    lr0 = min(lr0, ctx.log(max(1, self._sigma_at(top))))
             Mx = 1
-            while em_remainder_factor(Mx, r0) > eps_log - 5 and Mx < M:
+            while em_remainder_factor(Mx, float(lr0)) > eps_log - 5 and Mx < M:
                 Mx += 1
             order = 2 * Mx
             tc = self.taylor(x0, order)

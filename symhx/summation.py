@@ -90,11 +90,12 @@ def gl_error_factor(n: int, log_rho: float) -> float:
     return math.log(64 / 15) - 2 * n * log_rho - math.log(rho2 - 1)
 
 
-def em_remainder_factor(M: int, r: float) -> float:
-    """``log`` of ``2 zeta(2M) (2M)! / (2 pi r)**(2M)``: times ``max|F|`` on discs of radius ``r``
-    around ``[A, B]`` and ``B - A``, this bounds the Euler-Maclaurin remainder ``R_M``."""
+def em_remainder_factor(M: int, log_r: float) -> float:
+    """``log`` of ``2 zeta(2M) (2M)! / (2 pi r)**(2M)`` (given ``log r``): times ``max|F|`` on
+    discs of radius ``r`` around ``[A, B]`` and ``B - A``, this bounds the Euler-Maclaurin
+    remainder ``R_M``."""
     zeta = 1 + 2.0 ** (-2 * M) * 2  # zeta(2M) <= 1 + 2**(1-2M) for M >= 1
-    return math.log(2 * zeta) + math.lgamma(2 * M + 1) - 2 * M * math.log(2 * math.pi * r)
+    return math.log(2 * zeta) + math.lgamma(2 * M + 1) - 2 * M * (math.log(2 * math.pi) + log_r)
 
 
 def exp_series(ctx: Any, c: list[Any], order: int) -> list[Any]:
