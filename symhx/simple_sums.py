@@ -147,7 +147,10 @@ class SimpleSums:
         self._magc = ctx.mag(self._cm)
         self._half = ctx.mpf(0.5)
         self._Ymp = ctx.mpf(STIRLING_MIN)
-        self._xg = _to_mpf(ctx, 2 * N * self.a + self.a - 2 * self.b, 2 * self.a)  # N+1/2-1/p
+        # the peak of g, N + 1/2 - 1/p, as an offset from c (exact rational first: near the
+        # hump its distance to c is ~1/p - (N - c), far below the precision of N itself)
+        self._xg_off = _to_mpf(ctx, (2 * (N - c) + 1) * self.a - 2 * self.b, 2 * self.a)
+        self._xg = self._cm + self._xg_off
         with ctx.extraprec(64 + self.u.bit_length()):
             self._l2pi = ctx.log(2 * ctx.pi) / 2
         self._Su = self._S(self._um)
@@ -427,37 +430,64 @@ class SimpleSums:
                 bad, dbad = cand, dx
         return good
 
-    def runs(self) -> list[tuple[int, int]]:
-        """The significant runs of ``k`` (see step 1 of the module docstring), increasing."""
-        if hasattr(self, "_runs"):
-            return self._runs
-        ctx = mp()
+    def runs(self, A: int = 1, B: int | None = None) -> list[tuple[int, int]]:
+        """The significant runs of ``k`` in ``[A, B]`` (step 1 of the module docstring): every
+        ``k`` whose term is within ``10**-(dps+guard)`` / (length of the range) of the largest
+        term *of the range*, so a sum over a far tail keeps its relative accuracy."""
         N = self.N
+        B = N if B is None else B
+        key = (A, B)
+        cache = self.__dict__.setdefault("_runs_cache", {})
+        if key in cache:
+            return cache[key]
+        ctx = mp()
         with ctx.workprec(128):
-            level = -(self.W * _LN10 + math.log(N) + 10)
-            out: list[tuple[int, int]] = []
             top = self.top if (self.top is not None and self.top > 1) else None
             m = self.valley() if top else N
-            if self.D(1) >= level:
-                head_level = level
-                if top is None and self.a * N < self.b:
-                    # no hump and N p < 1: every ratio Phi(k+1)/Phi(k) is below N p, so the
-                    # dropped tail is at most f(e1)/(1 - N p) (not N f(e1))
+            # monotone stretches of Phi: [1, m] down, [m, top] up, [top, N] down
+            stretches = [(1, m, False)] + ([(m, top, True), (top, N, False)] if top else [])
+            pieces = []
+            for lo, hi, inc in stretches:
+                lo, hi = max(lo, A), min(hi, B)
+                if lo <= hi:
+                    pieces.append((lo, hi, inc, self.D(hi if inc else lo)))
+            dmax = max(p[3] for p in pieces)
+            level = dmax - (self.W * _LN10 + math.log(B - A + 1) + 10)
+            out: list[tuple[int, int]] = []
+            for lo, hi, inc, dtop in pieces:
+                if dtop < level:
+                    continue
+                lev = level
+                if not inc and top is None and lo == A and self.a * N < self.b:
+                    # no hump, N p < 1: each ratio is below N p, so the dropped tail is at
+                    # most f(e1)/(1 - N p) (not N f(e1))
                     npm = _to_mpf(ctx, self.a * N, self.b)
-                    head_level = -(self.W * _LN10 + 10) + ctx.log(1 - npm)
-                e1 = self._level_cut(1, m, head_level, False, 1)
-                out.append((1, e1))
-            if top is not None and self.D(top) >= level:
-                sig = self._sigma_at(top)
-                span = int(ctx.nint(sig * ctx.sqrt(2 * -level) * 1.05)) + 2
-                s2 = self._level_cut(m, top, level, True, max(m, top - span))
-                e2 = self._level_cut(top, N, level, False, min(N, top + span))
-                if out and out[-1][1] >= s2 - 1:
-                    out[-1] = (1, e2)
+                    lev = dmax - (self.W * _LN10 + 10) + ctx.log(1 - npm)
+                if inc:
+                    guess = lo
+                    if hi == top:
+                        span = int(ctx.nint(self._sigma_at(top) * ctx.sqrt(2 * (dtop - lev))
+                                            * 1.05)) + 2
+                        guess = max(lo, hi - span)
+                    out.append((self._level_cut(lo, hi, lev, True, guess), hi))
                 else:
-                    out.append((s2, e2))
-        self._runs = out
-        return out
+                    guess = hi
+                    if lo == top:
+                        span = int(ctx.nint(self._sigma_at(top) * ctx.sqrt(2 * (dtop - lev))
+                                            * 1.05)) + 2
+                        guess = min(hi, lo + span)
+                    else:
+                        guess = lo
+                    out.append((lo, self._level_cut(lo, hi, lev, False, guess)))
+            out.sort()
+            merged: list[tuple[int, int]] = []
+            for lo, hi in out:
+                if merged and lo <= merged[-1][1] + 1:
+                    merged[-1] = (merged[-1][0], max(hi, merged[-1][1]))
+                else:
+                    merged.append((lo, hi))
+        cache[key] = merged
+        return merged
 
     def _sigma_at(self, k: int) -> Any:
         """``1/sqrt(-D''(k))`` (a width of the hump at its top), as a float."""
@@ -467,16 +497,14 @@ class SimpleSums:
         return 1 / ctx.sqrt(-2 * c2) if c2 < 0 else ctx.mpf(1)
 
     # ------------------------------------------------------------------ bounds
-    def _dg_at(self, x: Any) -> Any:
+    def _dg_off(self, d: Any) -> Any:
         ctx = mp()
-        d = x - self._cm
         return self.Dg(d, ctx.fsub(self._um, d, exact=True))
 
-    def _max_dg(self, xlo: Any, xhi: Any) -> Any:
-        """``max log(g/g(c))`` on ``[xlo, xhi]`` (``g`` log-concave, peak near
-        ``x_g = N + 1/2 - 1/p``)."""
-        x = min(max(self._xg, xlo), xhi)
-        return self._dg_at(x)
+    def _max_dg(self, dlo: Any, dhi: Any) -> Any:
+        """``max log(g/g(c))`` for offsets ``x - c`` in ``[dlo, dhi]`` (``g`` log-concave, peak
+        near ``x_g = N + 1/2 - 1/p``)."""
+        return self._dg_off(min(max(self._xg_off, dlo), dhi))
 
     def _log_bound(self, kind: str, mid: Any, ell: Any, a: Any, b: Any,
                    kinds: tuple[int, ...]) -> list[Any] | None:
@@ -487,22 +515,24 @@ class SimpleSums:
         if the region reaches ``Re x <= 0`` (x panels) or ``Re x >= N + 1``."""
         ctx = mp()
         if kind == "x":
-            xlo = self._cm + mid - a * ell
-            xhi = self._cm + mid + a * ell
+            dlo, dhi = mid - a * ell, mid + a * ell
+            xlo = self._cm + dlo
+            xhi = self._cm + dhi
             y = b * ell
             if xlo <= 0:
                 return None
-            R = max(abs(mid - a * ell), abs(mid + a * ell)) + y
+            R = max(abs(dlo), abs(dhi)) + y
             base_lo = xlo
         else:
             R = ctx.exp(mid + a * ell)
             xlo, xhi = -R, R
+            dlo, dhi = xlo - self._cm, xhi - self._cm
             y = R
             base_lo = None
-        vlo = self._um - (xhi - self._cm)
+        vlo = self._um - dhi
         if vlo <= 1:
             return None
-        lg = self._max_dg(xlo, xhi)
+        lg = self._max_dg(dlo, dhi)
         psi1 = 1 / vlo + 1 / (vlo * vlo)
         vert = y * y * psi1 / 2
         if kind == "x":
@@ -518,8 +548,8 @@ class SimpleSums:
             elif j == 2:
                 out.append(lf + 2 * ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
             else:  # |D(z)| <= |Dg(z)| + |log(z/c)|, |Dg(x+iy)| <= max|Dg| + y max|Dg'| + y**2 psi'/2
-                dgs = [abs(self._dg_at(xlo)), abs(self._dg_at(xhi)), abs(lg)]
-                slopes = [abs(self._dgd(xlo)), abs(self._dgd(xhi))]
+                dgs = [abs(self._dg_off(dlo)), abs(self._dg_off(dhi)), abs(lg)]
+                slopes = [abs(self._dgd(dlo)), abs(self._dgd(dhi))]
                 bd = max(dgs) + y * max(slopes) + vert
                 if kind == "x":
                     bd += abs(ctx.log(xhi / self._cm)) + abs(ctx.log(xlo / self._cm)) + 2
@@ -528,10 +558,10 @@ class SimpleSums:
                 out.append(lf + ctx.log(bd + 1))
         return out
 
-    def _dgd(self, x: Any) -> Any:
-        """``(log g)'(x) = log p + psi(N + 1 - x)`` (bounds only: float-level accuracy)."""
+    def _dgd(self, d: Any) -> Any:
+        """``(log g)'(x) = log p + psi(N + 1 - x)`` at the offset ``d = x - c`` (bounds only)."""
         ctx = mp()
-        v = self._um - (x - self._cm)
+        v = self._um - d
         return self._L1 + ctx.digamma(v) - self._logu_hi
 
     def _plan_panel(self, kind: str, lo: Any, hi: Any, log_target: list[Any],
@@ -609,11 +639,10 @@ class SimpleSums:
         the sum of ``f`` over ``[A, B]`` times the weight's scale."""
         ctx = mp()
         total = [ctx.mpf(0) for _ in kinds]
+        if A > B:
+            return total
         with ctx.workdps(self.W):
-            for lo, hi in self.runs():
-                lo, hi = max(lo, A), min(hi, B)
-                if lo > hi:
-                    continue
+            for lo, hi in self.runs(A, B):
                 part = self._run_sum(lo, hi, kinds)
                 total = [t + v for t, v in zip(total, part, strict=True)]
         return total
