@@ -792,8 +792,37 @@ class SimpleDistribution(Distribution):
     # ----------------------------------------------------------------- float64 beyond the table
     @cached_property
     def _float_engine(self) -> SimpleDistribution:
-        """For ``dps=None`` and ``N > FLOAT_N_LIMIT``: the engine at 17 digits (floats out)."""
+        """For ``dps=None`` and ``N > FLOAT_N_LIMIT``: the summation engine at 17 digits, its
+        results rounded to float64 (no table of the support)."""
         return SimpleDistribution(self.N, self.p, dps=17)
+
+    def _ftake(self, name: str, kk: np.ndarray, below: float, above: float) -> np.ndarray:
+        if self.N <= FLOAT_N_LIMIT:
+            return super()._ftake(name, kk, below, above)
+        eng = self._float_engine
+        out = np.empty(kk.shape, dtype=float)
+        edge = self.N if name in ("pmf", "logpmf") else self.N - 1
+        for idx, v in np.ndenumerate(kk):
+            k = int(v)
+            if k < 1:
+                out[idx] = below
+            elif k > edge:
+                out[idx] = above
+            else:
+                out[idx] = float(getattr(eng, name)(k))
+        return out
+
+    def mean(self) -> Any:
+        """``E[X]``: a Fraction when exact, an mpf to ``dps`` digits, or a float."""
+        if self.dps is None and self.N > FLOAT_N_LIMIT:
+            return float(self._float_engine.mean())
+        return super().mean()
+
+    def var(self) -> Any:
+        """``Var[X]`` (one pass of central sums on the mpmath path: no cancellation)."""
+        if self.dps is None and self.N > FLOAT_N_LIMIT:
+            return float(self._float_engine.var())
+        return super().var()
 
     # ----------------------------------------------------------------- quantiles (mpmath)
     def _ppf1(self, q: Fraction) -> int:
@@ -825,11 +854,39 @@ class SimpleDistribution(Distribution):
         self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         dps = self.dps or 17
         top = dps + digits_of(self.N) + 40
-        while True:
-            k, certain = self._quantile_at(qq, upper, dps)
-            if certain or dps >= top:
-                return k
+        k, certain = self._quantile_at(qq, upper, dps)
+        while not certain and dps < top:
             dps = min(top, dps + 20 + dps // 2)
+            k, certain = self._quantile_refine(qq, upper, dps, k)
+        return k
+
+    def _quantile_refine(self, qq: Fraction, upper: bool, dps: int, k: int
+                         ) -> tuple[int, bool]:
+        """The decision near ``k`` at ``dps`` digits: step ``k`` by one until ``C(k-1)`` and
+        ``C(k)`` straddle ``qq`` (the answer moves by a few at most), then report whether both
+        are outside the error bound."""
+        eng = self._engine(dps)
+        ctx = mp()
+        N = self.N
+        with ctx.workdps(eng.W):
+            s0 = eng.sums(1, N, (0,))[0]
+            target = ctx.mpf(qq.numerator) / qq.denominator * s0
+            tol = s0 * ctx.mpf(10) ** (-(eng.W - 4))
+
+            def C(j: int) -> Any:
+                if upper:
+                    return eng.sums(j + 1, N, (0,))[0] if j < N else ctx.mpf(0)
+                return eng.sums(1, j, (0,))[0] if j >= 1 else ctx.mpf(0)
+
+            def ok(val: Any) -> bool:
+                return bool(val <= target) if upper else bool(val >= target)
+
+            for _ in range(64):
+                here, below = C(k), C(k - 1)
+                if ok(here) and not ok(below):
+                    break
+                k = k + 1 if not ok(here) else k - 1
+            return k, abs(here - target) > tol and abs(below - target) > tol
 
     def _quantile_at(self, qq: Fraction, upper: bool, dps: int) -> tuple[int, bool]:
         eng = self._engine(dps)

@@ -86,6 +86,14 @@ def _to_mpf(ctx: Any, num: int, den: int) -> Any:
     return ctx.ldexp(ctx.mpf(n) / (den >> sb), sa - sb)
 
 
+def _log_ratio(ctx: Any, num: int, den: int) -> Any:
+    """``log(num/den)`` to full relative accuracy of the result: ``log1p`` of the exact
+    ``(num - den)/den`` near 1 (``p u - 1`` may be ``1e-49``), else the log of the ratio."""
+    if 2 * abs(num - den) < den:
+        return ctx.log1p(_to_mpf(ctx, num - den, den))
+    return ctx.log(_to_mpf(ctx, num, den))
+
+
 def _exact(ctx: Any, n: int) -> Any:
     """The int ``n`` as an mpf of ``ctx`` with every bit (no rounding to the precision)."""
     return ctx.make_mpf(from_int(n))
@@ -137,7 +145,7 @@ class SimpleSums:
         ctx = mp()
         N, c = self.N, self.c
         self.u = N + 1 - c
-        self._L1 = ctx.log1p(_to_mpf(ctx, self.a * self.u - self.b, self.b))  # log(p u)
+        self._L1 = _log_ratio(ctx, self.a * self.u, self.b)  # log(p u)
         with ctx.extraprec(128):
             self._logc = ctx.log(c)
             self._logu_hi = ctx.log(self.u)
@@ -354,7 +362,7 @@ class SimpleSums:
         ctx = mp()
         N, c = self.N, self.c
         # log Phi(c) = c log(p (N+1)) + [lgamma(N+1) - lgamma(N+1-c) - c log(N+1)] - log c
-        lpn = ctx.log1p(_to_mpf(ctx, self.a * (N + 1) - self.b, self.b))
+        lpn = _log_ratio(ctx, self.a * (N + 1), self.b)
         U = N + 1
         if U >= STIRLING_MIN and U - c >= STIRLING_MIN:
             t = ctx.mpf(c) / U
