@@ -936,9 +936,10 @@ class SimpleDistribution(Distribution):
 
         ctx = mp()
         mu, var = self._mp_moments[1], self._mp_moments[2]
-        q = float(qq)
-        q = min(max(q, 1e-300), 1 - 1e-16)
-        z = NormalDist().inv_cdf(1 - q if upper else q)
+        q = min(max(float(qq), 1e-300), 1 - 1e-16)
+        z = NormalDist().inv_cdf(q)
+        if upper:
+            z = -z
         with ctx.workdps(30):
             g = local(mu) + z * ctx.sqrt(max(local(var), 0))
             return int(min(max(ctx.nint(g), 1), self.N))

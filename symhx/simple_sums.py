@@ -600,14 +600,31 @@ class SimpleSums:
         return best
 
     # ------------------------------------------------------------------ sums
-    def _direct(self, A: int, B: int, kinds: tuple[int, ...]) -> list[Any]:
-        """``sum_{k=A}^{B} f(k) w_j(k)`` term by term (exact ratio recurrence)."""
+    def _direct(self, A: int, B: int, kinds: tuple[int, ...], limit: int | None = None
+                ) -> list[Any]:
+        """``sum_{k=A}^{B} f(k) w_j(k)`` term by term (exact ratio recurrence); with ``limit``,
+        the sum goes on past ``B`` (up to ``limit``) while a weighted term still counts at the
+        working precision against its own sum (a point mass at ``k = 1`` has its variance in
+        the terms the plain cut drops)."""
         ctx = mp()
         N, c = self.N, self.c
         sums = [ctx.mpf(0) for _ in kinds]
         f = ctx.exp(self.D(A))
         p = self._p
-        for k in range(A, B + 1):
+        eps = ctx.eps
+        k = A
+        while True:
+            if k > B:
+                if limit is None or k > limit or f == 0:
+                    break
+                d = k - c
+                big = False
+                for i, j in enumerate(kinds):
+                    w = (1, d, d * d, 1)[j] if j < 3 else abs(ctx.log(f)) + 1
+                    if abs(f * w) > eps * abs(sums[i]):
+                        big = True
+                if not big:
+                    break
             d = k - c
             for i, j in enumerate(kinds):
                 if j == 0:
@@ -619,6 +636,7 @@ class SimpleSums:
                 elif f > 0:
                     sums[i] += f * ctx.log(f)
             f = f * p * (N - k) * k / (k + 1)
+            k += 1
         return sums
 
     def _lower(self, A: int, B: int) -> Any:
@@ -650,8 +668,11 @@ class SimpleSums:
         if A > B:
             return total
         with ctx.workdps(self.W):
-            for lo, hi in self.runs(A, B):
-                part = self._run_sum(lo, hi, kinds)
+            runs = self.runs(A, B)
+            for i, (lo, hi) in enumerate(runs):
+                nxt = runs[i + 1][0] - 1 if i + 1 < len(runs) else B
+                part = self._run_sum(lo, hi, kinds, min(nxt, hi + 4 * self.direct_terms)
+                                     if kinds != (0,) else None)
                 total = [t + v for t, v in zip(total, part, strict=True)]
         return total
 
@@ -660,9 +681,10 @@ class SimpleSums:
         """Runs up to this many terms are summed term by term."""
         return max(1500, 16 * self.W)
 
-    def _run_sum(self, A: int, B: int, kinds: tuple[int, ...]) -> list[Any]:
+    def _run_sum(self, A: int, B: int, kinds: tuple[int, ...], limit: int | None = None
+                 ) -> list[Any]:
         if B - A + 1 <= self.direct_terms:
-            return self._direct(A, B, kinds)
+            return self._direct(A, B, kinds, limit)
         K0 = max(A, 4 * self.W)
         ctx = mp()
         rmin = 0.45 * self.W + 3  # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
@@ -773,7 +795,7 @@ class SimpleSums:
         # exp(D'(A) x) there); in the hump r ~ sigma
         with ctx.workprec(64):
             slope = abs(self.dD(A))
-            lrA = min(math.log(A / 2), math.log(2 / float(slope)) if slope else math.inf)
+            lrA = min(math.log(A) - math.log(2), -float(ctx.log(slope / 2)) if slope else math.inf)
         M = 1
         while em_remainder_factor(M, lrA) + 2 > eps_log - 5 and M < 200:
             M += 1
