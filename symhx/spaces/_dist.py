@@ -304,13 +304,20 @@ class SpaceDistribution(Distribution):
         return out
 
     @cached_property
-    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-        terms = self._terms
+    def _mp_norm(self) -> mpmath.mpf:
+        """``sum_k W(k)`` at ``dps`` + guard digits."""
         with mpmath.workdps(self._wdps):
-            s0 = mpmath.fsum(terms.values())
+            return mpmath.fsum(self._terms.values())
+
+    @cached_property
+    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        """``(log normaliser, mean, variance)`` (the meaning of every space)."""
+        terms = self._terms
+        s0 = self._mp_norm
+        with mpmath.workdps(self._wdps):
             mu = mpmath.fsum(k * w for k, w in terms.items()) / s0
             var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
-            return s0, mu, var
+            return mpmath.log(s0), mu, var
 
     def _float_logw(self) -> np.ndarray:
         return log_W_float(self.sample_space, self.N, _logp_float(_rational(self.p, self.fr)))
@@ -324,7 +331,7 @@ class SpaceDistribution(Distribution):
         return mpmath.exp(self._log_phi_mp(k, pm)) * self._q_mp(k, self._pe(pm))
 
     def _mp_terms(self, lo: int, hi: int) -> list[tuple[int, mpmath.mpf]]:
-        s0 = self._mp_moments[0]
+        s0 = self._mp_norm
         if self.N <= DIRECT_LIMIT:  # every W(k) is in _terms
             ks: Any = range(lo, hi + 1)
         else:  # float screen relative to the largest weight in [lo, hi]
@@ -342,14 +349,14 @@ class SpaceDistribution(Distribution):
     def _pmf1(self, k: int) -> Any:
         if self.exact:
             return self.weight_exact(k) / self._exact_moments[0]
-        s0 = self._mp_moments[0]
+        s0 = self._mp_norm
         with self._wp():
             return self._round(self._mp_weight(k) / s0)
 
     def _logpmf1(self, k: int) -> mpmath.mpf:
         if self.exact:
             return self._log_fraction(self._pmf1(k))
-        s0 = self._mp_moments[0]
+        s0 = self._mp_norm
         with self._wp():
             w = self._terms.get(k)
             if w is not None:
@@ -365,7 +372,7 @@ class SpaceDistribution(Distribution):
             return float(np.exp(self._ftab["lognorm"]))
         if self.exact:
             return self._exact_moments[0]
-        return self._round(self._mp_moments[0])
+        return self._round(self._mp_norm)
 
     @property
     def log_normaliser(self) -> Any:
@@ -375,7 +382,7 @@ class SpaceDistribution(Distribution):
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
         with self._wp():
-            return self._round(mpmath.log(self._mp_moments[0]))
+            return self._round(self._mp_moments[0])
 
     def modes(self) -> tuple[int, ...]:
         """All maximisers of ``P(X = k)`` (exact for rational ``p``)."""
@@ -389,7 +396,7 @@ class SpaceDistribution(Distribution):
             g = self._exact_moments[0]
             return [(k, self.weight_exact(k) / g) for k in range(1, self.N + 1)]
         terms = self._terms
-        s0 = self._mp_moments[0]
+        s0 = self._mp_norm
         zero = mpmath.mpf(0)
         with self._wp():
             vals = [(k, terms[k] / s0 if k in terms else zero) for k in range(1, self.N + 1)]
