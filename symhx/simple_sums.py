@@ -193,11 +193,12 @@ class SimpleSums:
         """``B_2r / (2r (2r-1))``, r = 1..400, at the working precision (cached)."""
         ctx = mp()
         key = ctx.prec
-        got = self.__dict__.setdefault("_coef", {}).get(key)
+        cache: dict[int, list[Any]] = self.__dict__.setdefault("_coef", {})
+        got = cache.get(key)
         if got is None:
             r_max = 30 + ctx.dps // 3
             got = [ctx.bernoulli(2 * r) / (2 * r * (2 * r - 1)) for r in range(1, r_max)]
-            self._coef[key] = got
+            cache[key] = got
         return got
 
     def _lg(self, y: Any) -> Any:
@@ -555,7 +556,7 @@ class SimpleSums:
                 out.append(lf + ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
             elif j == 2:
                 out.append(lf + 2 * ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
-            else:  # |D(z)| <= |Dg(z)| + |log(z/c)|, |Dg(x+iy)| <= max|Dg| + y max|Dg'| + y**2 psi'/2
+            else:  # |D| <= |Dg| + |log(z/c)|; |Dg(x+iy)| <= max|Dg| + y max|Dg'| + y**2 psi'/2
                 dgs = [abs(self._dg_off(dlo)), abs(self._dg_off(dhi)), abs(lg)]
                 slopes = [abs(self._dgd(dlo)), abs(self._dgd(dhi))]
                 bd = max(dgs) + y * max(slopes) + vert
@@ -729,7 +730,7 @@ class SimpleSums:
             low = self._lower(A, B)
             scales = self._scales(A, B, kinds)
         top = self.top if self.top is not None else 0
-        N, c = self.N, self.c
+        c = self.c
         xg = self._xg  # N + 1/2 - 1/p
         # s-region [A, Xs] near the pole at 0, x-region [Xs, B]
         if top and A < top <= B + 1 and xg / 4 > A:
@@ -795,7 +796,8 @@ class SimpleSums:
         # exp(D'(A) x) there); in the hump r ~ sigma
         with ctx.workprec(64):
             slope = abs(self.dD(A))
-            lrA = min(math.log(A) - math.log(2), -float(ctx.log(slope / 2)) if slope else math.inf)
+            lrA = min(math.log(A) - math.log(2),
+                      -float(ctx.log(slope / 2)) if slope else math.inf)
         M = 1
         while em_remainder_factor(M, lrA) + 2 > eps_log - 5 and M < 200:
             M += 1

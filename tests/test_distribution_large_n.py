@@ -12,7 +12,6 @@ import pytest
 
 import symhx
 from symhx.validation import mpf_to_fraction
-from tests.reference.distribution import pmf_table
 from tests.reference.distribution_large_n import direct_sums, head_sums, poisson_side_sums
 from tests.reference.mp import rel_err
 
