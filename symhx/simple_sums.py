@@ -417,12 +417,14 @@ class SimpleSums:
                 break
             lo_, hi_ = min(good, bad), max(good, bad)
             cand = None
-            for x0, f0 in ((good, dgood), (bad, dbad)):
+            for x0, f0, other in ((good, dgood, bad), (bad, dbad, good)):
                 s = self.dD(x0)
                 if s:
                     step = -f0 / s
                     if abs(step) < hi_ - lo_:
                         c1 = x0 + int(ctx.nint(step))
+                        if c1 == x0:  # within one of the root: one step toward the other end
+                            c1 = x0 + (1 if other > x0 else -1)
                         if lo_ < c1 < hi_:
                             cand = c1
                             break
@@ -433,6 +435,8 @@ class SimpleSums:
                     cand = (lo_ + hi_) // 2
                 cand = min(max(cand, lo_ + 1), hi_ - 1)
             dx = self.D(cand) - level
+            if abs(dx) < 1e-3:  # on the level to a thousandth of a nat: a cut only needs that
+                return cand
             if dx >= 0:
                 good, dgood = cand, dx
             else:
