@@ -474,8 +474,8 @@ class SimpleSums:
                 if not inc and top is None and lo == A and self.a * N < self.b:
                     # no hump, N p < 1: each ratio is below N p, so the dropped tail is at
                     # most f(e1)/(1 - N p) (not N f(e1))
-                    npm = _to_mpf(ctx, self.a * N, self.b)
-                    lev = dmax - (self.W * _LN10 + 10) + ctx.log(1 - npm)
+                    lev = dmax - (self.W * _LN10 + 10) + _log_ratio(ctx, self.b - self.a * N,
+                                                                     self.b)  # log(1 - N p)
                 if inc:
                     guess = lo
                     if hi == top:

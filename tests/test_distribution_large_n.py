@@ -185,3 +185,13 @@ def test_sums_beyond_the_limit_are_refused() -> None:
 
     d = symhx.distribution_of(MP_QUANTILE_N_LIMIT + 1, 0.5, dps=15)
     assert_refuses(d.median, arg="N", allowed="MP_QUANTILE_N_LIMIT")
+
+
+def test_slow_head_below_the_jump_at_huge_N() -> None:
+    """p_c read at 40 digits sits just below 1/N at N = 1e100 (N p - 1 = -5e-42): no hump, a
+    log-series head ~1e43 terms long.  The tail bound 1/(1 - N p) must use the exact 1 - N p."""
+    N = 10**100
+    p = symhx.critical_point(N, dps=40).p
+    a = symhx.distribution_of(N, p, dps=25).mean()
+    b = symhx.distribution_of(N, p, dps=50).mean()
+    assert rel_err(a, b) <= 1e-25
