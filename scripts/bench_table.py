@@ -3,8 +3,8 @@
     python scripts/bench_table.py            # print the Markdown table
     python scripts/bench_table.py --readme   # rewrite the block between the markers in README.md
 
-The numbers are read from the result files, never typed in; ``tests/test_readme.py`` checks that
-the README's block matches what this script renders.
+The numbers are read from the result files, never typed in; ``tests/system/test_readme.py``
+checks that the README's block matches what this script renders.
 """
 
 from __future__ import annotations

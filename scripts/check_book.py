@@ -28,6 +28,18 @@ fails (exit status 1, one line per problem) unless, for every page:
   (a figure cell whose plot was not captured leaves an empty figure with its caption);
 * **images load**: every ``<img src>`` (after scripts ran) is a local file of the build, non-empty
   and a PNG, JPEG, GIF, WebP or SVG image (``data:`` URIs are accepted);
+* **figures are numbered and shown once**: every image of a chapter (in the article, outside the
+  reference pages ``api/``, ``genindex``, ``search``, ``py-modindex``) sits in a ``<figure>``
+  whose caption carries a number (``span.caption-number``, "Fig. 7"), and no image appears twice
+  on a page (the same ``src``: a figure displayed twice);
+* **tables hold numbers, not placeholders**: no cell of a rendered table (autosummary tables of
+  the API pages excepted) reads ``inf``, ``-inf``, ``nan``, ``NaN``, ``None`` or ``Infinity``;
+* **API pages are complete**: the page ``api/<module>.html`` documents or links every name of
+  ``<module>.__all__`` (an element whose ``id`` is ``<module>.<name>`` or ``symhx.<name>``, or a
+  link to one);
+* **figures are legible and code is readable** (layout pass): no image of the article is shown
+  at less than 0.8 of its natural width, and no code block (``<pre>``) is wider than its box
+  unless it wraps or scrolls (``overflow-x: auto|scroll``);
 * **nothing comes from the internet**: no ``src``/``href``/``srcset``/``data``/``poster`` of a
   resource (script, stylesheet, image, font, frame, media; ``<a href>`` and navigational
   ``<link rel>`` are allowed) points to ``http(s)://`` or ``//``, neither in the built file nor in
@@ -98,6 +110,13 @@ RAW_TEX = [
     (re.compile(r"[\w)+-](?<!excess)\s*(<=|>=)\s*[\w(+-]"), "<= or >= (pseudo-LaTeX)"),
     (re.compile(r"(?<![\w$])\$[^$\s][^$\n]{0,80}?(?<=\S)\$(?![\w$])"), "$...$"),
 ]
+#: pseudo-LaTeX patterns: checked in the chapters, not in the reference pages, where docstrings
+#: and --help texts write maths in plain ASCII (``k <= N``) as they do in a terminal
+PSEUDO_TEX = {"x_{...} (pseudo-LaTeX)", "<= or >= (pseudo-LaTeX)"}
+#: placeholder values that must never appear in a rendered table cell
+PLACEHOLDER = re.compile(r"(?<![\w.])(-?inf|-?Infinity|nan|NaN|None)(?![\w])")
+#: pages that are not chapters (no numbered figures required)
+NOT_CHAPTERS = re.compile(r"^(api/|genindex\.html$|search\.html$|py-modindex\.html$)")
 CSS_URL = re.compile(r"""url\(\s*['"]?([^'")]+)['"]?\s*\)|@import\s+['"]([^'"]+)['"]""", re.I)
 IMAGE_MAGIC = (b"\x89PNG\r\n\x1a\n", b"\xff\xd8\xff", b"GIF87a", b"GIF89a")
 
@@ -116,6 +135,12 @@ class PageScan:
     empty_figures: list[str] = field(default_factory=list)  # ids of <figure> without an image
     inline_css: list[str] = field(default_factory=list)
     text: list[str] = field(default_factory=list)
+    # images of the <article> and the figure each sits in (None: not in a figure)
+    article_images: list[tuple[str, str | None]] = field(default_factory=list)
+    numbered_figures: set[str] = field(default_factory=set)  # ids with a caption number
+    table_cells: list[str] = field(default_factory=list)  # <td>/<th> texts (not autosummary)
+    ids: set[str] = field(default_factory=set)
+    hrefs: list[str] = field(default_factory=list)
 
 
 class _Scanner(HTMLParser):
@@ -124,6 +149,10 @@ class _Scanner(HTMLParser):
         self.scan = PageScan()
         self._hidden: list[str] = []
         self._figures: list[list] = []  # open <figure>s: [id, has_image]
+        self._article = 0  # depth of open <article> elements
+        self._tables: list[bool] = []  # open <table>s: checked (not an autosummary table)?
+        self._cell: list[str] | None = None  # text of the open <td>/<th>
+        self._fig_counter = 0
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
         a = {k.lower(): (v or "") for k, v in attrs}
@@ -153,13 +182,35 @@ class _Scanner(HTMLParser):
             s.images.append(a["src"])
         if tag == "figure":
             self.scan.figures += 1
-            self._figures.append([a.get("id", "?"), False])
+            self._fig_counter += 1
+            self._figures.append([a.get("id") or f"<figure {self._fig_counter}>", False])
         if tag in ("img", "svg", "object", "embed") and self._figures:
             self._figures[-1][1] = True
+        if tag == "article":
+            self._article += 1
+        if tag == "img" and self._article and a.get("src"):
+            s.article_images.append((a["src"], self._figures[-1][0] if self._figures else None))
+        if "caption-number" in classes and self._figures:
+            s.numbered_figures.add(self._figures[-1][0])
+        if tag == "table":
+            self._tables.append("autosummary" not in classes)
+        if tag in ("td", "th") and self._tables and self._tables[-1]:
+            self._cell = []
+        if a.get("id"):
+            s.ids.add(a["id"])
+        if tag == "a" and a.get("href"):
+            s.hrefs.append(a["href"])
         if tag in HIDDEN_TEXT_TAGS:
             self._hidden.append(tag)
 
     def handle_endtag(self, tag: str) -> None:
+        if tag == "article" and self._article:
+            self._article -= 1
+        if tag == "table" and self._tables:
+            self._tables.pop()
+        if tag in ("td", "th") and self._cell is not None:
+            self.scan.table_cells.append(" ".join("".join(self._cell).split()))
+            self._cell = None
         if tag == "figure" and self._figures:
             fig_id, has_image = self._figures.pop()
             if not has_image:
@@ -169,6 +220,8 @@ class _Scanner(HTMLParser):
                 pass
 
     def handle_data(self, data: str) -> None:
+        if self._cell is not None:
+            self._cell.append(data)
         if self._hidden:
             if self._hidden[-1] == "style":
                 self.scan.inline_css.append(data)
@@ -315,6 +368,29 @@ def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list
         elif target.stat().st_size == 0 or not _is_image(target):
             problems.append(f"{rel}: <img src={src!r}> is empty or not an image")
 
+    # -- chapter figures are numbered, and no image is shown twice on a page
+    if not NOT_CHAPTERS.match(rel):
+        for src, fig_id in source.article_images:
+            if fig_id is None:
+                problems.append(f"{rel}: image {src!r} is not in a numbered figure (give its "
+                                "cell mystnb figure metadata with a caption)")
+            elif fig_id not in source.numbered_figures:
+                problems.append(f"{rel}: figure {fig_id!r} has no numbered caption")
+    seen: set[str] = set()
+    for src, _ in source.article_images:
+        if src in seen:
+            problems.append(f"{rel}: the image {src!r} is shown twice on the page")
+        seen.add(src)
+
+    # -- tables hold numbers, not placeholders
+    for cell in source.table_cells:
+        m = PLACEHOLDER.search(cell)
+        if m:
+            problems.append(f"{rel}: table cell shows {m.group(1)!r}: {cell[:60]!r}")
+
+    # -- an API page documents (or links) every public name of its module
+    problems += api_page_problems(rel, source)
+
     # -- every code cell that draws with symhx.plots produced at least one image
     expected = expected_plot_cells(page, root)
     real_images = [s for s in dom.images if not s.startswith("data:")]
@@ -333,7 +409,10 @@ def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list
     if dom.mjx_errors:
         problems.append(f"{rel}: {dom.mjx_errors} MathJax errors (mjx-merror)")
     text = "".join(dom.text)
+    reference_page = rel.startswith("api/") or rel == "cli.html"
     for pattern, name in RAW_TEX:
+        if reference_page and name in PSEUDO_TEX:
+            continue
         m = pattern.search(text)
         if m:
             context = text[max(0, m.start() - 40): m.end() + 40].replace("\n", " ")
@@ -341,6 +420,27 @@ def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list
     stats = {"page": rel, "math": source.math_elements, "mjx": dom.mjx_containers,
              "images": len(dom.images), "figures": source.figures}
     return problems, stats
+
+
+def api_page_problems(rel: str, scan: PageScan) -> list[str]:
+    """Public names of the module of an API page (``api/<module>.html``) that the page neither
+    documents nor links."""
+    m = re.fullmatch(r"api/([\w.]+)\.html", rel)
+    if not m:
+        return []
+    module = m.group(1)
+    try:
+        import importlib
+
+        names = list(importlib.import_module(module).__all__)
+    except Exception as exc:
+        return [f"{rel}: cannot read the public names of {module}: {type(exc).__name__}: {exc}"]
+    linked = {h.rsplit("#", 1)[1] for h in scan.hrefs if "#" in h}
+    top = module.split(".")[0]
+    missing = [n for n in names
+               if not ({f"{module}.{n}", f"{top}.{n}"} & (scan.ids | linked))]
+    return [f"{rel}: the API page of {module} misses the public name(s) {', '.join(missing)}"
+            ] if missing else []
 
 
 # --------------------------------------------------------------------------- layout (Selenium)
@@ -405,6 +505,23 @@ Promise.all([ready, ...imgs]).then(() => {
   }
   for (const img of document.images) {
     if (!img.naturalWidth) problems.push('image did not load: ' + img.getAttribute('src'));
+    else if (column.contains(img) && img.offsetParent !== null) {
+      const scale = img.getBoundingClientRect().width / img.naturalWidth;
+      if (scale < 0.8) problems.push('figure shrunk to ' + scale.toFixed(2)
+        + ' of its natural width (' + img.naturalWidth + ' px; labels get too small): '
+        + img.getAttribute('src'));
+    }
+  }
+  for (const pre of column.querySelectorAll('pre')) {
+    if (pre.offsetParent === null || pre.scrollWidth <= pre.clientWidth + 1) continue;
+    const ws = getComputedStyle(pre).whiteSpace;
+    if (['pre-wrap', 'pre-line', 'normal', 'break-spaces'].includes(ws)) continue;
+    let scrolls = false;
+    for (let a = pre; a && a !== column.parentElement; a = a.parentElement) {
+      const ox = getComputedStyle(a).overflowX;
+      if (ox === 'auto' || ox === 'scroll') { scrolls = a.scrollWidth > a.clientWidth; break; }
+    }
+    if (!scrolls) problems.push('code block clipped without a scroll bar: ' + describe(pre));
   }
   for (const fig of document.querySelectorAll('figure')) {
     const media = fig.querySelector('img, svg, object, embed');

@@ -3,10 +3,10 @@
     python scripts/make_constants.py            # rewrites symhx/data/constants.json
 
 Each constant is certified as described in ``symhx.critical`` (integer argmin proved by Arb ball
-arithmetic; ``p_c_lo``/``p_c_hi`` a rigorous Arb enclosure of p_c). ``tests/test_constants.py``
-recomputes the table and fails if any digit up to the 47th changes, and re-derives EVERY row by an
-independent method (the loggamma definition in mpmath at 3x the digits, the argmin by exhaustive
-scan or by the local-minimum test plus unimodality).
+arithmetic; ``p_c_lo``/``p_c_hi`` a rigorous Arb enclosure of p_c).
+``tests/test_critical_constants.py`` recomputes the table and fails if any digit up to the 47th
+changes, and re-derives EVERY row by an independent method (the loggamma definition in mpmath at
+3x the digits, the argmin by exhaustive scan or by the local-minimum test plus unimodality).
 """
 
 from __future__ import annotations

@@ -144,7 +144,7 @@ class PdSeries:
     N: int
     n_terms: int
     value: mpmath.mpf
-    bound: mpmath.mpf  #: |p_d - value| <= bound (for every N >= 1)
+    bound: mpmath.mpf  #: ``|p_d - value| <= bound`` (for every ``N >= 1``)
     coefficients: tuple[tuple[int, Fraction], ...]
 
 

@@ -136,7 +136,7 @@ def mpf_bounds(x: arb, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
 
 
 def rel_width_ok(x: arb, dps: int) -> bool:
-    """Whether the ball's relative width (radius / |midpoint|) is below ``10**-dps / 4``."""
+    """Whether the ball's relative width (``radius / |midpoint|``) is below ``10**-dps / 4``."""
     if x.is_exact():
         return True
     if x.contains(0):

@@ -62,7 +62,8 @@ MAX_TOTAL_N = 50_000
 MAX_CIRCUIT_LENGTH = 100_000
 #: largest length of :func:`circuits_of_length` (it lists every partition: p(50) = 204226)
 MAX_PATTERN_LENGTH = 50
-#: largest size in bits of a result of :func:`necklace_count` (~N**L)
+#: largest size in bits of a result of :func:`phi` (~k log2 N), :func:`circuit_count` (its
+#: ``N!/(N - r)!`` factor, ~r log2 N for r distinct vertices) and :func:`necklace_count` (~N**L)
 MAX_COUNT_BITS = 10_000_000
 #: largest number of words ``N**L`` that :func:`enumerate_circuits` may walk
 MAX_ENUMERATION = 10**8
@@ -103,6 +104,12 @@ def phi(N: int, k: int) -> int:
     int
         The exact count. For huge ``N`` and ``k`` use :func:`log_phi`.
 
+    Raises
+    ------
+    ValueError
+        For ``N < 1``, and when the count would have more than about
+        :data:`MAX_COUNT_BITS` bits (``k * bit_length(N)``, checked before any work).
+
     >>> [phi(5, k) for k in range(1, 6)]
     [5, 10, 20, 30, 24]
     """
@@ -110,6 +117,8 @@ def phi(N: int, k: int) -> int:
     k = check_int(k, "k")
     if k < 1 or k > N:
         return 0
+    if k * N.bit_length() > MAX_COUNT_BITS:  # the count has about k log2(N) bits
+        raise _refuse("k * bit_length(N)", k * N.bit_length(), MAX_COUNT_BITS, "MAX_COUNT_BITS")
     return math.perm(N, k) // k
 
 
@@ -229,6 +238,13 @@ def circuit_count(N: int, visits: Iterable[int]) -> int:
     int
         Exact count; ``0`` if the pattern needs more than ``N`` distinct vertices.
 
+    Raises
+    ------
+    ValueError
+        For a length above :data:`MAX_CIRCUIT_LENGTH`, or a count whose ``N!/(N - r)!`` factor
+        would exceed :data:`MAX_COUNT_BITS` bits (``r * bit_length(N)``, checked before any
+        work).
+
     >>> circuit_count(10, (1, 1, 1)) == phi(10, 3)
     True
     >>> circuit_count(5, (2, 1))   # eq. (35) at k = 3: (1/2)(k-1) N!/(N-(k-1))! = 2*20/2
@@ -242,6 +258,9 @@ def circuit_count(N: int, visits: Iterable[int]) -> int:
     r = len(vs)
     if r > N:
         return 0
+    if r * N.bit_length() > MAX_COUNT_BITS:  # N!/(N - r)! alone has about r log2 N bits
+        raise _refuse("len(visits) * bit_length(N)", r * N.bit_length(), MAX_COUNT_BITS,
+                      "MAX_COUNT_BITS")
     choose = math.perm(N, r)
     for c in Counter(vs).values():
         choose //= math.factorial(c)

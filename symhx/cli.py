@@ -20,14 +20,12 @@ Help: every option shows its default (``symhx CMD --help``).
 from __future__ import annotations
 
 import argparse
-import importlib
-import pkgutil
 import sys
 from collections.abc import Sequence
-from types import ModuleType
 from typing import Any, NoReturn
 
 from symhx import __version__
+from symhx.commands import command_modules
 
 #: where internal errors should be reported
 REPORT_HINT = "this is a bug in symhx; please report it with the command line you ran"
@@ -69,18 +67,6 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> NoReturn:
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
-
-
-def command_modules() -> list[ModuleType]:
-    """All modules of :mod:`symhx.commands`, sorted by their ``ORDER`` attribute."""
-    import symhx.commands as pkg
-
-    mods = [
-        importlib.import_module(f"symhx.commands.{info.name}")
-        for info in pkgutil.iter_modules(pkg.__path__)
-        if not info.name.startswith("_")
-    ]
-    return sorted(mods, key=lambda m: (getattr(m, "ORDER", 100), m.__name__))
 
 
 def build_parser() -> argparse.ArgumentParser:

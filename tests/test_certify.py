@@ -1,265 +1,347 @@
-"""Arb-certified decisions and enclosures (issue 11): every enclosure contains a value recomputed
-independently (mpmath loggamma route at 3x the digits, or exact brute force), widths meet the
-contract and shrink with dps, a perturbed argmin fails its certificate, any N works."""
+"""symhx.certify against independent references: exact rationals for the conversions, an
+mpmath sum at many digits for ``G``, the documented precision schedule of
+:func:`certified_sign`, outward rounding checked with exact Arb comparisons, and the space
+candidates against an exhaustive exact scan of ``W(k) = Phi(k) Q*(k)`` with Fractions."""
 
 from __future__ import annotations
 
-import itertools
 import math
 from fractions import Fraction
 
 import flint
 import mpmath
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from flint import arb, fmpq, fmpz
 
-import symhx
-import symhx.asymptotics
-import symhx.spaces
-import symhx.validation
-from symhx.certify import UndecidedError, certified_sign, mpf_bounds, to_arb
-from symhx.critical import (
-    MAX_BREAKPOINTS,
-    argmin_certificate,
-    certified_argmin,
-    critical_point,
-    discriminant_root,
-    mode_path,
+from symhx.certify import (
+    G_arb,
+    UndecidedError,
+    arb_prec,
+    bits_for,
+    certified_sign,
+    mpf_bounds,
+    rel_width_ok,
+    space_candidates,
+    to_arb,
 )
-from tests.reference.critical import critical_by_scan, log_c_direct
-from tests.reference.distribution import brute_modes
+from tests.reference.critical import G_log1p_sum
+from tests.reference.distribution import phi_exact
 
 
-def _pc_reference(N: int, k: int, dps: int) -> mpmath.mpf:
-    """c_k from the definition (loggamma) at 3x the digits, plus 2 log10(N) guard digits."""
-    with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
-        return mpmath.exp(log_c_direct(N, k, 3 * dps)) / N
+def _exact_equal(ball: arb, fr: Fraction) -> bool:
+    """The ball is exact and equals the rational ``fr`` (compared in exact fmpq arithmetic)."""
+    if not ball.is_exact():
+        return False
+    man, exp = ball.mid().man_exp()
+    val = Fraction(int(man)) * (Fraction(2) ** int(exp))
+    return val == fr
 
 
-def _check_enclosure(cp, ref):
-    lo, hi = cp.p_bounds
-    if cp.p_exact is not None:  # exact rational p_c: a zero-width enclosure
-        with mpmath.workdps(3 * cp.dps + 40):
-            exact = mpmath.mpf(cp.p_exact.numerator) / cp.p_exact.denominator
-            assert abs(ref - exact) <= mpmath.mpf(10) ** (2 - 3 * cp.dps) * exact
-            assert lo <= exact <= hi and (hi - lo) <= mpmath.mpf(10) ** -cp.dps * exact
-        return
-    with mpmath.workdps(3 * cp.dps + 40 + 2 * len(str(cp.N))):
-        assert lo <= ref <= hi, (cp.N, lo, ref, hi)
-        assert lo <= cp.p <= hi
-        assert (hi - lo) / ref <= mpmath.mpf(10) ** -cp.dps
-        qref = cp.N * ref - 1
-        qlo, qhi = cp.q_bounds
-        assert qlo <= qref <= qhi
-        assert (qhi - qlo) / qref <= mpmath.mpf(10) ** -cp.dps
+# ------------------------------------------------------------------------------- to_arb
+@pytest.mark.parametrize("x, exact", [
+    (mpmath.mpf(3) * mpmath.mpf(2) ** 70, Fraction(3 * 2**70)),
+    (mpmath.mpf(5) * mpmath.mpf(2) ** 3, Fraction(40)),
+    (mpmath.mpf(7), Fraction(7)),
+    (mpmath.mpf(3) / mpmath.mpf(2) ** 70, Fraction(3, 2**70)),
+    (mpmath.mpf(-5) / 8, Fraction(-5, 8)),
+    (mpmath.mpf(0.1), Fraction(0.1)),
+])
+def test_to_arb_mpf_is_exact(x, exact):
+    with arb_prec(64):
+        assert _exact_equal(to_arb(x), exact), (x, to_arb(x))
 
 
-@pytest.mark.parametrize("N", [*range(2, 41), 64, 101, 257, 400])
-@pytest.mark.parametrize("dps", [5, 50])
-def test_enclosure_small_N_against_scan(N, dps):
-    cp = critical_point(N, dps=dps)
-    argmins, _ = critical_by_scan(N, 3 * dps)
-    assert list(cp.argmins) == argmins
-    _check_enclosure(cp, _pc_reference(N, argmins[0], dps))
+def test_to_arb_ints_and_rationals():
+    with arb_prec(64):
+        big = -(3**100)  # more bits than the precision: still exact (flint keeps fmpz exact)
+        assert _exact_equal(to_arb(big), Fraction(big))
+        assert _exact_equal(to_arb(-12345), Fraction(-12345))
+        third = to_arb(Fraction(1, 3))
+        assert third.contains(arb(fmpq(1, 3))) and third.rad() < arb(2) ** -60
+        assert _exact_equal(to_arb(Fraction(-3, 8)), Fraction(-3, 8))
+
+        class Rat:  # any object with integer numerator / denominator
+            numerator, denominator = 7, 16
+
+        assert _exact_equal(to_arb(Rat()), Fraction(7, 16))
 
 
-@pytest.mark.parametrize("N", [10**3, 10**4, 10**6, 10**12, 10**30, 10**100, 10**306])
-@pytest.mark.parametrize("dps", [15, 50, 120])
-def test_enclosure_large_N(N, dps):
-    cp = critical_point(N, dps=dps)
-    _check_enclosure(cp, _pc_reference(N, cp.k_after, dps))
+def test_to_arb_mpf_zero_and_non_finite():
+    # regression: man_exp has no sign, so a negative mpf used to come back positive, and
+    # inf / nan came back as 0
+    with arb_prec(64):
+        assert _exact_equal(to_arb(mpmath.mpf(0)), Fraction(0))
+        assert to_arb(-mpmath.mpf(2) ** -80) < 0
+    for bad in (mpmath.inf, -mpmath.inf, mpmath.nan):
+        with pytest.raises(ValueError, match="not a finite number"):
+            to_arb(bad)
 
 
-@pytest.mark.parametrize("N", [101, 10**4, 10**40])
-def test_widths_shrink_as_dps_grows(N):
-    widths = []
-    for dps in (10, 20, 40, 80, 160):
-        lo, hi = critical_point(N, dps=dps).p_bounds
-        with mpmath.workdps(400):
-            w = (hi - lo) / lo
-        assert w <= mpmath.mpf(10) ** -dps
-        widths.append(w)
-    assert all(b < a / 10**9 for a, b in itertools.pairwise(widths)), widths
+def test_to_arb_rejects_other_objects():
+    class OnlyNumerator:
+        numerator = 3
+
+    class OnlyDenominator:
+        denominator = 3
+
+    for bad in ("1/2", None, 1.5j, OnlyNumerator(), OnlyDenominator()):
+        with pytest.raises(TypeError, match=f"cannot convert {type(bad).__name__} to arb"):
+            to_arb(bad)
 
 
-def _local_min_independent(N: int, k: int) -> None:
-    """c_{k-1} > c_k < c_{k+1} from the loggamma definition at a precision that resolves
-    the gaps (~ 1/k**2 relative); with the proved unimodality this makes k the argmin."""
-    dps = 30 + 2 * (k.bit_length() * 30103 // 100000 + 1)
-    v = [log_c_direct(N, j, dps) for j in (k - 1, k, k + 1)]
-    with mpmath.workdps(dps + 2 * len(str(N)) + 20):
-        assert v[1] < v[0] and v[1] < v[2]
-
-
-@pytest.mark.parametrize("e", [306, 1000])
-def test_huge_N(e):
-    N = 10**e
-    cp = critical_point(N, dps=30)
-    assert cp.sign_evaluations <= 4  # seeded, then verified: never a scan
-    _local_min_independent(N, cp.k_after)
-    _check_enclosure(cp, _pc_reference(N, cp.k_after, 30))
-    # p_c and p_d round to the same 30 digits but q = N p - 1 tells them apart
-    assert cp.q > 0 and cp.q_d > 0 and cp.q > cp.q_d
-    assert "p_c" in repr(cp) and "N*p_c-1" in repr(cp)
-
-
-def test_N_ten_thousand_digits():
-    N = 10**10000
-    cp = critical_point(N, dps=20)
-    assert cp.sign_evaluations <= 4
-    # k ~ sqrt(N v), v = -W_{-1}(-e^2/N) ~ ln N - 2 + ln(ln N - 2): k has 5002 digits
-    assert 5001 <= cp.k_after.bit_length() * 0.30103 <= 5003
-    with mpmath.workdps(30):
-        L = 10000 * mpmath.log(10)
-        assert abs(cp.q / mpmath.sqrt(L / mpmath.mpf(N)) - 1) < mpmath.mpf("0.01")
-    assert str(cp).startswith("critical point, N = ~1.0e+10000")
-
-
-@pytest.mark.parametrize("N", [3, 4, 5, 6, 7, 20, 50, 101, 1000, 12345, 10**6, 10**20, 10**100])
-def test_perturbed_argmin_fails_certificate(N):
-    cp = critical_point(N, dps=20)
-    k = cp.argmins[0]
-    assert argmin_certificate(N, k)
-    for wrong in (k - 1, k + 1, k + 2):
-        if 2 <= wrong <= N and wrong not in cp.argmins[:1]:
-            assert not argmin_certificate(N, wrong), (N, wrong)
-
-
-@settings(max_examples=40, deadline=None)
-@given(st.integers(2, 3000))
-def test_certified_argmin_any_seed(N):
-    # the verification from any (bad) seed lands on the exhaustive scan's answer
-    argmins, _ = critical_by_scan(N, 20) if N <= 400 else (None, None)
-    ref = certified_argmin(N)
-    if argmins is not None:
-        assert list(ref) == argmins
-    for seed in (2, N, max(2, N // 3)):
-        assert certified_argmin(N, seed=seed) == ref
-
-
-def test_exact_ties():
-    cp = critical_point(5)
-    assert cp.argmins == (2, 3) and cp.p_exact == Fraction(1, 2)
-    assert cp.p_bounds == (mpmath.mpf("0.5"), mpmath.mpf("0.5"))
-    assert symhx.modes(5, Fraction(1, 2)) == (1, 2, 3) == brute_modes(5, Fraction(1, 2))
-    # N = 101 at p = 1/50: f(50) = 0, Phi(50) = Phi(51) (a mode-path breakpoint)
-    assert symhx.modes(101, Fraction(1, 50)) == (50, 51) == brute_modes(101, Fraction(1, 50))
-    path = mode_path(101)
-    assert (Fraction(1, 50), 50, 51) in path.breakpoints
-    assert path.mode_at(Fraction(1, 50)) == 50
-    assert path.mode_at(Fraction(1, 50) + Fraction(1, 10**30)) == 51
-
-
-def test_mode_path_keeps_last_breakpoint_above_one():
-    for N in (3, 4, 6, 9, 31):
-        path = mode_path(N, p_max=10)
-        last = path.breakpoints[-1]
-        assert last == (Fraction(N, N - 1), N - 1, N), (N, last)
-        for i in range(1, 200):
-            p = Fraction(i, 20)
-            assert path.mode_at(p) == brute_modes(N, p)[0], (N, p)
-    # p_max between two breakpoints keeps exactly those below it
-    assert [b[1:] for b in mode_path(6, p_max=Fraction(5, 8)).breakpoints] == [
-        (1, 3), (3, 4), (4, 5)]
-    assert [b[1:] for b in mode_path(6, p_max=Fraction(5, 8) - Fraction(1, 10**9))
-            .breakpoints] == [(1, 3), (3, 4)]
-
-
-def test_mode_at_near_irrational_jump():
-    N = 101
-    path = mode_path(N, dps=30)
-    pc_lo, pc_hi = path.bounds[0]
-    with mpmath.workdps(60):
-        below = symhx.validation.as_fraction(pc_lo * (1 - mpmath.mpf(10) ** -40))
-        above = symhx.validation.as_fraction(pc_hi * (1 + mpmath.mpf(10) ** -40))
-    assert path.mode_at(below) == 1 == brute_modes(N, below)[0]
-    assert path.mode_at(above) == 20 == brute_modes(N, above)[0]
-    # inside the 30-digit enclosure but 1e-33 away from p_c: decided by Arb, checked exactly
-    ref = _pc_reference(N, 20, 30)
+# ------------------------------------------------------------------------------ bits_for / G
+@pytest.mark.parametrize("N, K", [(2, 1), (3, 2), (10, 9), (101, 20), (1000, 999), (5000, 77)])
+def test_G_arb_encloses_the_sum(N, K):
+    ref = G_log1p_sum(N, K, 120)
+    with arb_prec(400):
+        g = G_arb(N, K)
     with mpmath.workdps(120):
-        near_lo = symhx.validation.as_fraction(ref * (1 - mpmath.mpf(10) ** -33))
-        near_hi = symhx.validation.as_fraction(ref * (1 + mpmath.mpf(10) ** -33))
-    assert path.mode_at(near_lo) == 1 == brute_modes(N, near_lo)[0]
-    assert path.mode_at(near_hi) == 20 == brute_modes(N, near_hi)[0]
+        lo, hi = mpf_bounds(g, 100)
+        assert lo <= ref <= hi
+        assert hi - lo <= mpmath.mpf(10) ** -95 * abs(ref)
 
 
-def test_mode_path_huge_N():
-    N = 10**306
-    cp = critical_point(N, dps=30)
-    K = cp.k_after + 40  # p_max: the 41st breakpoint after the jump
-    pmax = Fraction(K + 1, K * (N - K))
-    path = mode_path(N, p_max=pmax, dps=30)
-    ks = [b[2] for b in path.breakpoints]
-    assert ks[0] == cp.k_after and ks == list(range(ks[0], ks[0] + len(ks)))
-    assert len(ks) == 42 and path.breakpoints[-1][0] == pmax
-    for bp, left, _ in path.breakpoints[1:]:  # f_{N,p}(left) = 0 exactly
-        assert -bp * left**2 + (N * bp - 1) * left - 1 == 0
-    with pytest.raises(ValueError, match="MAX_BREAKPOINTS"):
-        mode_path(N)
-    assert MAX_BREAKPOINTS >= 10**5
+def test_G_arb_zero_terms_is_exactly_zero():
+    for N in (2, 7, 10**40):
+        with arb_prec(64):
+            g = G_arb(N, 0)
+        assert g.is_exact() and g == 0
 
 
-@pytest.mark.parametrize("bad", [0, -1, 2.5, True, 10**6, "50", None])
-def test_bad_dps(bad):
-    calls = [lambda: critical_point(101, dps=bad), lambda: mode_path(20, dps=bad),
-             lambda: discriminant_root(101, dps=bad),
-             lambda: symhx.asymptotics.asymptotic_critical_point(1000, dps=bad),
-             lambda: symhx.spaces.critical_point(20, space="eq41", dps=bad),
-             lambda: symhx.asymptotics.pd_series(100, dps=bad)]
-    for call in calls:
-        with pytest.raises((ValueError, TypeError), match="dps"):
-            call()
+@pytest.mark.parametrize("N", [10**6, 10**30, 10**100, 10**1000])
+@pytest.mark.parametrize("extra", [20, 100])
+def test_bits_for_delivers_extra_bits_after_the_cancellation(N, extra):
+    # G(N, K) with K ~ sqrt(2N) is O(1) while lgamma(N) ~ N log N: the log2(N log N) bits
+    # cancel, and the ball still has relative width below 2**-extra
+    K = math.isqrt(2 * N)
+    with arb_prec(bits_for(N, extra)):
+        g = G_arb(N, K)
+    assert abs(g.mid()) > arb("0.5") and g.rad() < abs(g.mid()) * arb(2) ** (-extra)
+    # the exact value, for the N where the sum is short enough
+    if N <= 10**6:
+        ref = G_log1p_sum(N, K, 60)
+        with mpmath.workdps(60):
+            lo, hi = mpf_bounds(g, 40)
+            assert lo <= ref <= hi
 
 
-def test_bad_inputs():
-    from symhx.asymptotics import asymptotic_critical_point, pd_series, pd_series_coefficients
-
-    for N in (1, 0, -5):
-        with pytest.raises(ValueError, match="N"):
-            pd_series(N)
-        with pytest.raises(ValueError, match="N"):
-            critical_point(N)
-    for N in (True, 10.0, 101.5, [3]):
-        with pytest.raises(TypeError, match="N"):
-            critical_point(N)
-        with pytest.raises(TypeError, match="N"):
-            pd_series(N)
-    for n_terms in (0, -1, 10**9):
-        with pytest.raises(ValueError, match="n_terms"):
-            pd_series(100, n_terms)
-        with pytest.raises(ValueError, match="n_terms"):
-            pd_series_coefficients(n_terms)
-    with pytest.raises(TypeError, match="n_terms"):
-        pd_series(100, 2.0)
-    with pytest.raises(ValueError, match="order"):
-        asymptotic_critical_point(1000, order="best ")
-    with pytest.raises(TypeError, match="order"):
-        asymptotic_critical_point(1000, order=True)
-    for pm in (0, -1, "-0.5", float("nan"), float("inf")):
-        with pytest.raises(ValueError, match="p_max"):
-            mode_path(20, p_max=pm)
-    with pytest.raises(TypeError, match="p_max"):
-        mode_path(20, p_max=[1])
-    with pytest.raises(ValueError, match="k"):
-        argmin_certificate(10, 11)
-    with pytest.raises(ValueError, match="p"):
-        mode_path(20).mode_at(0)
-    with pytest.raises(ValueError, match="p_max"):
-        mode_path(20, p_max=Fraction(1, 2)).mode_at(Fraction(3, 4))
+def test_bits_for_grows_with_N_and_extra():
+    for N in (2, 3, 100, 10**9, 10**300):
+        b = bits_for(N, 10)
+        # at least log2(N log N) + extra, never absurdly more
+        need = math.log2(N) + math.log2(max(math.log(N), 1)) + 10
+        assert need <= b <= need + 40, (N, b)
+        assert bits_for(N, 30) == b + 20
 
 
-def test_no_global_precision_leak():
-    flint_prec, mp_dps = flint.ctx.prec, mpmath.mp.dps
-    critical_point(10**50, dps=200)
-    symhx.spaces.critical_point(50, space="eq41", dps=80)
-    symhx.asymptotics.asymptotic_critical_point(10**20, dps=90)
-    mode_path(300, dps=70).mode_at(Fraction(1, 10))
-    symhx.modes(10**4, Fraction(3, 10**4))
-    assert flint.ctx.prec == flint_prec and mpmath.mp.dps == mp_dps
+# ----------------------------------------------------------------------------- certified_sign
+def _tiny(exponent: int, sign: int = 1):
+    """A ball function for sign * 2**-exponent computed with cancellation: it contains 0 until
+    the precision exceeds ~exponent bits. Records the precision of every call."""
+    calls: list[int] = []
+
+    def fn() -> arb:
+        calls.append(flint.ctx.prec)
+        s = arb(2).sqrt()
+        return (s + sign * arb(2) ** -exponent) - s
+
+    return fn, calls
 
 
-def test_certify_primitives():
+def test_certified_sign_doubles_from_start():
+    fn, calls = _tiny(300)
+    assert certified_sign(fn, start_bits=70, max_bits=10_000) == 1
+    assert calls == [70, 140, 280, 560]
+    fn, calls = _tiny(300, -1)
+    assert certified_sign(fn, start_bits=10, max_bits=10_000) == -1
+    assert calls == [64, 128, 256, 512]  # the start is at least 64 bits
+
+
+def test_certified_sign_is_capped_then_falls_back():
+    fn, calls = _tiny(300)
+    assert certified_sign(fn, start_bits=100, max_bits=300, exact_fn=lambda: 7) == 7
+    assert calls == [100, 200, 300]  # the last step is clipped to max_bits
+    fn, calls = _tiny(300)
+    assert certified_sign(fn, start_bits=100, max_bits=400) == 1
+    assert calls == [100, 200, 400]
+    fn, calls = _tiny(1000)
+    with pytest.raises(UndecidedError, match="sign not certified at 256 bits"):
+        certified_sign(fn, start_bits=64, max_bits=256)
+    assert calls == [64, 128, 256]
+    # already certified at the start: one evaluation, the fall-back is not called
+    fn, calls = _tiny(10)
+    assert certified_sign(fn, start_bits=64, max_bits=64, exact_fn=lambda: 1 / 0) == 1
+    assert calls == [64]
+
+
+def test_certified_sign_restores_precision():
+    before = flint.ctx.prec
+    fn, _ = _tiny(200)
+    certified_sign(fn, start_bits=64, max_bits=1024)
+    assert flint.ctx.prec == before
+    with arb_prec(333):
+        assert flint.ctx.prec == 333
+    assert flint.ctx.prec == before
+
+
+# -------------------------------------------------------------------------- mpf_bounds
+@pytest.mark.parametrize("dps", [5, 20, 60])
+@pytest.mark.parametrize("scale", [1, -1])
+def test_mpf_bounds_outward_and_tight(dps, scale):
+    # balls with a long midpoint and radii from 0 (exact) to wide
+    with arb_prec(2000):
+        pi = scale * arb.pi()
+        balls = [pi, arb(pi.mid()), arb(pi.mid(), arb(10) ** -(dps + 20)),
+                 arb(pi.mid(), arb(10) ** -(dps - 2)), arb(fmpq(scale, 3)) * arb(10) ** -50,
+                 arb(fmpz(scale * 12345))]
+    for x in balls:
+        lo, hi = mpf_bounds(x, dps)
+        assert lo <= hi
+        with arb_prec(4000):
+            alo, ahi = to_arb(lo), to_arb(hi)
+            assert alo.is_exact() and ahi.is_exact()
+            assert alo <= x.lower() and x.upper() <= ahi  # outward (exact comparisons)
+            # rounded to dps + 5 digits: at most one unit of that digit outside the ball
+            slack = abs(x.mid()) * arb(10) ** -(dps + 5)
+            assert x.lower() - alo <= slack and ahi - x.upper() <= slack, (x, lo, hi)
+
+
+def test_mpf_bounds_of_exact_small_values_are_exact():
+    with arb_prec(64):
+        lo, hi = mpf_bounds(arb(3) / 8, 10)
+    assert lo == hi == mpmath.mpf(3) / 8
+
+
+# -------------------------------------------------------------------------- rel_width_ok
+def test_rel_width_ok_negative_midpoint_and_boundary():
+    with arb_prec(300):
+        for dps in (3, 40):
+            mid = arb(-7)
+            r_ok = abs(mid) * arb(10) ** -dps / 4 * arb("0.999")
+            r_bad = abs(mid) * arb(10) ** -dps / 4 * arb("1.001")
+            assert rel_width_ok(arb(mid, r_ok), dps)
+            assert not rel_width_ok(arb(mid, r_bad), dps)
+            assert not rel_width_ok(arb(0, arb(10) ** -500), dps)  # contains 0
+            assert rel_width_ok(arb(-2) ** -900, dps)  # exact
+            assert not rel_width_ok(arb(mid, r_ok), dps + 1)
+
+
+# ----------------------------------------------------------------------- space_candidates
+CASES = [("eq41", 12, Fraction(1, 7)), ("eq41", 30, Fraction(1, 20)),
+         ("eq41", 30, Fraction(3, 40)), ("excess<=2", 25, Fraction(1, 9)),
+         ("excess<=3;distinct", 20, Fraction(1, 30)), ("eq41-printed", 40, Fraction(1, 33)),
+         ("simple", 5, Fraction(1, 2)), ("simple", 101, Fraction(1, 50)),
+         ("excess<=1", 60, Fraction(1, 25)), ("eq41", 9, Fraction(5, 2)),
+         # just above p_c = 0.01288...: W dips after k = 1 and rises to its maximum at 20
+         ("excess<=0", 101, Fraction(13, 1000)), ("excess<=0;distinct", 101, Fraction(13, 1000)),
+         ("excess<=0", 101, Fraction(12, 1000))]
+
+
+@pytest.mark.parametrize("name, N, p", CASES)
+def test_space_candidates_against_exhaustive_scan(name, N, p):
+    from symhx.spaces import parse_space
+
+    space = parse_space(name)
+    # W(k) = Phi_{N,p}(k) Q*(k): the factorials of eq. (8) times the space's Q*
+    W = [phi_exact(N, p, k) * space.Qstar(k, p) for k in range(1, N + 1)]
+    argmax = 1 + max(range(N), key=lambda i: W[i])
+    tops = sorted({1, 2, argmax - 1, argmax, argmax + 1, N - 1, N} & set(range(1, N + 1)))
+    for top in tops:
+        got = space_candidates(space, N, p, top)
+        want = sorted({top} | {k for k in range(1, N + 1) if W[k - 1] >= W[top - 1]})
+        assert got == want, (name, N, p, top)
+        assert argmax in got
+
+
+def test_space_modes_just_above_the_jump():
+    # regression: the float64 guess picks k = 1 (W(1) and W(20) agree to ~1e-14) and the scan
+    # used to stop at the dip after it, so the mode of excess<=0 (the simple space) was 1
+    import symhx
+    from symhx.validation import as_fraction
+
+    cp = symhx.critical_point(101, dps=40)
+    with mpmath.workdps(80):
+        for e in (14, 20, 30):
+            p = as_fraction(cp.p * (1 + mpmath.mpf(10) ** -e))
+            assert symhx.modes(101, p, space="excess<=0") == symhx.modes(101, p) == (20,)
+            p = as_fraction(cp.p * (1 - mpmath.mpf(10) ** -e))
+            assert symhx.modes(101, p, space="excess<=0") == (1,)
+
+
+def test_space_candidates_exact_ties():
+    from symhx.spaces import parse_space
+
+    # simple space, N = 5, p = 1/2: Phi(1) = Phi(2) = Phi(3) (an exact three-way tie)
+    simple = parse_space("simple")
+    for top in (1, 2, 3):
+        assert space_candidates(simple, 5, Fraction(1, 2), top) == [1, 2, 3]
+    # N = 101, p = 1/50: Phi(50) = Phi(51)
+    assert space_candidates(simple, 101, Fraction(1, 50), 50) == [50, 51]
+    assert space_candidates(simple, 101, Fraction(1, 50), 51) == [50, 51]
+
+
+def test_space_candidates_resolve_a_deep_near_tie():
+    # p = (1 + 2**-150) / 50 with N = 101: W(51) / W(50) = 1 + 2**-150. The working precision
+    # grows with the bits of p's numerator and denominator, so the balls separate the two
+    from symhx.spaces import parse_space
+
+    p = Fraction(2**150 + 1, 50 * 2**150)
+    for name in ("excess<=0", "excess<=0;distinct"):
+        space = parse_space(name)
+        W50, W51 = (phi_exact(101, p, k) * space.Qstar(k, p) for k in (50, 51))
+        assert W51 > W50
+        assert space_candidates(space, 101, p, 51) == [51]
+        assert space_candidates(space, 101, p, 50) == [50, 51]
+    p = Fraction(2**150 - 1, 50 * 2**150)  # now W(50) / W(51) = 1 / (1 - 2**-150) > 1
+    assert space_candidates(parse_space("excess<=0"), 101, p, 50) == [50]
+
+
+# --------------------------------------------------------------------------- more boundaries
+def test_certified_sign_of_an_exact_zero_goes_to_the_integers():
+    # a ball [0 +/- 0] is neither > 0 nor < 0: the exact fall-back decides (a tie), however
+    # many doublings
+    calls = []
+
+    def zero():
+        calls.append(flint.ctx.prec)
+        return arb(0)
+
+    assert certified_sign(zero, start_bits=64, max_bits=256, exact_fn=lambda: 0) == 0
+    assert calls == [64, 128, 256]
+    half = arb(fmpq(1, 2), fmpq(1, 2))  # [0, 1]: touches 0, not certified either
+    assert certified_sign(lambda: half, start_bits=64, max_bits=64, exact_fn=lambda: 5) == 5
+    assert certified_sign(lambda: -half, start_bits=64, max_bits=64, exact_fn=lambda: 5) == 5
+
+
+def test_certified_sign_message_shows_the_ball():
+    x = arb(fmpq(1, 10**12), fmpq(1, 10**10))
+    ball = x.str(5, radius=True)
+    assert "+/-" in ball
+    with pytest.raises(UndecidedError) as info:
+        certified_sign(lambda: x, start_bits=64, max_bits=128)
+    msg = str(info.value)
+    # the precision reached, the ball itself, and the likely cause
+    assert "128 bits" in msg and f"ball {ball}" in msg and "exact tie" in msg
+
+
+def test_rel_width_ok_exact_equality_and_balls_around_one():
+    # radius * 4 * 10**dps == |mid| exactly (dyadic radius): not below, so not ok
+    for dps in (2, 10):
+        with arb_prec(300):
+            x0 = arb(1, arb(2) ** -10)
+            rad = x0.rad()  # the radius as Arb stores it (a 30-bit mag)
+            mid = rad * 4 * arb(10) ** dps
+            x = (x0 - x0.mid()) + mid  # exact shifts keep the radius
+            assert x.rad() == rad and x.mid() == mid and mid.is_exact()  # exact, as meant
+            assert not rel_width_ok(x, dps)
+            assert rel_width_ok(x + mid * arb(2) ** -40, dps)
+    # a tight ball around 1 (it contains 1, not 0) is fine
+    assert rel_width_ok(arb(1, arb(2) ** -100), 20)
+    assert rel_width_ok(arb(-1, arb(2) ** -100), 20)
+
+
+# ------------------------------------------------------------------------------ primitives
+def test_certified_sign_on_a_true_tie_and_mpf_bounds_of_sqrt2():
     # a true tie is undecidable by balls: the exact fallback decides, or a clear error
     assert certified_sign(lambda: to_arb(3).sqrt() ** 2 - 3, start_bits=64, max_bits=256,
                           exact_fn=lambda: 0) == 0
@@ -273,70 +355,7 @@ def test_certify_primitives():
         assert lo < mpmath.sqrt(2) < hi and (hi - lo) < mpmath.mpf(10) ** -44
 
 
-def test_repr_shows_dps_digits():
-    cp = critical_point(101, dps=30)
-    text = repr(cp)
-    assert mpmath.nstr(cp.p, 30) in text and "p_bounds" in text
-    d = cp.as_dict()
-    assert d["p_c_lo"] <= d["p_c"] <= d["p_c_hi"]
-    assert set(d) >= {"N", "p_c", "N_p_c_minus_1", "k_after", "argmins", "p_d", "p_c_exact"}
-    assert math.isclose(float(d["p_c"]), 0.012889115326530578, rel_tol=1e-15)
-
-
-def test_rational_root_prefilter_is_only_necessary():
-    # p_exact: the cheap p-adic prefilter never rejects a c_k that is rational (exhaustive)
-    from symhx.critical import _exact_root, _root_possible
-
-    found = 0
-    for N in range(3, 300):
-        for k in range(2, min(N, 30) + 1):
-            if _exact_root(Fraction(k, math.perm(N - 1, k - 1)), k - 1) is not None:
-                found += 1
-                assert _root_possible(N, k), (N, k)
-    assert found >= 297  # every k = 2 at least (c_2 = 2/(N-1))
-
-
-@pytest.mark.parametrize("N,k", [(101, 20), (10**6, 3802), (10**40, None)])
-def test_enclosure_loop_from_low_start_precision(N, k):
-    # the width loop itself (not the generous default start) must deliver 10**-dps
-    from symhx.critical import _s_arb, enclose_from_s
-
-    k = k or critical_point(N, dps=10).k_after
-    for dps in (20, 60):
-        ref = _pc_reference(N, k, dps)
-        # every start precision, so that some land just above/below the needed one
-        for start in range(64, 64 + 8 * (dps + 3 * len(str(N))), 3):
-            _, _, (lo, hi), (qlo, qhi) = enclose_from_s(N, lambda: _s_arb(N, k), dps, start)
-            with mpmath.workdps(3 * dps + 2 * len(str(N)) + 40):
-                assert lo <= ref <= hi and (hi - lo) <= mpmath.mpf(10) ** -dps * ref
-                assert qlo <= N * ref - 1 <= qhi
-                assert (qhi - qlo) <= mpmath.mpf(10) ** -dps * (N * ref - 1)
-
-
-@pytest.mark.parametrize("N", [7, 101, 1000, 10**30])
-def test_mode_at_inside_the_enclosure(N):
-    # rationals inside p_bounds, 1e-45 from p_c on either side: only the Arb comparison
-    # (not the enclosure) can decide them; checked against exact brute force for small N
-    cp = critical_point(N, dps=30)
-    k = cp.k_after  # p_max: the first breakpoint after the jump
-    path = mode_path(N, p_max=Fraction(k + 1, k * (N - k)), dps=30)
-    if cp.p_exact is not None:
-        pytest.skip("rational p_c")
-    ref = _pc_reference(N, cp.argmins[0], 30)
-    with mpmath.workdps(200):
-        for sgn in (-1, 1):
-            fr = symhx.validation.as_fraction(ref * (1 + sgn * mpmath.mpf(10) ** -45))
-            assert symhx.validation.as_fraction(cp.p_bounds[0]) < fr
-            assert fr < symhx.validation.as_fraction(cp.p_bounds[1])
-            got = path.mode_at(fr)
-            assert got == (cp.k_after if sgn > 0 else 1)
-            if N <= 101:
-                assert brute_modes(N, fr)[0] == got
-
-
 def test_rel_width_ok_threshold():
-    from symhx.certify import rel_width_ok
-
     with flint.ctx.workprec(200):
         for dps in (5, 30):
             mid = flint.arb(3)
@@ -344,18 +363,3 @@ def test_rel_width_ok_threshold():
             bad = flint.arb(mid, mid * flint.arb(10) ** -dps / 3)  # 2 r / mid = 0.67e-dps > 1/4
             assert rel_width_ok(ok, dps) and not rel_width_ok(bad, dps)
             assert rel_width_ok(flint.arb(7), dps) and not rel_width_ok(flint.arb(0, 1), dps)
-
-
-def test_mode_path_cap_is_counted_before_building():
-    import time
-
-    N = 10**6
-    t = time.monotonic()
-    with pytest.raises(ValueError, match="MAX_BREAKPOINTS") as exc:
-        mode_path(N)
-    assert time.monotonic() - t < 1
-    # independent count: after the jump the mode climbs one step per k with
-    # (k+1)/(k(N-k)) <= 1, i.e. every k from k_after to N-1 (checked by brute force here)
-    k0 = symhx.critical_point(N).k_after
-    count = sum(1 for k in range(k0, N) if k + 1 <= k * (N - k)) + 1
-    assert f"would list {count} breakpoints" in str(exc.value)

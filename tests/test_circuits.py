@@ -1,36 +1,166 @@
-"""Circuit counts against brute-force enumeration and known sequences."""
+"""symhx.circuits against independent references: explicit walks up to rotation
+(tests.reference.combinatorics), MacMahon's necklace formula, brute-force partitions, exact
+integer products and known sequences. The work limits and refusals are in
+``test_circuits_limits.py``."""
 
+from __future__ import annotations
+
+import math
 from collections import Counter
 
+import mpmath
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symhx import circuits as C
-from symhx.graph import vertices_lattice, vertices_row
+from symhx.circuits import (
+    brute_force_pattern_counts,
+    circuit_count,
+    circuits_of_length,
+    enumerate_circuits,
+    log_phi,
+    necklace_count,
+    normalise_visits,
+    partitions,
+    phi,
+    total_simple_circuits,
+)
+from tests.reference.combinatorics import (
+    integer_partitions,
+    necklace_formula,
+    necklaces,
+    pattern_count_by_choice,
+    pattern_counts,
+)
+
+SMALL = [(N, L) for N in range(1, 6) for L in range(1, 7) if N**L <= 16000]
+BOUNDARY_N = [2, 3, 5, 10, 100, 10**3, 10**6, 10**20]
 
 
-def test_graph_conventions():
-    assert vertices_row(100) == 101
-    # 2-D lattice: brute-force count of 8-neighbour contacts + 4m wall contacts
-    for m in range(1, 7):
-        cells = [(i, j) for i in range(m) for j in range(m)]
-        contacts = {
-            frozenset({a, b})
-            for a in cells
-            for b in cells
-            if a != b and max(abs(a[0] - b[0]), abs(a[1] - b[1])) == 1
-        }
-        assert vertices_lattice(m) == len(contacts) + 4 * m == 4 * m * m - 2 * m + 2
-    with pytest.raises(ValueError, match="n"):
-        vertices_row(0)
+# --------------------------------------------------------------------------- pattern counts
+@pytest.mark.parametrize(("N", "L"), SMALL)
+def test_pattern_counts_match_explicit_walks(N, L):
+    brute = pattern_counts(N, L)
+    got = circuits_of_length(N, L)
+    assert got == brute
+    for v in integer_partitions(L):
+        assert circuit_count(N, v) == brute.get(v, 0), v
 
 
+@pytest.mark.parametrize("N", range(1, 6))
+def test_pattern_counts_match_the_fkm_enumeration(N):
+    for L in range(1, 8 if N <= 4 else 7):
+        brute = C.brute_force_pattern_counts(N, L)
+        assert brute == Counter(C.circuits_of_length(N, L)), (N, L)
+
+
+@pytest.mark.parametrize(("N", "L"), SMALL)
+def test_enumeration_is_every_circuit_once(N, L):
+    words = list(enumerate_circuits(N, L))
+    assert len(words) == len(set(words))
+    assert set(words) == necklaces(N, L)
+    assert words == sorted(words)  # FKM yields least rotations in lexicographic order
+    assert brute_force_pattern_counts(N, L) == Counter(pattern_counts(N, L))
+
+
+def test_enumeration_counts_periodic_words_once():
+    # (0,1,0,1) is one circuit of length 4 with pattern (2,2): rotations give only 2 words
+    words = [w for w in C.enumerate_circuits(2, 4) if Counter(w) == Counter((0, 0, 1, 1))]
+    assert sorted(words) == [(0, 0, 1, 1), (0, 1, 0, 1)]
+    assert C.circuit_count(2, (2, 2)) == 2
+
+
+@pytest.mark.parametrize(("N", "L"), SMALL)
+def test_necklace_count_brute(N, L):
+    assert necklace_count(N, L) == len(necklaces(N, L)) == necklace_formula(N, L)
+
+
+@pytest.mark.parametrize("N", BOUNDARY_N)
+@pytest.mark.parametrize("L", range(1, 8))
+def test_patterns_sum_to_macmahons_necklace_count(N, L):
+    """sum over visit patterns of length L == all necklaces (MacMahon), at large N too."""
+    assert sum(circuit_count(N, v) for v in integer_partitions(L)) == necklace_formula(N, L)
+    assert sum(circuits_of_length(N, L).values()) == necklace_count(N, L)
+
+
+@given(st.integers(1, 40), st.integers(1, 12))
+def test_patterns_sum_to_necklace_count(N, L):
+    total = sum(C.circuit_count(N, v) for v in C.partitions(L))
+    assert total == C.necklace_count(N, L)
+
+
+visit_patterns = st.lists(st.integers(1, 4), min_size=1, max_size=5).filter(
+    lambda v: sum(v) <= 9)
+
+
+@settings(max_examples=40, deadline=None)
+@given(N=st.sampled_from(BOUNDARY_N) | st.integers(1, 12), v=visit_patterns)
+def test_circuit_count_by_choosing_vertices(N, v):
+    assert circuit_count(N, v) == pattern_count_by_choice(N, tuple(sorted(v, reverse=True)))
+
+
+def test_boundary_counts_of_the_errata():
+    for N in range(1, 12):
+        assert C.circuit_count(N, (3,)) == N  # not N/3
+        assert C.circuit_count(N, (4,)) == N  # not N/4
+        assert C.circuit_count(N, (2, 2)) == N * (N - 1)  # not 3N(N-1)/4
+        assert C.circuit_count(N, (2,)) == N  # eq. (36)
+
+
+def test_paper_eq35_in_range():
+    # eq. (35): phi^1_N(k) = (k-1)/2 * N!/(N-(k-1))! for 2 < k <= N+1
+    for N in range(2, 12):
+        for k in range(3, N + 2):
+            assert 2 * C.circuit_count(N, (2,) + (1,) * (k - 2)) == (k - 1) * math.perm(N, k - 1)
+
+
+def test_circuit_count_too_many_vertices():
+    assert circuit_count(2, (1, 1, 1)) == 0
+    assert circuit_count(3, (1, 1, 1)) == 2
+    assert circuit_count(1, (4,)) == 1
+    assert C.circuit_count(3, (1, 1, 1, 1)) == 0
+
+
+# --------------------------------------------------------------------------- simple circuits
 @pytest.mark.parametrize("N", range(1, 7))
-def test_phi_against_enumeration(N):
+def test_phi_counts_the_simple_circuits_of_the_fkm_enumeration(N):
     for L in range(1, N + 2):
         simple = sum(1 for w in C.enumerate_circuits(N, L) if len(set(w)) == L)
         assert simple == C.phi(N, L)
+
+
+@pytest.mark.parametrize("N", range(1, 7))
+def test_phi_is_simple_circuits(N):
+    for k in range(1, N + 1):
+        if N**k <= 50000:
+            simple = sum(1 for w in necklaces(N, k) if len(set(w)) == k)
+            assert phi(N, k) == simple
+        assert phi(N, k) == math.factorial(N) // (k * math.factorial(N - k))
+    for k in (-1, 0, N + 1, N + 5):
+        assert phi(N, k) == 0
+
+
+@given(st.integers(1, 200), st.integers(1, 30))
+def test_simple_pattern_is_phi(N, k):
+    assert C.circuit_count(N, (1,) * k) == C.phi(N, k)
+
+
+@settings(max_examples=25, deadline=None)
+@given(N=st.sampled_from(BOUNDARY_N), k=st.integers(1, 40))
+def test_phi_large_N(N, k):
+    want = 0 if k > N else math.prod(range(N - k + 1, N + 1)) // k
+    assert phi(N, k) == want
+    assert circuit_count(N, (1,) * k) == want
+
+
+@pytest.mark.parametrize("N", [1, 2, 3, 4, 5, 6, 7, 12, 40])
+def test_total_simple_circuits(N):
+    want = sum(math.factorial(N) // (k * math.factorial(N - k)) for k in range(1, N + 1))
+    assert total_simple_circuits(N) == want
+    if N <= 5:
+        assert want == sum(1 for L in range(1, N + 1) for w in necklaces(N, L)
+                           if len(set(w)) == L)
 
 
 def test_total_simple_known_sequence():
@@ -43,64 +173,22 @@ def test_total_simple_known_sequence():
         assert brute == C.total_simple_circuits(N)
 
 
-@pytest.mark.parametrize("N", range(1, 6))
-def test_pattern_counts_against_enumeration(N):
-    for L in range(1, 8 if N <= 4 else 7):
-        brute = C.brute_force_pattern_counts(N, L)
-        assert brute == Counter(C.circuits_of_length(N, L)), (N, L)
-
-
-def test_enumeration_counts_periodic_words_once():
-    # (0,1,0,1) is one circuit of length 4 with pattern (2,2): rotations give only 2 words
-    words = [w for w in C.enumerate_circuits(2, 4) if Counter(w) == Counter((0, 0, 1, 1))]
-    assert sorted(words) == [(0, 0, 1, 1), (0, 1, 0, 1)]
-    assert C.circuit_count(2, (2, 2)) == 2
-
-
-def test_design_errata_boundary_counts():
-    for N in range(1, 12):
-        assert C.circuit_count(N, (3,)) == N  # not N/3
-        assert C.circuit_count(N, (4,)) == N  # not N/4
-        assert C.circuit_count(N, (2, 2)) == N * (N - 1)  # not 3N(N-1)/4
-        assert C.circuit_count(N, (2,)) == N  # eq. (36)
-
-
-@given(st.integers(1, 40), st.integers(1, 12))
-def test_patterns_sum_to_necklaces(N, L):
-    total = sum(C.circuit_count(N, v) for v in C.partitions(L))
-    assert total == C.necklace_count(N, L)
-
-
-@given(st.integers(1, 200), st.integers(1, 30))
-def test_simple_pattern_is_phi(N, k):
-    assert C.circuit_count(N, (1,) * k) == C.phi(N, k)
-
-
-def test_paper_eq35_in_range():
-    # eq. (35): phi^1_N(k) = (k-1)/2 * N!/(N-(k-1))! for 2 < k <= N+1
-    from math import perm
-
-    for N in range(2, 12):
-        for k in range(3, N + 2):
-            assert 2 * C.circuit_count(N, (2,) + (1,) * (k - 2)) == (k - 1) * perm(N, k - 1)
-
-
-def test_bad_input():
-    with pytest.raises(ValueError):
-        C.circuit_count(5, (0, 1))
-    with pytest.raises(ValueError):
-        C.circuit_count(5, ())
-    with pytest.raises(TypeError):
-        C.circuit_count(5, (1.5,))
-    with pytest.raises(ValueError):
-        C.phi(0, 1)
-    assert C.phi(5, 6) == 0 and C.phi(5, 0) == 0
-    assert C.circuit_count(3, (1, 1, 1, 1)) == 0
+# --------------------------------------------------------------------------- log_phi
+@pytest.mark.parametrize("N", [2, 3, 10, 1000, 10**30, 10**100])
+@pytest.mark.parametrize("k", [1, 2, 3, 7])
+@pytest.mark.parametrize("dps", [15, 40])
+def test_log_phi_against_exact_int(N, k, dps):
+    if k > N:
+        return
+    exact = math.prod(range(N - k + 1, N + 1))  # N!/(N-k)! exactly
+    with mpmath.workdps(dps + 40):
+        want = mpmath.log(exact) - mpmath.log(k)
+        got = log_phi(N, k, dps=dps)
+        assert abs(got - want) <= max(abs(want), 1) * mpmath.mpf(10) ** (1 - dps)
+    assert mpmath.mp.dps == 15
 
 
 def test_log_phi_huge():
-    import mpmath
-
     N = 10**100
     with mpmath.workdps(80):
         direct = mpmath.log(N) + mpmath.log(N - 1) + mpmath.log(N - 2) - mpmath.log(3)
@@ -108,52 +196,36 @@ def test_log_phi_huge():
     with mpmath.workdps(60):
         exact_log = mpmath.log(C.phi(30, 7))
     assert mpmath.almosteq(C.log_phi(30, 7, dps=40), exact_log, rel_eps=mpmath.mpf(10) ** -38)
-
-
-def test_bad_inputs_and_work_limits_are_clear_errors():
-    import pytest
-
-    from symhx import circuits as C
-    from symhx.spaces import class_count, parse_space
-
-    with pytest.raises(TypeError, match="k must be an int"):
-        C.phi(10, 2.5)
-    with pytest.raises(TypeError, match="N"):
-        C.phi(True, 1)
-    with pytest.raises(ValueError, match="N must be >= 1, got -3"):
-        class_count(-3, (2,), 1)
-    with pytest.raises(ValueError, match="MAX_TOTAL_N"):
-        C.total_simple_circuits(10**1000)
-    assert C.total_simple_circuits(C.MAX_TOTAL_N // 100) > 0  # below the cap: works
-    with pytest.raises(ValueError, match="MAX_EXCESS"):
-        parse_space("excess<=1000")
-    with pytest.raises(ValueError, match="MAX_EXCESS"):
-        parse_space("excess<=" + "9" * 5000)
-    assert len(parse_space("excess<=5").shapes) == 19
-    with pytest.raises(ValueError, match="MAX_PATTERN_LENGTH"):
-        C.circuits_of_length(10, 10**6)
-    with pytest.raises(ValueError, match="MAX_ENUMERATION"):
-        next(C.enumerate_circuits(10, 10**6))
-    with pytest.raises(ValueError, match="MAX_CIRCUIT_LENGTH"):
-        C.circuit_count(3, (10**9,))
-    with pytest.raises(ValueError, match="MAX_COUNT_BITS"):
-        C.necklace_count(10, 10**9)
-    with pytest.raises(TypeError, match="visits"):
-        C.circuit_count(3, "21")
-    with pytest.raises(TypeError, match="dps"):
-        C.log_phi(10, 2, dps=True)
     # a huge N in log_phi (more digits than Python's int->str limit) still works
     assert C.log_phi(10**5000, 2, dps=20) > 0
 
 
-def test_enumerate_circuits_work_limit_exact():
-    """The N**L cap is an exact integer test: no float overflow for huge L, and N = 1 counts."""
-    for N, L in ((3, 10**1000), (1, 10**1000), (1, C.MAX_ENUMERATION_LENGTH + 1), (2, 27)):
-        with pytest.raises(ValueError, match="MAX_ENUMERATION"):
-            C.enumerate_circuits(N, L)  # refused at the call, before iterating
-    # below the cap it still enumerates (2**27 words > 1e8 is refused above, 2**20 is fine)
-    # and the count agrees with the independent Burnside formula
-    assert sum(1 for _ in C.enumerate_circuits(2, 20)) == sum(C.circuits_of_length(2, 20).values())
-    assert list(C.enumerate_circuits(1, 5)) == [(0,) * 5]
-    L = C.MAX_ENUMERATION_LENGTH  # the longest allowed still runs (no RecursionError)
-    assert list(C.enumerate_circuits(1, L)) == [(0,) * L]
+def test_log_phi_k_equals_N():
+    with mpmath.workdps(60):
+        assert abs(log_phi(20, 20, dps=40) - mpmath.log(math.factorial(19))) < mpmath.mpf(10)**-35
+
+
+def test_log_phi_default_precision_is_50_digits():
+    for N, k in ((10**6, 7), (37, 5), (10**40, 3)):
+        assert log_phi(N, k) == log_phi(N, k, dps=50)  # exact mpf equality: same rounding
+        assert log_phi(N, k) != log_phi(N, k, dps=51)
+
+
+# --------------------------------------------------------------------------- partitions, visits
+def test_partitions_brute():
+    p = [1, 1, 2, 3, 5, 7, 11, 15, 22, 30, 42]
+    for L in range(0, 11):
+        got = list(partitions(L))
+        assert got == integer_partitions(L)
+        assert len(got) == p[L]
+        for mp_ in range(1, L + 1):
+            assert list(partitions(L, max_part=mp_)) == [x for x in got if max(x, default=0) <= mp_]
+            assert list(partitions(L, max_parts=mp_)) == [x for x in got if len(x) <= mp_]
+    # 0 is allowed: no parts at all (only the empty partition of 0)
+    assert list(C.partitions(5, max_part=0)) == []
+    assert list(C.partitions(5, max_parts=0)) == []
+
+
+def test_normalise_visits():
+    assert normalise_visits([1, 3, 2, 1]) == (3, 2, 1, 1)
+    assert normalise_visits((5,)) == (5,)

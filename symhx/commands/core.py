@@ -254,7 +254,7 @@ def write_csv(path: Path, header: list[str], rows: list[list[Any]]) -> None:
 
 def paper(out: Path, full: bool) -> list[str]:
     """Core numbers: p_d, p_c, the jump and the mode path for N = 101; a table over N;
-    figures 3-6. JSON files at full precision, CSV files with 17-digit floats."""
+    figures 1-6. JSON files at full precision, CSV files with 17-digit floats."""
     from symhx.critical import critical_point, discriminant_root_q, mode_path
 
     dps = DEFAULT_DPS
@@ -278,17 +278,12 @@ def paper(out: Path, full: bool) -> list[str]:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from symhx.plots.paper import save_paper_figure
 
-    from symhx.plots.circuits import plot_circuit_counts
-    from symhx.plots.core import plot_distributions, plot_f_and_phi, plot_mode_path
-
-    for name, fig in (("fig3_circuit_counts.png", plot_circuit_counts(100)),
-                      ("fig4_distributions.png", plot_distributions(PAPER_N)),
-                      ("fig5_mode_path.png", plot_mode_path(PAPER_N)),
-                      ("fig6_f_and_phi.png", plot_f_and_phi(PAPER_N))):
-        fig.savefig(out / name, dpi=110, bbox_inches="tight")
-        plt.close(fig)
+    for number, name in ((1, "fig1_pipe_row.png"), (2, "fig2_impact_graph.png"),
+                         (3, "fig3_circuit_counts.png"), (4, "fig4_distributions.png"),
+                         (5, "fig5_mode_path.png"), (6, "fig6_f_and_phi.png")):
+        save_paper_figure(number, out / name)
     big = critical_point(10**100, dps=dps)
     big_qd = discriminant_root_q(10**100, dps=dps)
     return [
@@ -300,40 +295,64 @@ def paper(out: Path, full: bool) -> list[str]:
     ]
 
 
+#: sections started first when ``symhx paper`` runs them side by side (the longest ones)
+PAPER_LONG_SECTIONS = ("derive", "spaces")
+
+
+def _paper_section(module: str, out: Path, full: bool) -> tuple[list[str], float, bool]:
+    """Run one module's ``paper`` section: (summary lines, seconds, failed). Runs in a worker
+    process of :func:`cmd_paper`; an exception is reported in the lines, never raised."""
+    import importlib
+
+    t0 = time.perf_counter()
+    try:
+        lines = list(importlib.import_module(module).paper(out, full))
+        failed = False
+    except Exception as exc:  # report and keep going; exit non-zero at the end
+        failed = True
+        lines = [f"FAILED: {type(exc).__name__}: {' '.join(str(exc).split())}"]
+    return lines, time.perf_counter() - t0, failed
+
+
 def cmd_paper(args: argparse.Namespace) -> int:
-    """Run every command module's ``paper`` section in order; a failing section is reported and
-    the others still run (exit code 1 at the end). Progress: a tqdm bar on stderr when it is a
-    terminal (silent otherwise); each section's summary and its time (once) on stdout."""
+    """Run every command module's ``paper`` section, two at a time in worker processes (the
+    longest first); a failing section is reported and the others still run (exit code 1 at the
+    end). Progress: a tqdm bar on stderr when it is a terminal (silent otherwise); each section's
+    summary and its time (once) on stdout, in the modules' order."""
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
     from tqdm import tqdm
 
-    from symhx.cli import command_modules
+    from symhx.commands import command_modules
 
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
     probe = out / ".symhx-write-test"
     probe.write_text("")  # an unwritable folder fails here, before minutes of work
     probe.unlink()
-    sections = [(m.__name__.rsplit(".", 1)[-1], m.paper) for m in command_modules()
+    sections = [(m.__name__.rsplit(".", 1)[-1], m.__name__) for m in command_modules()
                 if hasattr(m, "paper")]
     summary: dict[str, list[str]] = {}
     failed = []
     t_all = time.perf_counter()
-    bar = tqdm(sections, desc="symhx paper", unit="section", file=sys.stderr, disable=None,
-               leave=False)
-    for name, fn in bar:
-        bar.set_postfix_str(name)
-        t0 = time.perf_counter()
-        try:
-            lines = list(fn(out, args.full))
-        except Exception as exc:  # report and keep going; exit non-zero at the end
-            failed.append(name)
-            lines = [f"FAILED: {type(exc).__name__}: {' '.join(str(exc).split())}"]
-        dt = time.perf_counter() - t0
-        summary[name] = [*lines, f"time: {dt:.1f} s"]
-        tqdm.write(f"[symhx paper] {name} ({dt:.1f} s)", file=sys.stdout)
-        for line in lines:
-            tqdm.write(f"    {line}", file=sys.stdout)
-        sys.stdout.flush()
+    bar = tqdm(total=len(sections), desc="symhx paper", unit="section", file=sys.stderr,
+               disable=None, leave=False)
+    start_order = sorted(sections, key=lambda s: s[0] not in PAPER_LONG_SECTIONS)
+    with ProcessPoolExecutor(max_workers=max(1, min(2, os.cpu_count() or 1))) as pool:
+        futures = {name: pool.submit(_paper_section, module, out, args.full)
+                   for name, module in start_order}
+        for fut in futures.values():
+            fut.add_done_callback(lambda _f: bar.update())
+        for name, _ in sections:  # report in the modules' order
+            lines, dt, bad = futures[name].result()
+            if bad:
+                failed.append(name)
+            summary[name] = [*lines, f"time: {dt:.1f} s"]
+            tqdm.write(f"[symhx paper] {name} ({dt:.1f} s)", file=sys.stdout)
+            for line in lines:
+                tqdm.write(f"    {line}", file=sys.stdout)
+            sys.stdout.flush()
     bar.close()
     (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     print(f"[symhx paper] {len(sections) - len(failed)}/{len(sections)} sections in "

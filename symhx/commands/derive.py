@@ -45,17 +45,18 @@ def register(sub: Any) -> None:
 
 # --------------------------------------------------------------------------- derive
 def cmd_derive(args: argparse.Namespace) -> int:
-    from symhx.symbolic import derivations
+    """``symhx derive``: builds only the derivations asked for (``--list`` builds none)."""
+    from symhx.symbolic import catalogue, derivation, latex
 
-    reg = derivations()
+    cat = catalogue()
     if args.list:
-        for lab, d in reg.items():
-            print(f"{lab:>18s}  (sec. {d.section})  {d.description}")
+        for lab, (section, description, _) in cat.items():
+            print(f"{lab:>18s}  (sec. {section})  {description}")
         return 0
     if args.all:
-        chosen = list(reg)
+        chosen = list(cat)
     elif args.labels:
-        unknown = [lab for lab in args.labels if lab not in reg]
+        unknown = [lab for lab in args.labels if lab not in cat]
         if unknown:
             raise ValueError(f"unknown label(s) {', '.join(unknown)}; try 'symhx derive --list'")
         chosen = list(args.labels)
@@ -63,29 +64,28 @@ def cmd_derive(args: argparse.Namespace) -> int:
         raise ValueError("give equation labels (e.g. 16) or --all; 'symhx derive --list' lists")
 
     if args.json:
-        out = [reg[lab].as_dict(verify=args.verify) for lab in chosen]
+        out = [derivation(lab).as_dict(verify=args.verify) for lab in chosen]
         print(dump_json(out))
         return 0 if not args.verify or all(o["verified"] for o in out) else 1
 
-    import sympy as sp
-
     failed = []
     for lab in chosen:
-        d = reg[lab]
-        print(f"({lab}) {d.description}")
+        d = derivation(lab)
+        print(f"({lab}) {d.markdown if args.latex else d.description}")
         if args.steps:
-            for text, expr in d.steps:
-                shown = sp.latex(expr) if args.latex else sp.sstr(expr)
-                print(f"    step: {text}: {shown}" if text else f"        = {shown}")
-        print("    " + (d.latex() if args.latex else sp.sstr(d.result)))
+            for step in d.steps:
+                text = step.markdown if args.latex else step.text
+                shown = latex(step.expr) if args.latex else str(step.expr)
+                print(f"    step: {text} {shown}" if text else f"        = {shown}")
+        print("    " + (d.latex() if args.latex else str(d.result)))
         if args.verify:
             rep = d.report()
             ok = bool(rep) and all(r.passed for r in rep)
             failed += [] if ok else [lab]
             for r in rep:
                 mark = "ok  " if r.passed else "FAIL"
-                print(f"    [{mark}] ({r.kind}) {r.description}" + (f": {r.error}" if r.error
-                                                                       else ""))
+                what = r.markdown if args.latex else r.description
+                print(f"    [{mark}] ({r.kind}) {what}" + (f": {r.error}" if r.error else ""))
     if args.verify:
         print(f"{len(chosen) - len(failed)}/{len(chosen)} derivations verified"
               + (f"; failed: {', '.join(failed)}" if failed else ""))
@@ -94,8 +94,7 @@ def cmd_derive(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------------------- asymptotics
 def cmd_asymptotics(args: argparse.Namespace) -> int:
-    import mpmath
-
+    from symhx._mpctx import export, local, mp
     from symhx.asymptotics import ORDERS, asymptotic_critical_point, error_table
 
     orders = ORDERS if args.order == "all" else (args.order,)
@@ -120,14 +119,20 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
         from symhx.critical import critical_point
 
         exact = critical_point(args.N, dps=args.dps)
+    ctx = mp()
+
+    def rel_error(q: Any) -> Any:
+        assert exact is not None
+        with ctx.workdps(args.dps):
+            return export(abs(local(q) / local(exact.q) - 1))
+
     if args.json:
         out = []
         for r in res:
             row = r.as_dict()
             if exact is not None:
-                with mpmath.workdps(args.dps):
-                    row["q_rel_error"] = abs(r.q / exact.q - 1)
-                    row["k_exact"] = exact.k_after
+                row["q_rel_error"] = rel_error(r.q)
+                row["k_exact"] = exact.k_after
             out.append(row)
         print(dump_json(out))
         return 0
@@ -135,8 +140,7 @@ def cmd_asymptotics(args: argparse.Namespace) -> int:
     for r in res:
         line = f"  {r.order:>9s}: q = {mpstr(r.q, 15)}   k = {mpstr(r.k, 15)}"
         if exact is not None:
-            with mpmath.workdps(args.dps):
-                line += f"   rel. err. {mpmath.nstr(abs(r.q / exact.q - 1), 3)}"
+            line += f"   rel. err. {mpstr(rel_error(r.q), 3)}"
         print(line + f"   [{r.decay}]")
     if exact is not None:
         print(f"  {'exact':>9s}: q = {mpstr(exact.q, 15)}   k = {exact.k_after}")
@@ -149,8 +153,7 @@ def paper(out: Path, full: bool) -> list[str]:
     from symhx.asymptotics import error_table
     from symhx.symbolic import derivations
 
-    reg = derivations()
-    rows = [d.as_dict(verify=True) for d in reg.values()]
+    rows = [d.as_dict(verify=True) for d in derivations().values()]
     (out / "derivations.json").write_text(json.dumps(rows, indent=2) + "\n")
     n_ok = sum(r["verified"] for r in rows)
     table = error_table(dps=120)
@@ -168,11 +171,9 @@ def paper(out: Path, full: bool) -> list[str]:
 
         plt.close(fig)
     best = {r["N"]: r["rel_error"] for r in table if r["formula"] == "best"}
-    import mpmath
-
     return [
         f"derivations: {n_ok}/{len(rows)} verified "
         f"({sum('symbolic' in r['kinds'] for r in rows)} with a symbolic check)",
         "asymptotics: best-order rel. error of N p_c - 1 at N = 1e10: "
-        f"{mpmath.nstr(best.get(10**10, 0), 2)}, at 1e100: {mpmath.nstr(best.get(10**100, 0), 2)}",
+        f"{mpstr(best.get(10**10, 0), 2)}, at 1e100: {mpstr(best.get(10**100, 0), 2)}",
     ]

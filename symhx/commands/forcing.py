@@ -31,7 +31,7 @@ def register(sub: Any) -> None:
     ps = sub.add_parser(
         "p-sigma",
         help="impact probability p and 1 - p for forcing sigma (eqs. 22-27)",
-        description="Impact probability p = P(Y0 + sum Y_i/|omega^2 - Omega_i^2| > d), 1 - p "
+        description="Impact probability p = P(Y0 + sum Y_i/abs(omega^2 - Omega_i^2) > d), 1 - p "
         "and their natural logs for forcing standard deviation sigma (sigma1 = sigma unless "
         "given). Numbers are exact decimals (0.05 is 1/20). JSON output is strict: with --dps "
         "every value is a decimal string; in float64 a value outside the float range "
@@ -206,13 +206,9 @@ def paper(out: Path, full: bool) -> list[str]:
         "sigma_at_one_minus_p_1e-10": s_q1e10, "checks": checks,
     }
     (out / "fig9_p_sigma.json").write_text(json.dumps(jsonable(meta), indent=1) + "\n")
-    from symhx.plots.forcing import plot_p_sigma
+    from symhx.plots.paper import save_paper_figure
 
-    fig = plot_p_sigma(s, naive=True, n_naive=17 if not full else 33)
-    fig.savefig(out / "fig9_p_sigma.png", dpi=110, bbox_inches="tight")
-    import matplotlib.pyplot as plt
-
-    plt.close("all")
+    save_paper_figure(9, out / "fig9_p_sigma.png")
     with mpmath.workdps(30):
         naive = checks["0.05"]["naive_1_minus_dblquad"]
         return [

@@ -204,13 +204,7 @@ def paper(out: Path, full: bool) -> list[str]:
     smoke check.  ``full=True``: the paper grid is recomputed with :data:`FULL_RUNS` runs per
     sigma (minutes on 2 cores, tqdm progress on a terminal) and the figures are drawn from it.
     """
-    import matplotlib.pyplot as plt
-
-    from symhx.plots.impact import (
-        plot_mean_vs_sigma,
-        plot_mode_vs_sigma,
-        plot_theory_vs_simulation,
-    )
+    from symhx.plots.paper import save_paper_figure
 
     t0 = time.perf_counter()
     sigmas = PAPER_SIGMAS if full else QUICK_SIGMAS
@@ -234,14 +228,10 @@ def paper(out: Path, full: bool) -> list[str]:
                         *p["mean_ci"], p["mode"], *p["mode_ci"], q["mean"], q["se"],
                         q["mode"], s.gap_rate()[0]])
     figs = res if full else stored_ensemble()
-    names = {"fig7_mode_vs_sigma.png": plot_mode_vs_sigma(figs),
-             "fig8_mean_vs_sigma.png": plot_mean_vs_sigma(figs),
-             "fig10_theory_vs_simulation.png": plot_theory_vs_simulation(figs),
-             "fig13_spaces_vs_simulation.png": plot_theory_vs_simulation(
-                 figs, spaces=("simple", "eq41", "excess<=4"), title="Fig. 13")}
-    for name, fig in names.items():
-        fig.savefig(out / name, dpi=110, bbox_inches="tight")
-        plt.close(fig)
+    names = {7: "fig7_mode_vs_sigma.png", 8: "fig8_mean_vs_sigma.png",
+             10: "fig10_theory_vs_simulation.png", 13: "fig13_spaces_vs_simulation.png"}
+    for number, name in names.items():
+        save_paper_figure(number, out / name, ensemble=figs)
     dt = time.perf_counter() - t0
     modes = figs.column("pipes", "mode")
     jump = ""
@@ -254,4 +244,4 @@ def paper(out: Path, full: bool) -> list[str]:
               f"{figs.per_sigma[0].runs} runs; rerun with --full")
     return [f"impact ensemble: {len(sigmas)} sigmas x {runs} runs of 100 pipes in {dt:.1f} s"
             f"{jump}",
-            f"figures 7, 8, 10, 13 (from {source}) -> " + ", ".join(names)]
+            f"figures 7, 8, 10, 13 (from {source}) -> " + ", ".join(names.values())]

@@ -120,11 +120,8 @@ def paper(out: Path, full: bool) -> list[str]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from symhx.plots.higher_order import (
-        plot_class_decomposition,
-        plot_mean_vs_p_spaces,
-        plot_simple_vs_higher,
-    )
+    from symhx.plots.higher_order import plot_mean_vs_p_spaces
+    from symhx.plots.paper import PNG_DPI, save_paper_figure
     from symhx.spaces import boundary_table, class_decomposition, critical_point
 
     N = PAPER_N
@@ -138,15 +135,12 @@ def paper(out: Path, full: bool) -> list[str]:
             write_csv(out / f"fig11_classes_{space}_p{p}.csv", header, table)
             (out / f"fig11_classes_{space}_p{p}.json").write_text(
                 dump_json({"columns": header, "rows": table}) + "\n")
-        plot_class_decomposition(N, float(Fraction(p)), kmax=None if p == "0.05" else 40
-                                 ).savefig(out / f"fig11_p{p}.png", dpi=110, bbox_inches="tight")
-    for p_fig12 in (0.015, 0.04):
-        plot_simple_vs_higher(N, p_fig12).savefig(out / f"fig12_p{p_fig12}.png", dpi=110,
-                                                  bbox_inches="tight")
-    plot_mean_vs_p_spaces(N, spaces=("simple", "eq41", "eq41-printed", "excess<=6"),
-                          points=40 if full else 20).savefig(out / "fig13_theory.png", dpi=110,
-                                                             bbox_inches="tight")
-    plt.close("all")
+    save_paper_figure(11, out / "fig11_classes.png")
+    save_paper_figure(12, out / "fig12_simple_vs_higher.png")
+    # figure 13's theory curves alone (the spaces of figure 13), over the paper's range of p
+    fig = plot_mean_vs_p_spaces(N, points=40 if full else 20)
+    fig.savefig(out / "fig13_theory.png", dpi=PNG_DPI, bbox_inches="tight")
+    plt.close(fig)
     (out / "section8_boundary.json").write_text(dump_json(
         [{**r, "class": list(r["class"])} for r in boundary_table(N)]) + "\n")
     lines = []

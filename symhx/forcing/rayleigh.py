@@ -700,7 +700,7 @@ def _mp_with_error(scales: Sequence[Any], x: mpmath.mpf, kind: str, dps: int
 
 # =========================================================================== the distribution
 class RayleighSum:
-    r"""The sum ``S = R_1 + ... + R_n`` of independent Rayleigh variables of scales ``s_i``.
+    r"""The sum ``S = sum_i R_i`` of independent Rayleigh variables ``R_i`` of scales ``s_i``.
 
     ``R_i`` has density ``(r/s_i**2) exp(-r**2/(2 s_i**2))``; with the scales of
     :func:`rayleigh_scales` ``P(S > d)`` is the impact probability of eq. (22) (eq. 27 for two
@@ -967,7 +967,7 @@ def _mp_x(x: Any) -> mpmath.mpf:
 def rayleigh_sum_probability(
     scales: Sequence[Any], d: Any = 1, *, tail: str = "upper", dps: int | None = None
 ) -> RayleighSumResult:
-    r"""``P(R_0 + ... + R_M > d)`` (``tail="upper"``) or ``P(... <= d)`` (``tail="lower"``).
+    r"""``P(sum_i R_i > d)`` (``tail="upper"``) or ``P(sum_i R_i <= d)`` (``tail="lower"``).
 
     ``R_i`` are independent Rayleigh variables of scales ``scales[i]``; eq. (22) with the scales
     of :func:`rayleigh_scales`. A thin function over :meth:`RayleighSum.probability` (see

@@ -306,6 +306,17 @@ class EnsembleResult:
         return {"params": self.params, "seconds": self.seconds,
                 "per_sigma": [s.as_dict() for s in self.per_sigma]}
 
+    def __repr__(self) -> str:
+        """One line: the grid of sigma, the runs and the setting (the dataclass repr printed
+        every histogram, thousands of numbers)."""
+        p, s = self.params, self.sigmas
+        runs = sum(x.runs for x in self.per_sigma)
+        grid = f"{len(s)} sigmas in [{s.min():g}, {s.max():g}]" if len(s) else "no sigma"
+        setting = ", ".join(f"{k}={p[k]!r}" for k in ("n", "restitution", "t_transient",
+                                                       "t_window") if k in p)
+        return (f"EnsembleResult({grid}, {runs} runs, "
+                f"{sum(x.failed for x in self.per_sigma)} failed; {setting})")
+
     def save(self, path: Any) -> None:
         """Write :meth:`as_dict` as JSON atomically (a temporary file renamed into place)."""
         path = Path(path)

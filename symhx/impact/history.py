@@ -37,7 +37,8 @@ class History:
         for an impact).
     aux : ndarray
         ``STICK``: estimated accumulation time of the chatter; ``GRAZE``: the gap at the touch.
-    row, t_end, dps : the simulated row, horizon and precision (``None``: float64 engine).
+    row, t_end, dps
+        The simulated row, horizon and precision (``None``: float64 engine).
 
     Use :meth:`state` for positions and velocities at any time in ``[0, t_end]``.
     """
@@ -58,7 +59,7 @@ class History:
     @classmethod
     def from_log(cls, row: PipeRow, t_end: Any, dps: int | None, log: EventLog, freqs: Any,
                  wdps: int | None = None) -> History:
-        """The history of a run from its :class:`~symhx.impact.engine.EventLog` (float64 arrays
+        """The history of a run from its ``symhx.impact.engine.EventLog`` (float64 arrays
         when ``dps`` is None, arrays of mpf at working precision ``wdps`` otherwise)."""
         times, sites, kinds, u0, u1, aux = log.event_arrays(float if dps is None else object)
         # positional: the fields in their declared order (half the cost of keywords)

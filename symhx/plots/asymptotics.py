@@ -5,9 +5,12 @@ from __future__ import annotations
 
 from typing import Any
 
+from symhx.plots._style import COLUMN_WIDTH, styled
+
 __all__ = ["plot_asymptotic_errors"]
 
 
+@styled
 def plot_asymptotic_errors(rows: list[dict[str, Any]] | None = None, *, ax: Any = None,
                            dps: int = 120) -> Any:
     """Relative error vs N of every formula of :mod:`symhx.asymptotics`.
@@ -36,7 +39,7 @@ def plot_asymptotic_errors(rows: list[dict[str, Any]] | None = None, *, ax: Any 
 
         rows = error_table(dps=dps)
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        fig, ax = plt.subplots(figsize=(COLUMN_WIDTH, 5.0), layout="constrained")
     else:
         fig = ax.figure
     formulas = list(dict.fromkeys(r["formula"] for r in rows))
@@ -56,6 +59,7 @@ def plot_asymptotic_errors(rows: list[dict[str, Any]] | None = None, *, ax: Any 
     ax.set_xlabel(r"$N$")
     ax.set_ylabel("relative error")
     ax.set_title(r"Large-$N$ formulas for $N p_c - 1$ and $p_d$ vs the exact solver")
-    ax.legend(fontsize=8, ncol=2)
+    # below the axes: the curves fill the plot from corner to corner
+    ax.legend(ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
     ax.grid(True, alpha=0.3)
     return fig

@@ -14,12 +14,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from symhx.circuits import phi, total_simple_circuits
+from symhx.plots._style import COLUMN_WIDTH, styled
 
 __all__ = ["circuit_fractions", "plot_circuit_counts"]
 
 
 def circuit_fractions(N: int) -> tuple[np.ndarray, np.ndarray]:
-    """``(k, phi_N(k) / phi_N^tot)`` for ``k = 1 .. N``, each ratio exact then rounded to float64.
+    """``(k, phi_N(k) / phi_N^tot)`` for ``k`` from 1 to ``N``, each ratio exact, then rounded
+    to float64.
 
     >>> k, frac = circuit_fractions(4)
     >>> k.tolist(), frac.tolist() == [4 / 24, 6 / 24, 8 / 24, 6 / 24]
@@ -41,6 +43,7 @@ def _nice_step(target: float) -> int:
         scale *= 10
 
 
+@styled
 def plot_circuit_counts(N: int = 100, *, ax=None, log: bool = True):
     """Figure 3: fraction of the simple circuits that have length ``k``, for ``N`` vertices.
 
@@ -59,7 +62,7 @@ def plot_circuit_counts(N: int = 100, *, ax=None, log: bool = True):
         The first line of the axes holds the plotted data (zero ratios removed).
     """
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6.0, 3.8))
+        fig, ax = plt.subplots(figsize=(COLUMN_WIDTH, 3.6), layout="constrained")
     else:
         fig = ax.figure
     ks, fracs = circuit_fractions(N)

@@ -1,7 +1,8 @@
-"""Figures 4-6 of the paper: distributions of X, the mode path with its jump, and f / Phi.
+"""Figures 4-6 of the paper: distributions of X, the mode path with its jump, and the mechanism
+of the jump (f and Phi at the paper's four stages, :func:`plot_jump_mechanism`).
 
-Conventions of every figure here: one legend per panel, the same colour for the same ``p`` in
-every panel of a figure, panel letters as in the paper.
+Conventions of every figure here: the same colour for the same ``p`` in every panel of a
+figure, panel letters as in the paper, sized for the book's column (:mod:`symhx.plots._style`).
 """
 
 from __future__ import annotations
@@ -11,13 +12,14 @@ from math import lgamma, log
 from typing import Any
 
 import matplotlib.pyplot as plt
-import mpmath
 import numpy as np
 
+from symhx._mpctx import mp
 from symhx.api import distribution_of
 from symhx.critical import critical_point, mode_path
+from symhx.plots._style import COLUMN_WIDTH, styled
 
-__all__ = ["plot_distributions", "plot_f_and_phi", "plot_mode_path"]
+__all__ = ["plot_distributions", "plot_f_and_phi", "plot_jump_mechanism", "plot_mode_path"]
 
 PANEL_LETTERS = "abcdefghijklmnopqrstuvwxyz"
 
@@ -25,7 +27,7 @@ PANEL_LETTERS = "abcdefghijklmnopqrstuvwxyz"
 def _panel_axes(n: int, axes: Any, ncols: int, size: tuple[float, float]) -> tuple[Any, list]:
     if axes is None:
         nrows = -(-n // ncols)
-        fig, grid = plt.subplots(nrows, ncols, figsize=size, squeeze=False)
+        fig, grid = plt.subplots(nrows, ncols, figsize=size, squeeze=False, layout="constrained")
         flat = list(grid.ravel())
         for extra in flat[n:]:
             extra.remove()
@@ -36,6 +38,7 @@ def _panel_axes(n: int, axes: Any, ncols: int, size: tuple[float, float]) -> tup
     return flat[0].figure, flat[:n]
 
 
+@styled
 def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.1), *,
                        axes: Any = None, ax: Any = None, logy: bool = False) -> Any:
     """Figure 4: ``P(X = k)`` (eq. 7, simple circuits) against ``k``, one panel per ``p``
@@ -68,19 +71,20 @@ def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.
     else:
         ncols = 2 if len(ps) > 1 else 1
         fig, panels = _panel_axes(len(ps), axes, ncols,
-                                  (5.2 * ncols, 3.2 * -(-len(ps) // ncols)))
+                                  (COLUMN_WIDTH, 2.6 * -(-len(ps) // ncols) + 0.4))
     for i, (p, a) in enumerate(zip(ps, panels, strict=True)):
         d = distribution_of(N, p, dps=20)
         pmf = np.array([float(d.pmf(int(k))) for k in ks])
+        mean = f"$E[X] = {float(d.mean()):.3g}$"
         a.plot(ks, pmf, marker=".", ms=3, lw=0.8, color=f"C{i}",
-               label=f"$p = {p:g}$, $E[X] = {float(d.mean()):.3g}$")
+               label=mean if ax is None else f"$p = {p:g}$, {mean}")
         if ax is None:
             a.set_title(f"({PANEL_LETTERS[i]}) $p = {p:g}$")
-            a.set_xlabel("number of distinct impacts $k$")
+            a.set_xlabel("distinct impacts $k$")
             a.set_ylabel("$P(X=k)$")
             if logy:
                 a.set_yscale("log")
-            a.legend(fontsize="small")
+            a.legend(loc="best", handlelength=1.2)
     if ax is not None:
         ax.set_xlabel("number of distinct impacts $k$")
         ax.set_ylabel("$P(X=k)$")
@@ -90,7 +94,6 @@ def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.
         ax.legend(fontsize="small")
     else:
         fig.suptitle(f"Distribution of $X$ (eq. 7), $N = {N}$ ({N - 1} pipes)")
-        fig.tight_layout()
     return fig
 
 
@@ -106,6 +109,7 @@ def _mode_steps(path: Any, p_max: float) -> tuple[list[float], list[int]]:
     return xs, ys
 
 
+@styled
 def plot_mode_path(N: int = 101, *, p_max: float = 0.1, zoom: float | None = None,
                    axes: Any = None, ax: Any = None) -> Any:
     """Figure 5: the mode ``k*(p)`` as an exact step function, with ``p_d`` and ``p_c`` marked:
@@ -138,30 +142,32 @@ def plot_mode_path(N: int = 101, *, p_max: float = 0.1, zoom: float | None = Non
     if ax is not None:
         fig, panels = ax.figure, [(ax, p_max)]
     else:
-        fig, pair = _panel_axes(2, axes, 2, (11, 3.8))
+        fig, pair = _panel_axes(2, axes, 2, (COLUMN_WIDTH, 3.1))
         panels = [(pair[0], p_max), (pair[1], zoom or min(1.6 * pc, p_max))]
+    nstr = mp().nstr
     for i, (a, right) in enumerate(panels):
         xs, ys = _mode_steps(path, right)
-        a.plot(xs, ys, color="C0", label="$k^*(p)$ (exact breakpoints)")
-        a.axvline(pd, color="C1", ls=":", label=f"$p_d = {mpmath.nstr(cp.p_d, 6)}$ (eq. 16)")
-        a.axvline(pc, color="C3", ls="--", label=f"$p_c = {mpmath.nstr(cp.p, 6)}$")
+        a.plot(xs, ys, color="C0", label="$k^*(p)$, exact")
+        a.axvline(pd, color="C1", ls=":", label=f"$p_d = {nstr(cp.p_d, 5)}$")
+        a.axvline(pc, color="C3", ls="--", label=f"$p_c = {nstr(cp.p, 5)}$")
         a.set_xlim(0, right)
         a.set_xlabel("impact probability $p$")
         a.set_ylabel("mode $k^*$")
-        what = "" if i == 0 else ", blow-up of small $p$"
+        what = "" if i == 0 else ", blow-up"
         a.set_title(f"({PANEL_LETTERS[i]}) $N={N}${what}: jump $1 \\to {cp.k_after}$")
-        a.legend(loc="center right" if i == 0 else "upper left", fontsize="small")
-    if ax is None:
-        fig.tight_layout()
+        a.legend(loc="lower right" if i == 0 else "upper left")
+        a.tick_params(axis="x", labelrotation=30)
     return fig
 
 
+@styled
 def plot_f_and_phi(N: int = 101, *, ps: Sequence[float] | None = None, axes: Any = None) -> Any:
     """Figure 6 as real plots: ``f_{N,p}(k)`` (eq. 10, top) and
     ``log Phi_{N,p}(k) - log Phi_{N,p}(1)`` (bottom) for ``p`` at 0, ``p_d``, between ``p_d``
     and ``p_c``, and above ``p_c``. Each ``p`` has the same colour in both panels and both panels
     have a legend; at ``p = 0``, ``Phi(k) = 0`` for ``k >= 2`` (the curve is at minus infinity
-    and only listed in the legend).
+    and only listed in the legend). The book and ``symhx paper`` draw figure 6 with
+    :func:`plot_jump_mechanism`, the paper's sequence (a)-(d) zoomed where the roots are.
 
     Returns
     -------
@@ -201,4 +207,112 @@ def plot_f_and_phi(N: int = 101, *, ps: Sequence[float] | None = None, axes: Any
     axes[1].set_ylim(-30, 10)
     axes[1].legend(fontsize="small", loc="lower left")
     axes[0].set_title(f"$N={N}$: $p_d={pd:.5g}$, $p_c={pc:.5g}$")
+    return fig
+
+
+def _f_roots(N: int, p: float) -> list[float]:
+    """Real roots of ``f_{N,p}(k) = -p k**2 + (N p - 1) k - 1`` (eq. 10), ascending."""
+    b = N * p - 1
+    disc = b * b - 4 * p
+    if disc < 0:
+        return []
+    r = disc**0.5
+    return sorted(((b - r) / (2 * p), (b + r) / (2 * p)))
+
+
+@styled
+def plot_jump_mechanism(N: int = 101, *, kmax: int | None = None, axes: Any = None) -> Any:
+    r"""Figure 6: the mechanism of the jump as the paper's sequence (a)-(d), one row per stage,
+    ``f_{N,p}(k)`` (eq. 10) on the left and ``log Phi_{N,p}(k) - log Phi_{N,p}(1)`` (eq. 8) on
+    the right, both zoomed on ``0 < k <= kmax`` where the roots are:
+
+    * (a) ``p = p_d/2``: ``f < 0`` for every ``k``, so ``Phi`` decreases and the mode is 1 (as at
+      ``p = 0``, where ``Phi(k) = 0`` for ``k >= 2`` and nothing could be drawn);
+    * (b) ``p = p_d`` (eq. 16): ``f`` has a double root at ``k_d = sqrt(N+1) - 1``, ``Phi`` an
+      inflexion; the mode is still 1;
+    * (c) ``p = (p_d + p_c)/2``: two roots ``k_- < k_+``, a local minimum and a local maximum of
+      ``Phi``, the maximum still below ``Phi(1)``;
+    * (d) ``p = p_c``: the local maximum reaches ``Phi(1)`` and the mode jumps from 1 to
+      ``k_after``.
+
+    Roots of ``f`` are marked by dots and dotted vertical lines in both panels of their row (they
+    are the turning points of ``Phi``); the modes are marked by stars.
+
+    Parameters
+    ----------
+    N : int
+        Vertices (the paper's 100 pipes: ``N = 101``), ``N >= 4`` (below, ``p_c = p_d`` or there
+        is no jump).
+    kmax : int, optional
+        Right end of the zoom (default ``1.6 k_after``, at most ``N``).
+    axes : 4 x 2 array of Axes, optional
+        Where to draw (rows (a)-(d); left ``f``, right ``Phi``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        If ``N < 4``.
+
+    >>> fig = plot_jump_mechanism(101)
+    >>> [a.get_title(loc="left")[:3] for a in fig.axes[::2]]
+    ['(a)', '(b)', '(c)', '(d)']
+    """
+    if not isinstance(N, int) or isinstance(N, bool) or N < 4:
+        raise ValueError(f"N must be an integer >= 4 (a jump with p_c > p_d), got {N!r}")
+    cp = critical_point(N, dps=30)
+    pd, pc = float(cp.p_d), float(cp.p)
+    k_top = kmax or min(N, int(np.ceil(1.6 * cp.k_after)) + 1)
+    nstr = mp().nstr
+    stages = (
+        (pd / 2, rf"$p = p_d/2 = {pd / 2:.4g}$", "f < 0: Phi decreasing"),
+        (pd, rf"$p = p_d = {nstr(cp.p_d, 4)}$", "double root"),
+        ((pd + pc) / 2, r"$p = (p_d + p_c)/2$", "two roots"),
+        (pc, rf"$p = p_c = {nstr(cp.p, 4)}$", "jump"),
+    )
+    if axes is None:
+        fig, grid = plt.subplots(4, 2, figsize=(COLUMN_WIDTH, 8.6), sharex=True,
+                                 layout="constrained")
+    else:
+        grid = np.asarray(axes).reshape(4, 2)
+        fig = grid[0, 0].figure
+    k = np.linspace(0.0, k_top, 600)
+    kk = np.arange(1, k_top + 1)
+    for row, (p, name, _) in enumerate(stages):
+        colour = f"C{row}"
+        af, ap = grid[row]
+        fk = -p * k**2 + (N * p - 1) * k - 1
+        af.plot(k, fk, color=colour, lw=1.6)
+        af.axhline(0, color="k", lw=0.6)
+        roots = [(N + 1) ** 0.5 - 1] if row == 1 else _f_roots(N, p)  # k_d of eq. 16
+        roots = [r for r in roots if 0 < r <= k_top]
+        lphi = np.array([ki * log(p) + lgamma(N + 1) - log(ki) - lgamma(N - ki + 1)
+                         for ki in kk])
+        lphi -= lphi[0]
+        ap.plot(kk, lphi, color=colour, lw=1.4, marker=".", ms=3)
+        ap.axhline(0, color="k", lw=0.6, ls="--")
+        for r in roots:
+            af.plot([r], [0.0], "o", color=colour, ms=5)
+            for a in (af, ap):
+                a.axvline(r, color=colour, lw=0.8, ls=":")
+        mode_k = [1] if row < 3 else sorted({1, int(cp.k_after)})
+        ap.plot(mode_k, lphi[np.array(mode_k) - 1], "*", color="k", ms=9)
+        letter = PANEL_LETTERS[row]
+        af.set_title(f"({letter}) {name}", loc="left")
+        n_roots = "no root" if not roots else ("double root" if row == 1 else "two roots")
+        af.text(0.98, 0.94, n_roots, transform=af.transAxes, ha="right", va="top")
+        mode_text = ("mode 1" if row < 3
+                     else f"modes 1 and {cp.k_after}: the jump")
+        ap.text(0.98, 0.94, mode_text, transform=ap.transAxes, ha="right", va="top")
+        af.set_ylim(-2.2, 1.1)
+        ap.set_ylim(-1.7, 0.45)
+        af.set_ylabel(r"$f_{N,p}(k)$")
+        ap.set_ylabel(r"$\log \Phi(k)/\Phi(1)$")
+    grid[0, 1].set_title(rf"$N = {N}$: $\star$ = mode", loc="right")
+    grid[3, 0].set_xlabel("$k$")
+    grid[3, 1].set_xlabel("$k$")
+    grid[3, 0].set_xlim(0, k_top)
     return fig

@@ -7,12 +7,14 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
+from symhx.plots._style import COLUMN_WIDTH, styled
+
 __all__ = ["plot_p_sigma", "plot_theory_mean_vs_p"]
 
 
 def _ax(ax: Any) -> tuple[Any, Any]:
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4.2))
+        fig, ax = plt.subplots(figsize=(COLUMN_WIDTH, 4.2), layout="constrained")
         return fig, ax
     return ax.figure, ax
 
@@ -23,6 +25,7 @@ def _params(sigma1: Any, omega: Any, Omega: Any, d: Any) -> str:
     return f"{s1}, ω = {omega}, Ω = {om}, d = {d}"
 
 
+@styled
 def plot_p_sigma(
     sigma: Any = None,
     *,
@@ -90,12 +93,13 @@ def plot_p_sigma(
     ax.set_yscale("log")
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
     ax.set_ylabel("probability")
-    ax.set_title(f"Fig. 9: impact probability, {_params(sigma1, omega, Omega, d)}", fontsize=9)
+    ax.set_title(f"Fig. 9: impact probability, {_params(sigma1, omega, Omega, d)}")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(loc="lower right")
     return fig
 
 
+@styled
 def plot_theory_mean_vs_p(
     sigma: Any = None,
     *,
@@ -156,8 +160,7 @@ def plot_theory_mean_vs_p(
     ax.set_xscale("log")
     ax.set_xlabel("impact probability p" if against == "p" else "σ")
     ax.set_ylabel("expected number of impacts E[X]")
-    ax.set_title(f"Fig. 10 (theory): {_params(sigma1, omega, Omega, d)}, space = {space}",
-                 fontsize=9)
+    ax.set_title(f"Fig. 10 (theory): {_params(sigma1, omega, Omega, d)}, space {space}")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+    ax.legend()
     return fig

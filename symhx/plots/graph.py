@@ -22,6 +22,7 @@ from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 from matplotlib.path import Path
 
 from symhx.graph import vertices_row
+from symhx.plots._style import COLUMN_WIDTH, styled
 
 __all__ = ["impact_labels", "plot_impact_graph", "plot_pipe_row"]
 
@@ -54,6 +55,7 @@ def _new_axes(ax, figsize):
     return fig, ax
 
 
+@styled
 def plot_pipe_row(n: int = 3, *, ax=None):
     """Figure 1: ``n`` pipes (cross-sections) in a row between two fixed walls.
 
@@ -69,7 +71,7 @@ def plot_pipe_row(n: int = 3, *, ax=None):
         Axes to draw in; a new figure is made if omitted.
     """
     N = vertices_row(n)
-    fig, ax = _new_axes(ax, (1.3 * (n + 2) + 1.0, 2.6))
+    fig, ax = _new_axes(ax, (min(COLUMN_WIDTH, 1.3 * (n + 2) + 1.0), 2.4))
     radius = 0.3
     wall_w = 0.25
     # walls
@@ -91,8 +93,8 @@ def plot_pipe_row(n: int = 3, *, ax=None):
         xm = 0.5 * (xl + xr)
         ax.add_patch(FancyArrowPatch((xl, 0.0), (xr, 0.0), arrowstyle="|-|", mutation_scale=3,
                                      color="#cb181d", lw=0.8, gid="gap"))
-        ax.text(xm, 0.28, f"$i={i}$", ha="center", va="bottom", fontsize=8, color="#cb181d")
-        ax.text(xm, -0.78, labels[i], ha="center", va="top", fontsize=8, color="#cb181d")
+        ax.text(xm, 0.28, f"$i={i}$", ha="center", va="bottom", fontsize=9, color="#cb181d")
+        ax.text(xm, -0.78, labels[i], ha="center", va="top", fontsize=9, color="#cb181d")
     ax.set_xlim(-0.6, n + 1.6)
     ax.set_ylim(-1.15, 1.0)
     ax.set_aspect("equal")
@@ -108,6 +110,7 @@ def plot_pipe_row(n: int = 3, *, ax=None):
     return fig
 
 
+@styled
 def plot_impact_graph(n: int = 3, *, ax=None, labels: list[str] | None = None):
     """Figure 2: the complete digraph with self-loops on the ``N = n + 1`` impacts of ``n`` pipes.
 
@@ -138,7 +141,7 @@ def plot_impact_graph(n: int = 3, *, ax=None, labels: list[str] | None = None):
     for i, (x, y) in enumerate(pos):
         ax.add_patch(Circle((x, y), r_vertex, facecolor="white", edgecolor="#08519c", lw=1.5,
                             zorder=3, gid="vertex"))
-        ax.text(x, y, labels[i], ha="center", va="center", fontsize=9 if N <= 6 else 7,
+        ax.text(x, y, labels[i], ha="center", va="center", fontsize=9 if N <= 6 else 8,
                 zorder=4)
     arrow: dict[str, Any] = {"arrowstyle": "-|>", "mutation_scale": 10, "color": "0.25",
                              "lw": 0.9, "shrinkA": 0, "shrinkB": 0}

@@ -10,26 +10,40 @@ Probabilities are computed with mpmath (:mod:`symhx.spaces`) and rounded once to
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import matplotlib.pyplot as plt
-import mpmath
 import numpy as np
 
+from symhx.plots._style import COLUMN_WIDTH, space_style, styled
 from symhx.spaces import class_decomposition, distribution
 
-__all__ = ["plot_class_decomposition", "plot_mean_vs_p_spaces", "plot_simple_vs_higher"]
+__all__ = ["FIG11_PANELS", "FIG12_PS", "FIG12_SPACES", "FIG13_SPACES", "plot_class_decomposition",
+           "plot_class_panels", "plot_mean_vs_p_spaces", "plot_simple_vs_higher",
+           "plot_simple_vs_higher_panels"]
+
+#: figure 11's panels as in the paper: (p, largest k shown), (b) the small-k detail of (a)
+FIG11_PANELS: tuple[tuple[float, int | None], ...] = ((0.005, None), (0.005, 15), (0.01, 40),
+                                                      (0.05, None))
+#: figure 12's two values of p and the spaces it compares (simple circuits and eq. 41)
+FIG12_PS: tuple[float, ...] = (0.015, 0.04)
+FIG12_SPACES: tuple[str, ...] = ("simple", "eq41")
+#: the sample spaces of figure 13, in the book and in ``symhx paper`` alike: the paper's simple
+#: circuits (dotted) and eq. (41) (solid), and the consistent truncation ``excess<=4``
+FIG13_SPACES: tuple[str, ...] = ("simple", "eq41", "excess<=4")
 
 
-def _axes(ax, size=(6.0, 3.8)):
+def _axes(ax, size=(COLUMN_WIDTH, 3.8)):
     if ax is None:
-        fig, ax = plt.subplots(figsize=size)
+        fig, ax = plt.subplots(figsize=size, layout="constrained")
         return fig, ax
     return ax.figure, ax
 
 
+@styled
 def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq41",
                              kmax: int | None = None, logy: bool = True, floor: float = 1e-12,
-                             ax=None):
+                             ax=None, legend: bool = True):
     """Figure 11: ``P(X = k)`` (solid) and ``P(X = k, class)`` per class, with ``P(class)`` in
     the legend.
 
@@ -52,6 +66,8 @@ def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq4
     floor : float
         With ``logy``, the bottom of the axis relative to the largest probability.
     ax : matplotlib Axes, optional
+    legend : bool
+        Draw the legend (class names with ``P(class)``) in the axes.
 
     Returns
     -------
@@ -68,7 +84,7 @@ def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq4
         ys = np.array([float(v) for v in cd.joint[s][:top]])
         if logy:
             ys[ys <= 0] = np.nan  # impossible k for this class: no line down to log(0)
-        ax.plot(ks[:top], ys, lw=0.9, ls="--",
+        ax.plot(ks[:top], ys, lw=1.1, ls="--",
                 label=rf"${lab}$: {float(cd.totals[s]):.3g}")
     if logy:
         ax.set_yscale("log")
@@ -77,10 +93,47 @@ def plot_class_decomposition(N: int = 100, p: float = 0.01, *, space: str = "eq4
     ax.set_xlabel(r"number of distinct impacts $k$")
     ax.set_ylabel(r"probability" + (" (log scale)" if logy else ""))
     ax.set_title(rf"classes of circuits, $N={N}$, $p={p}$, space {space}")
-    ax.legend(fontsize=7)
+    if legend:
+        ax.legend(title="class: P(class)")
     return fig
 
 
+@styled
+def plot_class_panels(N: int = 101, panels: Sequence[tuple[float, int | None]] = FIG11_PANELS,
+                      *, space: str = "eq41") -> Any:
+    """Figure 11 as in the paper: one panel of :func:`plot_class_decomposition` per
+    ``(p, kmax)`` of ``panels`` (default :data:`FIG11_PANELS`: (a) ``p = 0.005``, (b) its
+    small-``k`` detail, (c) ``p = 0.01``, (d) ``p = 0.05``), one legend of the classes below.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    >>> fig = plot_class_panels(30, ((0.01, None), (0.01, 8)))
+    >>> [a.get_title()[:3] for a in fig.axes]
+    ['(a)', '(b)']
+    """
+    n = len(panels)
+    rows = -(-n // 2)
+    fig, grid = plt.subplots(rows, 2, figsize=(COLUMN_WIDTH, 2.7 * rows + 0.9), squeeze=False,
+                             layout="constrained")
+    axes = list(grid.ravel())
+    for extra in axes[n:]:
+        extra.remove()
+    for i, (ax, (p, kmax)) in enumerate(zip(axes, panels, strict=False)):
+        plot_class_decomposition(N, p, space=space, kmax=kmax, ax=ax, legend=False)
+        detail = f", $k \\leq {kmax}$" if kmax else ""
+        ax.set_title(f"({'abcdefgh'[i]}) $p = {p:g}${detail}")
+        ax.set_ylabel("probability")
+        ax.set_xlabel("distinct impacts $k$")
+    handles, labels = axes[0].get_legend_handles_labels()
+    names = [lab.split(":")[0] for lab in labels]
+    fig.legend(handles, names, loc="outside lower center", ncol=len(names))
+    fig.suptitle(f"Classes of circuits, space {space}, $N = {N}$")
+    return fig
+
+
+@styled
 def plot_simple_vs_higher(N: int = 100, p: float = 0.015, *, spaces: Sequence[str] = (
         "simple", "eq41"), ax=None):
     """Figure 12: the distributions of X over several spaces on one axes.
@@ -94,30 +147,46 @@ def plot_simple_vs_higher(N: int = 100, p: float = 0.015, *, spaces: Sequence[st
     for sp in spaces:
         d = distribution(N, p, space=sp, dps=20)
         ax.plot(ks, [float(d.pmf(int(k))) for k in ks], lw=1.2,
-                label=f"{sp}: E[X] = {float(d.mean()):.2f}")
+                label=f"{sp}, E[X] = {float(d.mean()):.1f}")
     ax.set_xlabel(r"number of distinct impacts $k$")
     ax.set_ylabel(r"$P(X=k)$")
     ax.set_title(rf"simple and higher-order circuits, $N={N}$, $p={p}$")
-    ax.legend(fontsize=8)
+    ax.legend()
     return fig
 
 
-def _space_style(space: str, i: int) -> dict:
-    """Line style of a space in figure 13: the paper draws simple circuits dotted and higher-order
-    ones solid; the printed eq. (41) is dashed with markers and drawn on top, so that it never
-    hides the corrected eq. (41) it almost coincides with."""
-    if space == "simple":
-        return {"color": "C0", "ls": ":", "lw": 1.8, "zorder": 2}
-    if space == "eq41":
-        return {"color": "C1", "ls": "-", "lw": 2.6, "zorder": 2, "alpha": 0.8}
-    if space == "eq41-printed":
-        return {"color": "C3", "ls": "--", "lw": 1.2, "marker": "o", "ms": 3, "mfc": "none",
-                "zorder": 3}
-    return {"color": f"C{(i + 4) % 10}", "ls": "-.", "lw": 1.2, "zorder": 2}
+@styled
+def plot_simple_vs_higher_panels(N: int = 101, ps: Sequence[float] = FIG12_PS, *,
+                                 spaces: Sequence[str] = FIG12_SPACES) -> Any:
+    """Figure 12 as in the paper: :func:`plot_simple_vs_higher` at each ``p`` of ``ps`` (default
+    :data:`FIG12_PS`, the paper's (a) ``p = 0.015`` and (b) ``p = 0.04``), side by side, with one
+    legend of the spaces below; each panel's title gives ``E[X]`` per space.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    >>> fig = plot_simple_vs_higher_panels(30, (0.05, 0.1))
+    >>> [a.get_title()[:3] for a in fig.axes]
+    ['(a)', '(b)']
+    """
+    fig, axes = plt.subplots(1, len(ps), figsize=(COLUMN_WIDTH, 3.5), squeeze=False,
+                             layout="constrained")
+    for i, (ax, p) in enumerate(zip(axes[0], ps, strict=True)):
+        plot_simple_vs_higher(N, p, spaces=spaces, ax=ax)
+        means = ", ".join(lab.rsplit("= ", 1)[1] for lab in ax.get_legend_handles_labels()[1])
+        ax.get_legend().remove()
+        ax.set_title(f"({'abcdefgh'[i]}) $p = {p:g}$: $E[X]$ = {means}")
+        ax.set_xlabel("distinct impacts $k$")
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, [lab.split(",")[0] for lab in labels], loc="outside lower center",
+               ncol=len(labels))
+    fig.suptitle(f"Simple and higher-order circuits, $N = {N}$")
+    return fig
 
 
-def plot_mean_vs_p_spaces(N: int = 100, *, spaces: Sequence[str] = ("simple", "eq41",
-                                                                    "excess<=6"),
+@styled
+def plot_mean_vs_p_spaces(N: int = 100, *, spaces: Sequence[str] = FIG13_SPACES,
                           p_range: tuple[float, float] = (1e-3, 0.1), points: int = 60,
                           simulation: tuple[Sequence[float], Sequence[float]] | None = None,
                           ax=None):
@@ -131,14 +200,13 @@ def plot_mean_vs_p_spaces(N: int = 100, *, spaces: Sequence[str] = ("simple", "e
     fig, ax = _axes(ax)
     ps = np.geomspace(p_range[0], p_range[1], points)
     for i, sp in enumerate(spaces):
-        with mpmath.workdps(20):
-            mu = [float(distribution(N, float(p), space=sp, dps=15).mean()) for p in ps]
-        ax.plot(ps, mu, label=sp, **_space_style(sp, i))
+        mu = [float(distribution(N, float(p), space=sp, dps=15).mean()) for p in ps]
+        ax.plot(ps, mu, label=sp, **space_style(sp, i))
     if simulation is not None:
         ax.plot(simulation[0], simulation[1], "x", color="black", label="simulation")
     ax.set_xscale("log")
     ax.set_xlabel(r"impact probability $p$")
     ax.set_ylabel(r"$E[X]$")
     ax.set_title(rf"expected number of distinct impacts, $N={N}$")
-    ax.legend(fontsize=8)
+    ax.legend()
     return fig

@@ -8,13 +8,15 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
+from symhx.plots._style import COLUMN_WIDTH, space_style, styled
+
 __all__ = ["plot_gaps", "plot_mean_vs_sigma", "plot_mode_vs_sigma", "plot_theory_vs_simulation",
            "theory_means"]
 
 
 def _ax(ax: Any) -> tuple[Any, Any]:
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4))
+        fig, ax = plt.subplots(figsize=(COLUMN_WIDTH, 4.0), layout="constrained")
         return fig, ax
     return ax.figure, ax
 
@@ -25,6 +27,11 @@ def _title(res: Any, what: str) -> str:
             f"window [{p['t_transient']:g}, {p['t_transient'] + p['t_window']:g}]")
 
 
+def _short_title(res: Any, what: str) -> str:
+    p = res.params
+    return f"{what}: n = {p['n']} pipes, {p['runs']} runs per σ, r = {p['restitution']}"
+
+
 def _yerr(res: Any, what: str, stat: str) -> tuple[np.ndarray, np.ndarray]:
     """Asymmetric error bars from the stored 95 % bootstrap percentile interval."""
     centre = res.column(what, stat)
@@ -32,6 +39,7 @@ def _yerr(res: Any, what: str, stat: str) -> tuple[np.ndarray, np.ndarray]:
     return centre, np.vstack([centre - ci[:, 0], ci[:, 1] - centre])
 
 
+@styled
 def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
     """Figure 7: most likely number of impacting pipes (or sites) against σ.
 
@@ -43,16 +51,17 @@ def plot_mode_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
     s = res.sigmas
     mode, err = _yerr(res, what, "mode")
     ax.errorbar(s, mode, yerr=err, fmt="o-", ms=4, capsize=2,
-                label=f"mode of impacting {what} (95 % bootstrap interval)")
+                label=f"mode of impacting {what}\n(95 % bootstrap interval)")
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
-    ax.set_ylabel(f"most likely number of impacting {what}")
-    ax.set_title(_title(res, "Fig. 7"), fontsize=8)
+    ax.set_ylabel(f"most likely number of\nimpacting {what}")
+    ax.set_title(_short_title(res, "Fig. 7"))
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(loc="lower right")
     return fig
 
 
+@styled
 def plot_mean_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
     """Figure 8: expected number of impacting pipes (or sites) against σ, runs without impact
     excluded; error bars: 95 % bootstrap percentile interval of the mean.
@@ -63,13 +72,13 @@ def plot_mean_vs_sigma(res: Any, *, what: str = "pipes", ax: Any = None) -> Any:
     s = res.sigmas
     mean, err = _yerr(res, what, "mean")
     ax.errorbar(s, mean, yerr=err, fmt="s-", ms=4, capsize=2,
-                label=f"mean impacting {what} (95 % bootstrap interval)")
+                label=f"mean impacting {what}\n(95 % bootstrap interval)")
     ax.set_xlabel("σ (forcing and initial-condition standard deviation)")
-    ax.set_ylabel(f"expected number of impacting {what}")
-    ax.set_title(_title(res, "Fig. 8"), fontsize=8)
+    ax.set_ylabel(f"expected number of\nimpacting {what}")
+    ax.set_title(_short_title(res, "Fig. 8"))
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(loc="lower right")
     return fig
 
 
@@ -80,6 +89,7 @@ def theory_means(p: Any, N: int, space: str = "simple", dps: int = 20) -> np.nda
     return np.array([float(symhx.mean(N, float(q), space=space, dps=dps)) for q in p])
 
 
+@styled
 def plot_theory_vs_simulation(res: Any, *, spaces: Any = ("simple",), measured: bool = True,
                               title: str = "Fig. 10", p_grid: Any = None, ax: Any = None) -> Any:
     """Figures 10 and 13: ``E[X]`` against the impact probability ``p``, graph theory against the
@@ -103,8 +113,12 @@ def plot_theory_vs_simulation(res: Any, *, spaces: Any = ("simple",), measured: 
     xs = [q for q in list(p_eq27) + (list(rate) if measured else []) if q > 0]
     lo = max(min(xs) / 2, 1e-6) if xs else 1e-4
     grid = np.logspace(np.log10(lo), np.log10(0.9), 60) if p_grid is None else np.asarray(p_grid)
-    for space in spaces:
-        ax.plot(grid, theory_means(grid, N, space), lw=1.5, label=f"theory E[X], space {space}")
+    for i, space in enumerate(spaces):
+        # one space (figure 10): a solid line, as in the paper; several (figure 13): dotted
+        # simple circuits, solid higher-order ones
+        style = space_style(space, i) if len(spaces) > 1 else {"color": "C0", "lw": 1.8}
+        ax.plot(grid, theory_means(grid, N, space), label=f"theory E[X], space {space}",
+                **style)
     ok = p_eq27 > 0
     ax.errorbar(p_eq27[ok], mean[ok], yerr=err[:, ok], fmt="kx", ms=6, capsize=2,
                 label="simulation at p(σ) of eq. 27")
@@ -115,14 +129,15 @@ def plot_theory_vs_simulation(res: Any, *, spaces: Any = ("simple",), measured: 
                     label="simulation at the measured per-gap rate")
     ax.set_xscale("log")
     ax.set_xlabel("impact probability p")
-    ax.set_ylabel("expected number of distinct impacts E[X]")
+    ax.set_ylabel("expected number of\ndistinct impacts E[X]")
     ax.set_ylim(bottom=0)
-    ax.set_title(f"{title}: N = {N}; simulation: {_title(res, '')[2:]}", fontsize=7)
+    ax.set_title(f"{title}: theory N = {N}; " + _short_title(res, "simulation")[12:])
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(loc="upper left")
     return fig
 
 
+@styled
 def plot_gaps(history: Any, *, points: int = 2000, ax: Any = None) -> Any:
     """Gaps ``Delta_i(t)`` of a (small) simulated row, events marked by kind. Returns the Figure."""
     fig, ax = _ax(ax)
@@ -140,6 +155,6 @@ def plot_gaps(history: Any, *, points: int = 2000, ax: Any = None) -> Any:
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("t")
     ax.set_ylabel("gap Δ_i(t)")
-    ax.set_title(f"n = {history.row.n}, r = {history.row.restitution}", fontsize=9)
-    ax.legend(fontsize=6, ncol=2)
+    ax.set_title(f"n = {history.row.n}, r = {history.row.restitution}")
+    ax.legend(ncol=2)
     return fig

@@ -5,6 +5,16 @@ it (for display), the paper's printed form when there is one, and a list of :cla
 objects. Every check is a function of the derivation *as it stands* (its ``result``), so a
 derivation whose result has been tampered with (:meth:`Derivation.with_result`) fails.
 
+Every derivation, check and step carries two texts: a plain one (``description``, for the
+terminal and JSON) and a Markdown one with ``$...$`` maths (``text``), which the book and
+``symhx derive --latex`` show. Results are typeset by :func:`latex` (sympy's printer with
+``psi`` for the digamma function and ``log Gamma`` for ``loggamma``).
+
+Derivations are built on demand: each one is a function registered with :func:`register`
+under its label, and the registry (:mod:`symhx.symbolic`) calls it only when that label is asked
+for. Shared intermediate results (the quadratic ``f`` of eq. 10, the discriminant, ...) are
+cached functions, so a derivation computes exactly what it depends on.
+
 Check kinds
 -----------
 ``"symbolic"``
@@ -22,11 +32,27 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 
-__all__ = ["Check", "CheckResult", "Derivation", "N", "k", "log_equal", "p", "sym_equal"]
+__all__ = [
+    "SPECS",
+    "Check",
+    "CheckResult",
+    "Derivation",
+    "N",
+    "Spec",
+    "Step",
+    "k",
+    "latex",
+    "log_equal",
+    "mp_lambdify",
+    "p",
+    "register",
+    "sym_equal",
+]
 
 #: The symbols of every result: number of vertices, impact probability, circuit length / number
 #: of distinct impacts. All declared positive (``k`` is not declared integer, so that the
@@ -34,14 +60,98 @@ __all__ = ["Check", "CheckResult", "Derivation", "N", "k", "log_equal", "p", "sy
 N, p, k = sp.symbols("N p k", positive=True)
 
 
+class _Printer(LatexPrinter):
+    """sympy's LaTeX printer with the notation of the book: ``\\psi`` for the digamma function,
+    ``\\log\\Gamma`` for ``loggamma``, ``\\exp(x)`` for the exponential of a compound ``x``,
+    and the terms of an unevaluated sum in the order given."""
+
+    def _print_polygamma(self, expr: Any, exp: Any = None) -> str:
+        n, x = expr.args
+        base = r"\psi" if n == 0 else rf"\psi^{{({self._print(n)})}}"
+        tex = rf"{base}\left({self._print(x)}\right)"
+        return tex if exp is None else rf"{tex}^{{{exp}}}"
+
+    def _print_ExpBase(self, expr: Any, exp: Any = None) -> str:
+        # exp(x) of a compound x as \exp(x): a fraction or a W in a superscript of a
+        # superscript is too small to read
+        arg = expr.args[0]
+        if arg.is_Atom or (arg.is_Mul and len(arg.args) == 2 and -1 in arg.args
+                           and arg.args[1].is_Atom):
+            return super()._print_ExpBase(expr, exp)
+        tex = rf"\exp\left({self._print(arg)}\right)"
+        return tex if exp is None else rf"{tex}^{{{exp}}}"
+
+    def _print_loggamma(self, expr: Any, exp: Any = None) -> str:
+        tex = rf"\log\Gamma\left({self._print(expr.args[0])}\right)"
+        return tex if exp is None else rf"\left({tex}\right)^{{{exp}}}"
+
+
+def latex(expr: Any) -> str:
+    r"""LaTeX of a sympy object in the book's notation.
+
+    An equation is printed side by side; a left-hand side built as an *unevaluated* sum keeps
+    its terms in the order given (``\Phi(k+1) - \Phi(k)``, not sympy's canonical
+    ``-\Phi(k) + \Phi(k+1)``).
+
+    >>> import sympy as sp
+    >>> latex(sp.polygamma(0, N + 1))
+    '\\psi\\left(N + 1\\right)'
+    >>> f = sp.Function("f")
+    >>> latex(sp.Eq(sp.Add(f(k + 1), -f(k), evaluate=False), 0))
+    'f{\\left(k + 1 \\right)} - f{\\left(k \\right)} = 0'
+    """
+    printer = _Printer()
+    if isinstance(expr, sp.Equality):
+        return f"{_side(printer, expr.lhs)} = {printer.doprint(expr.rhs)}"
+    return printer.doprint(expr)
+
+
+def _side(printer: _Printer, expr: Any) -> str:
+    if not isinstance(expr, sp.Add):
+        return printer.doprint(expr)
+    out = ""
+    for i, term in enumerate(expr.args):
+        neg = term.could_extract_minus_sign()
+        body = printer.doprint(-term if neg else term)
+        if isinstance(-term if neg else term, sp.Add):
+            body = rf"\left({body}\right)"
+        out += ("- " if neg else "+ " if i else "") + body + " "
+    return out.strip().removeprefix("+ ")
+
+
+def mp_lambdify(args: Any, expr: Any) -> Callable[..., Any]:
+    """``sympy.lambdify(args, expr)`` evaluated in this thread's private mpmath context
+    (:func:`symhx._mpctx.mp`): call the result inside ``mp().workdps(...)``, never the global
+    ``mpmath.workdps``."""
+    from sympy.utilities.lambdify import MPMATH_TRANSLATIONS
+
+    from symhx._mpctx import mp
+
+    ctx = mp()
+    names = {name: getattr(ctx, name) for name in dir(ctx) if not name.startswith("_")}
+    names.update({sym: getattr(ctx, mpname) for sym, mpname in MPMATH_TRANSLATIONS.items()
+                  if hasattr(ctx, mpname)})
+    names["mpmath"] = ctx
+    return sp.lambdify(args, expr, modules=[names, "mpmath"])
+
+
 @dataclass(frozen=True)
 class CheckResult:
-    """Outcome of one :class:`Check`: ``passed`` is True only if the check ran and held."""
+    """Outcome of one :class:`Check`: ``passed`` is True only if the check ran and held.
+
+    ``text`` is the check's Markdown description (``$...$`` maths), as :attr:`Check.text`.
+    """
 
     description: str
     kind: str
     passed: bool
     error: str | None = None
+    text: str = ""
+
+    @property
+    def markdown(self) -> str:
+        """The Markdown description, or the plain one in code font if there is none."""
+        return self.text or f"`{self.description}`"
 
 
 @dataclass(frozen=True)
@@ -50,19 +160,37 @@ class Check:
 
     ``fn(derivation) -> bool`` must compute something from ``derivation.result`` (and possibly
     ``derivation.extra``); ``kind`` is ``"symbolic"``, ``"exact"`` or ``"numeric"`` and
-    ``description`` says what was checked and over which range.
+    ``description`` says what was checked and over which range (plain text); ``text`` says the
+    same in Markdown with ``$...$`` maths.
     """
 
     description: str
     kind: str
     fn: Callable[[Derivation], bool]
+    text: str = ""
 
     def run(self, derivation: Derivation) -> CheckResult:
+        """Run the check on ``derivation``; an exception counts as a failure (with its message)."""
         try:
             ok = bool(self.fn(derivation))
         except Exception as exc:  # a check that cannot run has not verified anything
-            return CheckResult(self.description, self.kind, False, f"{type(exc).__name__}: {exc}")
-        return CheckResult(self.description, self.kind, ok)
+            return CheckResult(self.description, self.kind, False,
+                               f"{type(exc).__name__}: {exc}", self.text)
+        return CheckResult(self.description, self.kind, ok, None, self.text)
+
+
+class Step(NamedTuple):
+    """One step of a derivation: what is done (plain ``text`` and Markdown ``tex``) and the
+    sympy object it gives."""
+
+    text: str
+    expr: Any
+    tex: str = ""
+
+    @property
+    def markdown(self) -> str:
+        """The Markdown text of the step, or the plain one in code font if there is none."""
+        return self.tex or (f"`{self.text}`" if self.text else "")
 
 
 @dataclass(frozen=True)
@@ -75,28 +203,31 @@ class Derivation:
         The paper's equation label (``"16"``) or a descriptive key for new results
         (``"16-spurious"``, ``"crossing"``).
     description : str
-        One line saying what the result is.
+        One line saying what the result is (plain text).
     result : sympy expression or ``Eq``
         The derived result, in the positive symbols ``N``, ``p``, ``k`` of this module.
-    steps : tuple of (str, sympy object)
+    checks : tuple of Check
+    steps : tuple of Step
         The derivation, step by step (for display in the book).
     paper : sympy object or None
         The paper's printed right-hand side, when there is one (checked, never used to derive).
     extra : dict
         Further derived objects (e.g. the normaliser of eq. 8, the boundary cases of a count).
-    checks : tuple of Check
     section : int
         Section of the paper.
+    text : str
+        The description in Markdown with ``$...$`` maths (what the book shows).
     """
 
     label: str
     description: str
     result: Any
     checks: tuple[Check, ...] = ()
-    steps: tuple[tuple[str, Any], ...] = ()
+    steps: tuple[Step, ...] = ()
     paper: Any = None
     extra: dict[str, Any] = field(default_factory=dict)
     section: int = 0
+    text: str = ""
 
     # ------------------------------------------------------------------ verification
     def report(self) -> list[CheckResult]:
@@ -106,8 +237,8 @@ class Derivation:
     def verify(self) -> bool:
         """True only if there is at least one check and every check ran and passed.
 
-        >>> from symhx.symbolic import derivations
-        >>> derivations()["13"].verify()
+        >>> from symhx.symbolic import derivation
+        >>> derivation("13").verify()
         True
         """
         results = self.report()
@@ -124,10 +255,20 @@ class Derivation:
         return "; ".join(f"[{c.kind}] {c.description}" for c in self.checks)
 
     # ------------------------------------------------------------------ display
+    @property
+    def markdown(self) -> str:
+        """The Markdown description, or the plain one in code font if there is none."""
+        return self.text or f"`{self.description}`"
+
     def latex(self) -> str:
-        r"""LaTeX of the result (and of the extra equations, separated by ``\quad``)."""
-        parts = [sp.latex(self.result)]
-        parts += [sp.latex(v) for v in self.extra.values() if isinstance(v, sp.Basic)
+        r"""LaTeX of the result (and of the extra equations, separated by ``\quad``).
+
+        >>> from symhx.symbolic import derivation
+        >>> derivation("12").latex()
+        'f_{N,p}{\\left(0 \\right)} = -1'
+        """
+        parts = [latex(self.result)]
+        parts += [latex(v) for v in self.extra.values() if isinstance(v, sp.Basic)
                   and isinstance(v, (sp.Eq, sp.Equality))]
         return r",\quad ".join(parts)
 
@@ -136,11 +277,13 @@ class Derivation:
         return dataclasses.replace(self, result=result)
 
     def as_dict(self, *, verify: bool = False) -> dict[str, Any]:
-        """JSON-friendly summary: label, description, result (str), LaTeX, and optionally checks."""
+        """JSON-friendly summary: label, description (plain and Markdown), result (str), LaTeX,
+        and optionally the outcome of every check."""
         out: dict[str, Any] = {
             "label": self.label,
             "section": self.section,
             "description": self.description,
+            "text": self.markdown,
             "result": sp.sstr(self.result),
             "latex": self.latex(),
             "kinds": list(self.verification_kinds),
@@ -156,6 +299,43 @@ class Derivation:
 
     def __str__(self) -> str:
         return f"({self.label}) {self.description}: {sp.sstr(self.result)}"
+
+
+# ---------------------------------------------------------------------- registration
+@dataclass(frozen=True)
+class Spec:
+    """A registered derivation before it is built: its label, section and descriptions, and the
+    function that builds the rest (:func:`register`)."""
+
+    label: str
+    section: int
+    description: str
+    text: str
+    build: Callable[[], dict[str, Any]]
+
+    def make(self) -> Derivation:
+        """Build the derivation (calls :attr:`build`; no caching here)."""
+        return Derivation(self.label, self.description, section=self.section, text=self.text,
+                          **self.build())
+
+
+#: every registered derivation, by label, in the order of registration
+SPECS: dict[str, Spec] = {}
+
+
+def register(label: str, section: int, description: str, text: str
+             ) -> Callable[[Callable[[], dict[str, Any]]], Callable[[], dict[str, Any]]]:
+    """Decorator: register a builder for ``label``. The builder takes no argument and returns
+    the keyword arguments of :class:`Derivation` other than label, description, text and section
+    (``result``, ``checks``, ``steps``, ``paper``, ``extra``)."""
+
+    def deco(fn: Callable[[], dict[str, Any]]) -> Callable[[], dict[str, Any]]:
+        if label in SPECS:  # pragma: no cover - programming error
+            raise RuntimeError(f"duplicate derivation label {label!r}")
+        SPECS[label] = Spec(label, section, description, text, fn)
+        return fn
+
+    return deco
 
 
 # ---------------------------------------------------------------------- helpers

@@ -11,10 +11,10 @@ from functools import lru_cache
 
 import sympy as sp
 
-from symhx.symbolic._core import Check, Derivation, N, k, rhs
+from symhx.symbolic._core import Check, Derivation, N, Step, k, mp_lambdify, register, rhs
 from symhx.symbolic.jump import p_d
 
-__all__ = ["build", "log_Nc_expansion", "pd_series", "pd_series_coefficients"]
+__all__ = ["log_Nc_expansion", "pd_series", "pd_series_coefficients"]
 
 eps = sp.Symbol("epsilon", positive=True)  # eps = N**(-1/2)
 _K = sp.Symbol("K", positive=True, integer=True)
@@ -62,6 +62,7 @@ def log_Nc_expansion(order: int = 3) -> sp.Expr:
     return sp.log(k) / (k - 1) + tail
 
 
+@lru_cache(maxsize=1)
 def _lambert() -> dict[str, sp.Expr]:
     h0 = sp.log(k) / k + k / (2 * N)  # leading part of log(N c_k) for 1 << k << N
     sols = sp.solve(sp.diff(h0, k), k)  # sympy returns the principal branch (local max near e)
@@ -70,93 +71,115 @@ def _lambert() -> dict[str, sp.Expr]:
     return {"h0": h0, "k0_principal": sols[0], "k0": k0, "q0": 1 / k0 + k0 / N}
 
 
-def build() -> list[Derivation]:
-    """Asymptotic derivations (keys ``"16-series"``, ``"log-Nc-expansion"``, ``"pc-lambert"``)."""
-    import mpmath
+@register("16-series", 6, "p_d as a series in N^(-1/2), five terms; the error is below the first "
+          "omitted term, (1/8) N^(-9/2), for every N >= 1 (alternating binomial series)",
+          r"$p_d$ as a series in $N^{-1/2}$, five terms; the error is below the first omitted "
+          r"term, $\tfrac18 N^{-9/2}$, for every $N \ge 1$ (an alternating binomial series)")
+def _d_series() -> dict:
+    from symhx._mpctx import mp
 
     def series_limit(d: Derivation) -> bool:
         s = rhs(d).removeO() if isinstance(rhs(d), sp.Add) else rhs(d)
         s = sp.sympify(s).subs(N, eps**-2)
         rem = sp.expand(p_d().subs(N, eps**-2) - s)
         nxt = pd_series_coefficients(7)[5]  # the sixth term: eps**9 * 1/8
-        return sp.limit(rem / eps ** nxt[0], eps, 0) == nxt[1]
+        return bool(sp.limit(rem / eps ** nxt[0], eps, 0) == nxt[1])
 
     def series_numeric(d: Derivation) -> bool:
-        s = sp.lambdify(N, rhs(d), "mpmath")
-        ex = sp.lambdify(N, p_d(), "mpmath")
+        s = mp_lambdify(N, rhs(d))
+        ex = mp_lambdify(N, p_d())
         nxt_pw, nxt_c = pd_series_coefficients(7)[5]
-        with mpmath.workdps(80):
+        ctx = mp()
+        with ctx.workdps(80):
             for n in (10**3, 10**6, 10**10):
-                nn = mpmath.mpf(n)
+                nn = ctx.mpf(n)
                 err = abs(ex(nn) - s(nn))
-                bound = abs(nxt_c) * nn ** (-mpmath.mpf(nxt_pw) / 2)
+                bound = abs(nxt_c) * nn ** (-ctx.mpf(nxt_pw) / 2)
                 if not (bound / 2 < err <= bound):
                     return False
         return True
 
-    d_series = Derivation(
-        "16-series", "p_d as a series in N^(-1/2), five terms; the error is below the first "
-        "omitted term, (1/8) N^(-9/2), for every N >= 1 (alternating binomial series)",
-        sp.Eq(sp.Symbol("p_d"), pd_series(5)),
+    return dict(
+        result=sp.Eq(sp.Symbol("p_d"), pd_series(5)),
         checks=(
             Check("(p_d - series) / N^(-9/2) -> 1/8 as N -> oo, symbolic limit", "symbolic",
-                  series_limit),
+                  series_limit, r"$(p_d - \text{series})/N^{-9/2} \to 1/8$ as $N \to \infty$ "
+                  "(a symbolic limit)"),
             Check("error lies in (T/2, T] with T = N^(-9/2)/8 at N = 1e3, 1e6, 1e10 "
-                  "(80 digits)", "numeric", series_numeric),
+                  "(80 digits)", "numeric", series_numeric,
+                  r"the error lies in $(T/2, T]$ with $T = N^{-9/2}/8$ at $N = 10^3, 10^6, "
+                  r"10^{10}$ (80 digits)"),
         ),
-        section=6,
     )
 
+
+@register("log-Nc-expansion", 6, "log(N c_k) for k << N: log k/(k-1) + k/(2N) + O(k^2/N^2)",
+          r"$\log(N c_k)$ for $k \ll N$: $\log k/(k-1) + k/(2N) + O(k^2/N^2)$")
+def _d_expansion() -> dict:
+    from symhx._mpctx import mp
+
     def expansion_numeric(d: Derivation) -> bool:
-        e = sp.lambdify((N, k), rhs(d), "mpmath")
-        with mpmath.workdps(50):
+        e = mp_lambdify((N, k), rhs(d))
+        ctx = mp()
+        with ctx.workdps(50):
             for n, kk in ((10**4, 50), (10**6, 400), (10**8, 3000)):
-                exact = (mpmath.log(kk) + mpmath.loggamma(n - kk + 1)
-                         - mpmath.loggamma(n)) / (kk - 1) + mpmath.log(n)
+                exact = (ctx.log(kk) + ctx.loggamma(n - kk + 1)
+                         - ctx.loggamma(n)) / (kk - 1) + ctx.log(n)
                 err = abs(e(n, kk) - exact)
-                nxt = mpmath.mpf(kk) ** 4 / (4 * 5 * mpmath.mpf(n) ** 4)  # next term ~ K^4/(20 N^4)
+                nxt = ctx.mpf(kk) ** 4 / (4 * 5 * ctx.mpf(n) ** 4)  # next term ~ K^4/(20 N^4)
                 if not err < 2 * nxt:
                     return False
         return True
 
-    d_exp = Derivation(
-        "log-Nc-expansion", "log(N c_k) for k << N: log k/(k-1) + k/(2N) + O(k^2/N^2)",
-        sp.Eq(sp.log(N * sp.Symbol("c_k")), log_Nc_expansion(3)),
+    return dict(
+        result=sp.Eq(sp.log(N * sp.Symbol("c_k")), log_Nc_expansion(3)),
         checks=(Check("matches log-gamma to within the next term at (N, k) = (1e4, 50), "
-                      "(1e6, 400), (1e8, 3000), 50 digits", "numeric", expansion_numeric),),
-        section=6,
+                      "(1e6, 400), (1e8, 3000), 50 digits", "numeric", expansion_numeric,
+                      r"matches $\log\Gamma$ to within the next term at $(N, k) = (10^4, 50)$, "
+                      r"$(10^6, 400)$, $(10^8, 3000)$, 50 digits"),),
     )
+
+
+@register("pc-lambert", 6, "Minimiser of the leading part log k/k + k/(2N) of log(N c_k): "
+          "k_0 = exp(1 - W_{-1}(-e^2/N)/2) ~ sqrt(N ln N), minimum 1/k_0 + k_0/N ~ sqrt(ln N/N)",
+          r"Minimiser of the leading part $\log k/k + k/(2N)$ of $\log(N c_k)$: "
+          r"$k_0 = \exp\bigl(1 - W_{-1}(-e^2/N)/2\bigr) \sim \sqrt{N \ln N}$, with minimum "
+          r"$1/k_0 + k_0/N \sim \sqrt{\ln N/N}$")
+def _d_lambert() -> dict:
+    from symhx._mpctx import mp
 
     lam = _lambert()
 
     def lambert_numeric(d: Derivation) -> bool:
         k0e, q0e = rhs(d)
         h0 = lam["h0"]
-        dh = sp.lambdify((N, k), sp.diff(h0, k), "mpmath")
-        d2h = sp.lambdify((N, k), sp.diff(h0, k, 2), "mpmath")
-        fk = sp.lambdify(N, k0e, "mpmath")
-        fq = sp.lambdify(N, q0e, "mpmath")
-        hf = sp.lambdify((N, k), h0, "mpmath")
-        with mpmath.workdps(50):
+        dh = mp_lambdify((N, k), sp.diff(h0, k))
+        d2h = mp_lambdify((N, k), sp.diff(h0, k, 2))
+        fk = mp_lambdify(N, k0e)
+        fq = mp_lambdify(N, q0e)
+        hf = mp_lambdify((N, k), h0)
+        ctx = mp()
+        with ctx.workdps(50):
             for n in (10**3, 10**6, 10**20):
-                nn = mpmath.mpf(n)
+                nn = ctx.mpf(n)
                 kk = fk(nn)
-                if abs(mpmath.im(kk)) > 0 or abs(dh(nn, kk)) > mpmath.mpf(10) ** -45 / kk:
+                if abs(ctx.im(kk)) > 0 or abs(dh(nn, kk)) > ctx.mpf(10) ** -45 / kk:
                     return False
-                if not d2h(nn, kk) > 0 or abs(fq(nn) - hf(nn, kk)) > mpmath.mpf(10) ** -45:
+                if not d2h(nn, kk) > 0 or abs(fq(nn) - hf(nn, kk)) > ctx.mpf(10) ** -45:
                     return False
         return True
 
-    d_lam = Derivation(
-        "pc-lambert", "Minimiser of the leading part log k/k + k/(2N) of log(N c_k): "
-        "k_0 = exp(1 - W_{-1}(-e^2/N)/2) ~ sqrt(N ln N), minimum 1/k_0 + k_0/N ~ sqrt(ln N/N)",
-        sp.Eq(sp.Tuple(sp.Symbol("k_0"), sp.Symbol("q_0")), sp.Tuple(lam["k0"], lam["q0"])),
+    return dict(
+        result=sp.Eq(sp.Tuple(sp.Symbol("k_0"), sp.Symbol("q_0")), sp.Tuple(lam["k0"], lam["q0"])),
         checks=(Check("k_0 is a stationary point and a minimum of the leading part, q_0 its "
-                      "value, N = 1e3, 1e6, 1e20 (50 digits)", "numeric", lambert_numeric),),
-        steps=(("leading part of log(N c_k)", lam["h0"]),
-               ("sympy.solve (principal branch: the local maximum near k = e)",
-                lam["k0_principal"]),
-               ("the minimiser is on the branch W_{-1}", lam["k0"])),
-        section=6,
+                      "value, N = 1e3, 1e6, 1e20 (50 digits)", "numeric", lambert_numeric,
+                      r"$k_0$ is a stationary point and a minimum of the leading part and $q_0$ "
+                      r"its value, at $N = 10^3, 10^6, 10^{20}$ (50 digits)"),),
+        steps=(Step("leading part of log(N c_k)", lam["h0"],
+                    r"The leading part of $\log(N c_k)$:"),
+               Step("sympy.solve (principal branch: the local maximum near k = e)",
+                    lam["k0_principal"], r"`sympy.solve` of its derivative (the principal branch "
+                    r"$W_0$: the local *maximum* near $k = e$):"),
+               Step("the minimiser is on the branch W_{-1}", lam["k0"],
+                    r"The minimiser is on the branch $W_{-1}$:")),
     )
-    return [d_series, d_exp, d_lam]

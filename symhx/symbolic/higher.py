@@ -26,10 +26,21 @@ from functools import lru_cache
 
 import sympy as sp
 
-from symhx.symbolic._core import Check, Derivation, N, all_exact, k, p, rhs, sym_equal
+from symhx.symbolic._core import (
+    Check,
+    Derivation,
+    N,
+    Step,
+    all_exact,
+    k,
+    p,
+    register,
+    rhs,
+    sym_equal,
+)
 from symhx.symbolic.simple import phi as phi_simple
 
-__all__ = ["build", "pattern_count", "pattern_count_general"]
+__all__ = ["pattern_count", "pattern_count_general"]
 
 i_ = sp.Symbol("i", integer=True, positive=True)
 g1, g2 = sp.symbols("gamma_1 gamma_2", integer=True, nonnegative=True)
@@ -44,16 +55,18 @@ phi1_i = sp.Function(r"\phi^{1}_{N,i}")
 
 # --------------------------------------------------------------------------- general count
 @lru_cache(maxsize=1)
-def _general_steps() -> tuple[tuple[str, sp.Expr], ...]:
+def _general_steps() -> tuple[Step, ...]:
     vertices = sp.ff(N, r_) / nu_ * sp.binomial(N - r_, k - M_)
     words = sp.factorial(k) / mu_
     circuits = vertices * words / k
     simplified = sp.gammasimp(circuits.rewrite(sp.gamma)).rewrite(sp.factorial)
     return (
-        ("labelled vertices", vertices),
-        ("words of length k with that content", words),
-        ("circuits: divide by the k free rotations (k > M)", circuits),
-        ("simplified", simplified),
+        Step("labelled vertices", vertices, "The labelled vertices:"),
+        Step("words of length k with that content", words,
+             r"The words of length $k$ with that content:"),
+        Step("circuits: divide by the k free rotations (k > M)", circuits,
+             r"Circuits: divide by the $k$ free rotations ($k > M$):"),
+        Step("simplified", simplified, "Simplified:"),
     )
 
 
@@ -118,14 +131,18 @@ def pattern_count(repeats: tuple[int, ...], kk: sp.Expr = k) -> sp.Expr:
     repeats = tuple(sorted(repeats, reverse=True))
     if any(m < 2 for m in repeats):
         raise ValueError("repeats must be multiplicities >= 2")
+    return _pattern_piecewise(repeats).subs(k, kk)
+
+
+@lru_cache(maxsize=32)
+def _pattern_piecewise(repeats: tuple[int, ...]) -> sp.Expr:
     subs = _pattern_symbols(repeats)
     M = sum(repeats)
     generic = sp.gammasimp(pattern_count_general().subs(subs)).rewrite(sp.factorial)
     if not repeats:
-        return generic.subs(k, kk)
+        return generic
     boundary = sp.factor(sp.ff(N, len(repeats)) / subs[nu_] * _burnside_necklaces(repeats))
-    pw = sp.Piecewise((generic, k > M), (boundary, sp.Eq(k, M)), (0, True))
-    return pw.subs(k, kk)
+    return sp.Piecewise((generic, k > M), (boundary, sp.Eq(k, M)), (0, True))
 
 
 def _circuit_count(n: int, pattern: tuple[int, ...]) -> int:
@@ -167,49 +184,68 @@ def _pattern_exact(repeats: tuple[int, ...], nmax: int = 10, brute_n: int = 4,
 
 
 # ------------------------------------------------------------------------ eqs. 29-34
-def _d29_31() -> list[Derivation]:
-    left = sp.Product(N - i_, (i_, 1, g1)) * sp.Integer(1) * sp.Product(N - i_, (i_, g1 + 1,
-                                                                                 g1 + g2))
+@lru_cache(maxsize=1)
+def _d29_parts() -> tuple[sp.Expr, sp.Expr]:
     from sympy.simplify.simplify import product_simplify
 
-    combined = product_simplify(left)
+    left = sp.Product(N - i_, (i_, 1, g1)) * sp.Integer(1) * sp.Product(N - i_, (i_, g1 + 1,
+                                                                                 g1 + g2))
+    return left, product_simplify(left)
+
+
+@register("29", 8, "Paths i -> (gamma_1 new vertices) -> i -> (gamma_2 new vertices) -> i",
+          r"Paths $i \to (\gamma_1$ new vertices$) \to i \to (\gamma_2$ new vertices$) \to i$")
+def _d29() -> dict:
+    left, combined = _d29_parts()
 
     def perm_brute(n: int, r: int) -> int:
         return sum(1 for _ in itertools.permutations(range(1, n), r))
 
     def c29_sym(d: Derivation) -> bool:
-        return sym_equal(sp.gammasimp(d.result.lhs.doit().rewrite(sp.gamma)),
-                         sp.gammasimp(rhs(d).doit().rewrite(sp.gamma)))
+        # both sides evaluate to rising factorials; their ratio simplifies to exactly 1
+        return bool(sp.combsimp(d.result.lhs.doit() / rhs(d).doit()) == 1)
 
     def c29_exact(d: Derivation) -> bool:
         e = rhs(d)
         return all_exact((e.subs({N: n, g1: a, g2: b}).doit(), perm_brute(n, a + b))
                          for n in range(1, 7) for a in range(n) for b in range(n - a))
 
-    d29 = Derivation(
-        "29", "Paths i -> (gamma_1 new vertices) -> i -> (gamma_2 new vertices) -> i",
-        sp.Eq(left, combined),
+    return dict(
+        result=sp.Eq(left, combined),
         checks=(
             Check("both sides agree after evaluation, symbolic N, gamma_1, gamma_2", "symbolic",
-                  c29_sym),
+                  c29_sym, r"both sides agree after evaluation, for symbolic "
+                  r"$N, \gamma_1, \gamma_2$"),
             Check("equals an itertools count of the vertex choices, N <= 6", "exact",
-                  c29_exact),
+                  c29_exact, r"equals an `itertools` count of the vertex choices, $N \le 6$"),
         ),
-        paper=sp.Product(N - i_, (i_, 1, g1 + g2)), section=8,
+        paper=sp.Product(N - i_, (i_, 1, g1 + g2)),
     )
+
+
+@register("30", 8, "The same with the length constraint (28): gamma_1 + gamma_2 = k - 2",
+          r"The same with the length constraint (28): $\gamma_1 + \gamma_2 = k - 2$")
+def _d30() -> dict:
+    _, combined = _d29_parts()
     sub = combined.subs(g2, k - 2 - g1)  # eq. (28): (gamma_1 + 1) + (gamma_2 + 1) = k
-    d30 = Derivation(
-        "30", "The same with the length constraint (28): gamma_1 + gamma_2 = k - 2",
-        sp.Eq(combined, sub),
+    return dict(
+        result=sp.Eq(combined, sub),
         checks=(
             Check("equals eq. (29) with gamma_2 = k - 2 - gamma_1, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d).doit(), combined.doit().subs(g2, k - 2 - g1))),
+                  lambda d: sym_equal(rhs(d).doit(), combined.doit().subs(g2, k - 2 - g1)),
+                  r"equals eq. (29) with $\gamma_2 = k - 2 - \gamma_1$, symbolically"),
             Check("equals perm(N-1, k-2), 2 <= k <= N+1 <= 9", "exact", lambda d: all_exact(
                 (rhs(d).subs({N: n, k: kk}).doit(), math.perm(n - 1, kk - 2))
-                for n in range(1, 9) for kk in range(2, n + 2))),
+                for n in range(1, 9) for kk in range(2, n + 2)),
+                r"equals `math.perm(N-1, k-2)` for $2 \le k \le N+1 \le 9$"),
         ),
-        paper=sp.Product(N - i_, (i_, 1, k - 2)), section=8,
+        paper=sp.Product(N - i_, (i_, 1, k - 2)),
     )
+
+
+@register("31", 8, "Number of such paths for a fixed split gamma_1: (N-1)!/(N-(k-1))!",
+          r"Number of such paths for a fixed split $\gamma_1$: $(N-1)!/(N-(k-1))!$")
+def _d31() -> dict:
     evaluated = sp.Product(i_, (i_, N - k + 2, N - 1)).doit()  # re-indexed i -> N - i
     evaluated = sp.piecewise_fold(sp.gammasimp(evaluated.rewrite(sp.gamma)))
     if isinstance(evaluated, sp.Piecewise):
@@ -237,22 +273,24 @@ def _d29_31() -> list[Derivation]:
                         return False
         return True
 
-    d31 = Derivation(
-        "31", "Number of such paths for a fixed split gamma_1: (N-1)!/(N-(k-1))!",
-        sp.Eq(sp.Product(N - i_, (i_, 1, k - 2)), evaluated),
+    return dict(
+        result=sp.Eq(sp.Product(N - i_, (i_, 1, k - 2)), evaluated),
         checks=(
             Check("equals the paper's (N-1)!/(N-(k-1))!, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper31)),
-            Check("equals eq. (30) multiplied out, 2 <= k <= N+1 <= 9", "exact", c31_brute),
+                  lambda d: sym_equal(rhs(d), paper31),
+                  r"equals the paper's $(N-1)!/(N-(k-1))!$, symbolically"),
+            Check("equals eq. (30) multiplied out, 2 <= k <= N+1 <= 9", "exact", c31_brute,
+                  r"equals eq. (30) multiplied out, $2 \le k \le N+1 \le 9$"),
             Check("equals a brute-force count of words (fixed gamma_1), N <= 5", "exact",
-                  c31_enum),
+                  c31_enum, r"equals a brute-force count of words (fixed $\gamma_1$), $N \le 5$"),
         ),
-        paper=paper31, section=8,
+        paper=paper31,
     )
-    return [d29, d30, d31]
 
 
-def _d32() -> Derivation:
+@register("32", 8, "Circuits of length k > 2 visiting a given vertex i twice, others at most once",
+          r"Circuits of length $k > 2$ visiting a given vertex $i$ twice, the others at most once")
+def _d32() -> dict:
     per_split = sp.factorial(N - 1) / sp.factorial(N - (k - 1))
     total = sp.Sum(per_split, (g1, 0, k - 2))
     derived = sp.factor(sp.Rational(1, 2) * total.doit())
@@ -268,22 +306,38 @@ def _d32() -> Derivation:
                 pairs.append((e.subs({N: n, k: kk}), cnt))
         return all_exact(pairs)
 
-    return Derivation(
-        "32", "Circuits of length k > 2 visiting a given vertex i twice, others at most once",
-        sp.Eq(phi1_i(k), derived),
+    return dict(
+        result=sp.Eq(phi1_i(k), derived),
         checks=(
             Check("equals the paper's gamma(k,2)/2 (N-1)!/(N-(k-1))!, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  r"equals the paper's $\frac12\gamma(k,2)\,(N-1)!/(N-(k-1))!$, symbolically"),
             Check("equals brute-force enumeration (vertex 0 twice), 3 <= k <= N+1 <= 6",
-                  "exact", brute),
+                  "exact", brute, r"equals brute-force enumeration (vertex 0 twice), "
+                  r"$3 \le k \le N+1 \le 6$"),
         ),
-        steps=(("(1/2) sum over the splits gamma_1 = 0..k-2 of eq. (31)",
-                sp.Rational(1, 2) * total), ("evaluated", derived)),
-        paper=paper, section=8,
+        steps=(Step("(1/2) sum over the splits gamma_1 = 0..k-2 of eq. (31)",
+                    sp.Rational(1, 2) * total,
+                    r"$\frac12\times$ the sum of eq. (31) over the splits "
+                    r"$\gamma_1 = 0, \dots, k-2$:"),
+               Step("evaluated", derived, "Evaluated:")),
+        paper=paper,
     )
 
 
-def _d33_34() -> list[Derivation]:
+def _power_series_coefficient(n: int, j: int) -> int:
+    """Coefficient of ``x**n`` in ``(x/(1-x))**j = (x + x**2 + ...)**j``, by multiplying the
+    truncated integer series ``j`` times (independent of the closed form of eq. 34)."""
+    base = [0] + [1] * n  # x + x^2 + ... + x^n
+    acc = [1] + [0] * n
+    for _ in range(j):
+        acc = [sum(acc[i] * base[m - i] for i in range(m + 1)) for m in range(n + 1)]
+    return acc[n]
+
+
+@register("33", 8, "gamma(n, j): number of solutions of this equation in positive integers",
+          r"$\gamma(n, j)$: the number of solutions of this equation in positive integers")
+def _d33() -> dict:
     relation = sp.Eq(sp.Sum(gam[i_], (i_, 1, j_)), n_)
 
     def count_solutions(d: Derivation, n: int, j: int) -> int:
@@ -296,18 +350,23 @@ def _d33_34() -> list[Derivation]:
     def c33(d: Derivation) -> bool:
         for n in range(1, 8):
             for j in range(1, min(n, 4) + 1):
-                gf = sp.series((x_ / (1 - x_)) ** j, x_, 0, n + 1).removeO().coeff(x_, n)
+                gf = _power_series_coefficient(n, j)
                 if count_solutions(d, n, j) != gf:
                     return False
         return True
 
-    d33 = Derivation(
-        "33", "gamma(n, j): number of solutions of this equation in positive integers",
-        relation,
+    return dict(
+        result=relation,
         checks=(Check("number of positive solutions equals the x^n coefficient of "
-                      "(x/(1-x))^j, n <= 7, j <= 4 (brute force)", "exact", c33),),
-        section=8,
+                      "(x/(1-x))^j, n <= 7, j <= 4 (brute force)", "exact", c33,
+                      r"the number of positive solutions equals the coefficient of $x^n$ in "
+                      r"$\bigl(x/(1-x)\bigr)^j$, $n \le 7$, $j \le 4$ (brute force)"),),
     )
+
+
+@register("34", 8, "gamma(n, j) = binomial(n-1, j-1) (compositions of n into j parts)",
+          r"$\gamma(n, j) = \binom{n-1}{j-1}$ (compositions of $n$ into $j$ parts)")
+def _d34() -> dict:
     derived = sp.binomial(n_ - 1, j_ - 1)  # (j-1) cut points among the n-1 inner gaps
 
     def pascal(d: Derivation) -> bool:
@@ -331,26 +390,32 @@ def _d33_34() -> list[Derivation]:
                 pairs.append((e.subs({n_: n, j_: j}), cnt))
         return all_exact(pairs)
 
-    d34 = Derivation(
-        "34", "gamma(n, j) = binomial(n-1, j-1) (compositions of n into j parts)",
-        sp.Eq(gamma_fn(n_, j_), derived),
+    return dict(
+        result=sp.Eq(gamma_fn(n_, j_), derived),
         checks=(
             Check("satisfies gamma(n,j) = gamma(n-1,j-1) + gamma(n-1,j), gamma(n,1) = "
-                  "gamma(j,j) = 1 (induction), symbolic", "symbolic", pascal),
-            Check("equals brute-force composition counts, n <= 10", "exact", brute),
+                  "gamma(j,j) = 1 (induction), symbolic", "symbolic", pascal,
+                  r"satisfies $\gamma(n,j) = \gamma(n-1,j-1) + \gamma(n-1,j)$ and "
+                  r"$\gamma(n,1) = \gamma(j,j) = 1$ (induction), symbolically"),
+            Check("equals brute-force composition counts, n <= 10", "exact", brute,
+                  r"equals brute-force composition counts, $n \le 10$"),
         ),
-        steps=(("(j-1) cut points among the n-1 inner gaps of n units", derived),),
-        paper=sp.binomial(n_ - 1, j_ - 1), section=8,
+        steps=(Step("(j-1) cut points among the n-1 inner gaps of n units", derived,
+                    r"Choose $j - 1$ cut points among the $n - 1$ inner gaps of $n$ units:"),),
+        paper=sp.binomial(n_ - 1, j_ - 1),
     )
-    return [d33, d34]
 
 
 # ------------------------------------------------------------------------ eqs. 35-41
-def _d35_36() -> list[Derivation]:
+_PAPER35 = sp.Rational(1, 2) * (k - 1) * sp.factorial(N) / sp.factorial(N - (k - 1))
+
+
+@register("35", 8, "phi^1_N(k): one vertex visited twice, others at most once (valid for k > 2)",
+          r"$\phi^1_N(k)$: one vertex visited twice, the others at most once (valid for $k > 2$)")
+def _d35() -> dict:
     per_vertex = sp.factor(sp.Rational(1, 2) * sp.Sum(
         sp.factorial(N - 1) / sp.factorial(N - (k - 1)), (g1, 0, k - 2)).doit())
     derived = sp.gammasimp(N * per_vertex).rewrite(sp.factorial)
-    paper35 = sp.Rational(1, 2) * (k - 1) * sp.factorial(N) / sp.factorial(N - (k - 1))
     general = pattern_count((2,))
 
     def exact35(d: Derivation) -> bool:
@@ -358,20 +423,28 @@ def _d35_36() -> list[Derivation]:
         return all_exact((e.subs({N: n, k: kk}), _circuit_count(n, (2,) + (1,) * (kk - 2)))
                          for n in range(1, 11) for kk in range(3, n + 2))
 
-    d35 = Derivation(
-        "35", "phi^1_N(k): one vertex visited twice, others at most once (valid for k > 2)",
-        sp.Eq(sp.Function(r"\phi^{1}_{N}")(k), derived),
+    return dict(
+        result=sp.Eq(sp.Function(r"\phi^{1}_{N}")(k), derived),
         checks=(
             Check("equals the paper's (1/2)(k-1) N!/(N-(k-1))!, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper35)),
+                  lambda d: sym_equal(rhs(d), _PAPER35),
+                  r"equals the paper's $\frac12 (k-1)\,N!/(N-(k-1))!$, symbolically"),
             Check("equals the general pattern count (37) for k > 2, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), general.args[0].expr)),
-            Check("equals symhx.circuits.circuit_count, 3 <= k <= N+1 <= 11", "exact", exact35),
+                  lambda d: sym_equal(rhs(d), general.args[0].expr),
+                  r"equals the general pattern count (37) for $k > 2$, symbolically"),
+            Check("equals symhx.circuits.circuit_count, 3 <= k <= N+1 <= 11", "exact", exact35,
+                  r"equals `symhx.circuits.circuit_count` for $3 \le k \le N+1 \le 11$"),
         ),
-        steps=(("N choices of the repeated vertex times eq. (32)", N * per_vertex),),
-        paper=paper35, section=8,
+        steps=(Step("N choices of the repeated vertex times eq. (32)", N * per_vertex,
+                    r"$N$ choices of the repeated vertex times eq. (32):"),),
+        paper=_PAPER35,
     )
-    value2 = general.subs(k, 2)
+
+
+@register("36", 8, "phi^1_N(2) = N: the boundary case, where eq. (35) would give N/2",
+          r"$\phi^1_N(2) = N$: the boundary case, where eq. (35) would give $N/2$")
+def _d36() -> dict:
+    value2 = pattern_count((2,)).subs(k, 2)
 
     def exact36(d: Derivation) -> bool:
         e = rhs(d)
@@ -380,21 +453,25 @@ def _d35_36() -> list[Derivation]:
                               for n in range(1, 7))
         return ok
 
-    d36 = Derivation(
-        "36", "phi^1_N(2) = N: the boundary case, where eq. (35) would give N/2",
-        sp.Eq(sp.Function(r"\phi^{1}_{N}")(2), value2),
+    return dict(
+        result=sp.Eq(sp.Function(r"\phi^{1}_{N}")(2), value2),
         checks=(
             Check("equals circuit_count(N, (2,)) for N <= 20 and brute force for N <= 6",
-                  "exact", exact36),
+                  "exact", exact36, r"equals `circuit_count(N, (2,))` for $N \le 20$ and brute "
+                  r"force for $N \le 6$"),
             Check("differs from eq. (35) at k = 2 (N/2), symbolic", "symbolic",
-                  lambda d: not sym_equal(rhs(d), paper35.subs(k, 2))),
+                  lambda d: not sym_equal(rhs(d), _PAPER35.subs(k, 2)),
+                  r"differs from eq. (35) at $k = 2$ (which gives $N/2$), symbolically"),
         ),
-        paper=N, section=8,
+        paper=N,
     )
-    return [d35, d36]
 
 
-def _d37() -> Derivation:
+@register("37", 8, "General count: circuits of length k > M with repeated multiplicities m_i "
+          "(sum M, r of them), the others visited once",
+          r"General count: circuits of length $k > M$ whose $r$ repeated vertices have "
+          r"multiplicities $m_i$ (sum $M$), the others visited once")
+def _d37() -> dict:
     lhs = sp.Function(r"\phi^{(m_1,\dots,m_r)}_{N}")(k)
 
     def exact(d: Derivation) -> bool:
@@ -424,17 +501,18 @@ def _d37() -> Derivation:
                     pairs.append((e.subs(sub).subs({N: n, k: L}), len(circs)))
         return all_exact(pairs)
 
-    return Derivation(
-        "37", "General count: circuits of length k > M with repeated multiplicities m_i "
-        "(sum M, r of them), the others visited once",
-        sp.Eq(lhs, pattern_count_general()),
+    return dict(
+        result=sp.Eq(lhs, pattern_count_general()),
         checks=(
             Check("equals symhx.circuits.circuit_count for every pattern of length <= 8 with "
-                  "a single vertex, N <= 9", "exact", exact),
+                  "a single vertex, N <= 9", "exact", exact,
+                  r"equals `symhx.circuits.circuit_count` for every pattern of length $\le 8$ "
+                  r"with a vertex visited once, $N \le 9$"),
             Check("equals brute-force enumeration (FKM) by pattern, N <= 3, length <= 7",
-                  "exact", brute),
+                  "exact", brute, r"equals brute-force enumeration (FKM) by pattern, $N \le 3$, "
+                  r"length $\le 7$"),
         ),
-        steps=_general_steps(), section=8,
+        steps=_general_steps(),
     )
 
 
@@ -451,41 +529,51 @@ _CLASSES = {
 }
 
 
-def _d38_40() -> list[Derivation]:
-    out = []
-    for label, (repeats, name, what, paper) in _CLASSES.items():
-        M = sum(repeats)
-        result = pattern_count(repeats)
+def _class_builder(label: str) -> None:
+    repeats, name, what, paper = _CLASSES[label]
+    M = sum(repeats)
 
-        def generic_vs_paper(d: Derivation, paper=paper) -> bool:
+    def build() -> dict:
+        def generic_vs_paper(d: Derivation) -> bool:
             e = rhs(d)
             return isinstance(e, sp.Piecewise) and sym_equal(e.args[0].expr, paper)
 
-        def erratum(d: Derivation, paper=paper, M=M) -> bool:
+        def erratum(d: Derivation) -> bool:
             e = rhs(d)
             # at the boundary k = M the paper's formula gives (words)/M, not the circuit count
             return all(e.subs({N: n, k: M}) != paper.subs({N: n, k: M}) for n in range(2, 8))
 
-        out.append(Derivation(
-            label, f"Circuits of length k with {what}, others at most once (all k, boundary "
-            "corrected)",
-            sp.Eq(sp.Function(name)(k), result),
+        return dict(
+            result=sp.Eq(sp.Function(name)(k), pattern_count(repeats)),
             checks=(
                 Check(f"generic branch (k > {M}) equals the paper's formula, symbolic",
-                      "symbolic", generic_vs_paper),
+                      "symbolic", generic_vs_paper,
+                      f"the generic branch ($k > {M}$) equals the paper's formula, symbolically"),
                 Check("equals circuit_count for all k, N <= 10, and brute force for N <= 4, "
-                      "length <= 7", "exact", _pattern_exact(repeats)),
+                      "length <= 7", "exact", _pattern_exact(repeats),
+                      r"equals `circuit_count` for all $k$ and $N \le 10$, and brute force for "
+                      r"$N \le 4$, length $\le 7$"),
                 Check(f"at k = {M} differs from the paper's formula (corrected boundary), "
-                      "N = 2..7", "exact", erratum),
+                      "N = 2..7", "exact", erratum,
+                      f"at $k = {M}$ differs from the paper's formula (the corrected boundary), "
+                      r"$N = 2, \dots, 7$"),
             ),
-            paper=paper, section=8,
-        ))
-    return out
+            paper=paper,
+        )
+
+    register(label, 8, f"Circuits of length k with {what}, others at most once (all k, "
+             "boundary corrected)", rf"Circuits of length $k$ with {what}, the others at most "
+             "once (all $k$, boundary corrected)")(build)
+
+
+for _label in _CLASSES:
+    _class_builder(_label)
 
 
 _EQ41_TERMS = (((), 0), ((2,), 1), ((3,), 2), ((4,), 3), ((2, 2), 2))
 
 
+@lru_cache(maxsize=2)
 def _eq41_parts(weighted: bool) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """(generic k >= 3, value at k = 2, value at k = 1) of eq. (41)."""
     generic: sp.Expr = sp.Integer(0)
@@ -542,42 +630,62 @@ def _eq41_exact(weighted: bool):
     return check
 
 
-def _d41() -> list[Derivation]:
-    out = []
-    paper41 = (phi_simple(k)
-               + (sp.Rational(1, 2) * (k - 1) * sp.factorial(N)
-                  / sp.factorial(N - (k - 1))).subs(k, k + 1)
-               + _CLASSES["38"][3].subs(k, k + 2) + _CLASSES["39"][3].subs(k, k + 3)
-               + _CLASSES["40"][3].subs(k, k + 2))
-    for weighted in (False, True):
-        generic, at2, at1 = _eq41_parts(weighted)
-        result = sp.Piecewise((generic, k > 2), (at2, sp.Eq(k, 2)), (at1, sp.Eq(k, 1)))
-        if weighted:
-            label, name = "41-weighted", "W_{N,p}"
-            desc = ("Weight p^length of the eq. (41) sample space with k distinct impacts "
-                    "(unnormalised pmf; the default weighting)")
-        else:
-            label, name = "41", "n_{N}"
-            desc = ("Circuits with k distinct impacts in the eq. (41) sample space (five "
-                    "classes, boundary cases corrected)")
-        checks = [
-            Check("equals the sum of circuit_count over the five classes, k <= N <= 12"
-                  + (", p = 2/7" if weighted else ""), "exact", _eq41_exact(weighted)),
-            Check("equals brute-force enumeration, N <= 4" + (", p = 1/3" if weighted else ""),
-                  "exact", _eq41_brute(weighted)),
-        ]
-        if not weighted:
-            checks.append(Check(
-                "generic branch (k > 2) equals the paper's printed sum, symbolic", "symbolic",
-                lambda d: sym_equal(rhs(d).args[0].expr, paper41)))
-            checks.append(Check(
-                "k = 1 and k = 2 differ from the printed sum (corrected boundaries), N = 2..8",
-                "exact", lambda d: all(
-                    rhs(d).subs({N: n, k: kk}) != paper41.subs({N: n, k: kk})
-                    for n in range(2, 9) for kk in (1, 2))))
-        out.append(Derivation(label, desc, sp.Eq(sp.Function(name)(k), result),
-                              checks=tuple(checks), paper=paper41 if not weighted else None,
-                              section=8))
+def _paper41() -> sp.Expr:
+    return (phi_simple(k) + _PAPER35.subs(k, k + 1) + _CLASSES["38"][3].subs(k, k + 2)
+            + _CLASSES["39"][3].subs(k, k + 3) + _CLASSES["40"][3].subs(k, k + 2))
+
+
+def _eq41(weighted: bool) -> dict:
+    generic, at2, at1 = _eq41_parts(weighted)
+    result = sp.Piecewise((generic, k > 2), (at2, sp.Eq(k, 2)), (at1, sp.Eq(k, 1)))
+    name = "W_{N,p}" if weighted else "n_{N}"
+    checks = [
+        Check("equals the sum of circuit_count over the five classes, k <= N <= 12"
+              + (", p = 2/7" if weighted else ""), "exact", _eq41_exact(weighted),
+              r"equals the sum of `circuit_count` over the five classes, $k \le N \le 12$"
+              + (r", $p = 2/7$" if weighted else "")),
+        Check("equals brute-force enumeration, N <= 4" + (", p = 1/3" if weighted else ""),
+              "exact", _eq41_brute(weighted), r"equals brute-force enumeration, $N \le 4$"
+              + (r", $p = 1/3$" if weighted else "")),
+    ]
+    paper41 = _paper41()
+    if not weighted:
+        checks.append(Check(
+            "generic branch (k > 2) equals the paper's printed sum, symbolic", "symbolic",
+            lambda d: sym_equal(rhs(d).args[0].expr, paper41),
+            r"the generic branch ($k > 2$) equals the paper's printed sum, symbolically"))
+        checks.append(Check(
+            "k = 1 and k = 2 differ from the printed sum (corrected boundaries), N = 2..8",
+            "exact", lambda d: all(
+                rhs(d).subs({N: n, k: kk}) != paper41.subs({N: n, k: kk})
+                for n in range(2, 9) for kk in (1, 2)),
+            r"$k = 1$ and $k = 2$ differ from the printed sum (the corrected boundaries), "
+            r"$N = 2, \dots, 8$"))
+    return dict(result=sp.Eq(sp.Function(name)(k), result), checks=tuple(checks),
+                paper=None if weighted else paper41)
+
+
+@register("41", 8, "Circuits with k distinct impacts in the eq. (41) sample space (five classes, "
+          "boundary cases corrected)", r"Circuits with $k$ distinct impacts in the sample space "
+          "of eq. (41) (five classes, boundary cases corrected)")
+def _d41() -> dict:
+    return _eq41(False)
+
+
+@register("41-weighted", 8, "Weight p^length of the eq. (41) sample space with k distinct "
+          "impacts (unnormalised pmf; the default weighting)",
+          r"Weight $p^{\text{length}}$ of the eq. (41) sample space with $k$ distinct impacts "
+          "(the unnormalised pmf; the default weighting)")
+def _d41_weighted() -> dict:
+    return _eq41(True)
+
+
+@register("41-truncation", 8, "Dropped vs kept classes at length k+3: (3,2) and (2,2,2) relative "
+          "to (4,) -- both larger for k >= 3 (the (2,2,2) ratio is for k >= 4; 16/15 at k = 3)",
+          r"Dropped against kept classes at length $k+3$: $(3,2)$ and $(2,2,2)$ relative to "
+          r"$(4)$, both larger for $k \ge 3$ (the $(2,2,2)$ ratio is for $k \ge 4$; "
+          r"$16/15$ at $k = 3$)")
+def _d41_truncation() -> dict:
     # the classes the truncation drops, compared with the kept "one vertex four times"
     ratios = sp.Tuple(*[sp.factor(sp.gammasimp(
         (pattern_count(r).args[0].expr / pattern_count((4,)).args[0].expr).rewrite(sp.gamma)))
@@ -596,18 +704,10 @@ def _d41() -> list[Derivation]:
                     pairs.append((e[1].subs({k: kk}), Fraction(cnt, base)))
         return all_exact(pairs)
 
-    out.append(Derivation(
-        "41-truncation", "Dropped vs kept classes at length k+3: (3,2) and (2,2,2) relative to "
-        "(4,) -- both larger for k >= 3 (the (2,2,2) ratio is for k >= 4; 16/15 at k = 3)",
-        sp.Eq(sp.Tuple(sp.Symbol("R_{3,2}"), sp.Symbol("R_{2,2,2}")), ratios),
+    return dict(
+        result=sp.Eq(sp.Tuple(sp.Symbol("R_{3,2}"), sp.Symbol("R_{2,2,2}")), ratios),
         checks=(Check("equal ratios of circuit_count, 3 <= k <= N <= 11 (k >= 4 for (2,2,2))",
-                      "exact",
-                      ratio_exact),),
-        section=8,
-    ))
-    return out
-
-
-def build() -> list[Derivation]:
-    """All derivations of section 8."""
-    return [*_d29_31(), _d32(), *_d33_34(), *_d35_36(), _d37(), *_d38_40(), *_d41()]
+                      "exact", ratio_exact,
+                      r"equal the ratios of `circuit_count`, $3 \le k \le N \le 11$ "
+                      r"($k \ge 4$ for $(2,2,2)$)"),),
+    )

@@ -20,10 +20,23 @@ from functools import lru_cache
 
 import sympy as sp
 
-from symhx.symbolic._core import Check, Derivation, N, all_exact, k, log_equal, p, rhs, sym_equal
+from symhx.symbolic._core import (
+    Check,
+    Derivation,
+    N,
+    Step,
+    all_exact,
+    k,
+    log_equal,
+    mp_lambdify,
+    p,
+    register,
+    rhs,
+    sym_equal,
+)
 from symhx.symbolic.simple import Phi, Phi_sym
 
-__all__ = ["build", "c_k", "f", "kappa", "p_d"]
+__all__ = ["c_k", "f", "kappa", "p_d"]
 
 f_sym = sp.Function("f_{N,p}")
 kappa = sp.Symbol("kappa", positive=True)
@@ -141,42 +154,55 @@ def _positive_for_0_lt_k_lt_N(e: sp.Expr) -> bool:
 
 
 # ---------------------------------------------------------------------------- derivations
-def _d9() -> Derivation:
+@register("9", 6, "Difference of neighbouring Phi_{N,p}: positive prefactor times a quadratic",
+          r"Difference of neighbouring $\Phi_{N,p}$: a positive prefactor times a quadratic")
+def _d9() -> dict:
     ch = _chain()
     derived = sp.Mul(ch["prefactor"], ch["f"], evaluate=False)
     paper = (p**k * sp.factorial(N) / (sp.factorial(N - k) * k * (k + 1))
              * (-p * k**2 + (N * p - 1) * k - 1))
-    return Derivation(
-        "9", "Difference of neighbouring Phi_{N,p}: positive prefactor times a quadratic",
-        sp.Eq(Phi_sym(k + 1) - Phi_sym(k), derived),
+    lhs = sp.Add(Phi_sym(k + 1), -Phi_sym(k), evaluate=False)
+    return dict(
+        result=sp.Eq(lhs, derived),
         checks=(
             Check("equals Phi(k+1) - Phi(k) from eq. (8), symbolic N, p, k", "symbolic",
-                  lambda d: sym_equal(rhs(d), Phi(k + 1) - Phi(k))),
+                  lambda d: sym_equal(rhs(d), Phi(k + 1) - Phi(k)),
+                  r"equals $\Phi(k+1) - \Phi(k)$ from eq. (8), for symbolic $N, p, k$"),
             Check("equals the paper's printed form, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  "equals the paper's printed form, symbolically"),
             Check("equals phi(N,k+1)p^(k+1) - phi(N,k)p^k exactly, 1 <= k < N <= 10, "
-                  "p in {1/50, 1/7, 1/2, 3}", "exact", _diff_exact),
+                  "p in {1/50, 1/7, 1/2, 3}", "exact", _diff_exact,
+                  r"equals $\phi(N,k+1)\,p^{k+1} - \phi(N,k)\,p^k$ exactly for "
+                  r"$1 \le k < N \le 10$, $p \in \{1/50, 1/7, 1/2, 3\}$"),
         ),
-        steps=(("ratio Phi(k+1)/Phi(k)", ch["ratio"]),
-               ("Phi(k+1) - Phi(k) = Phi(k)/(k+1) * (k+1)(ratio - 1)", derived)),
-        paper=paper, section=6,
+        steps=(Step("ratio Phi(k+1)/Phi(k)", ch["ratio"], r"The ratio $\Phi(k+1)/\Phi(k)$:"),
+               Step("Phi(k+1) - Phi(k) = Phi(k)/(k+1) * (k+1)(ratio - 1)", derived,
+                    r"$\Phi(k+1) - \Phi(k) = \frac{\Phi(k)}{k+1}\,(k+1)(\text{ratio} - 1)$:")),
+        paper=paper,
     )
 
 
-def _d10() -> Derivation:
+@register("10", 6, "The quadratic f_{N,p}(k) with the sign of Phi(k+1) - Phi(k)",
+          r"The quadratic $f_{N,p}(k)$ with the sign of $\Phi(k+1) - \Phi(k)$")
+def _d10() -> dict:
     paper = -p * k**2 + (N * p - 1) * k - 1
-    return Derivation(
-        "10", "The quadratic f_{N,p}(k) with the sign of Phi(k+1) - Phi(k)",
-        sp.Eq(f_sym(k), f()),
+    return dict(
+        result=sp.Eq(f_sym(k), f()),
         checks=(
             Check("equals the paper's -p k^2 + (Np-1)k - 1, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  r"equals the paper's $-p k^2 + (Np-1)k - 1$, symbolically"),
             Check("(k+1) * (Phi(k+1)/Phi(k) - 1) from eq. (8), symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), (k + 1) * (Phi(k + 1) / Phi(k) - 1))),
+                  lambda d: sym_equal(rhs(d), (k + 1) * (Phi(k + 1) / Phi(k) - 1)),
+                  r"equals $(k+1)\,\bigl(\Phi(k+1)/\Phi(k) - 1\bigr)$ from eq. (8), "
+                  "symbolically"),
             Check("sign equals sign of Phi(k+1) - Phi(k), exact, 1 <= k < N <= 14, 7 p each",
-                  "exact", _sign_exact),
+                  "exact", _sign_exact,
+                  r"its sign is the sign of $\Phi(k+1) - \Phi(k)$, exactly, for "
+                  r"$1 \le k < N \le 14$ and 7 values of $p$ each"),
         ),
-        paper=paper, section=6,
+        paper=paper,
     )
 
 
@@ -189,7 +215,9 @@ def _roots() -> tuple[sp.Expr, sp.Expr]:
     return r[0], r[1]
 
 
-def _d11() -> Derivation:
+@register("11", 6, "Roots k_- <= k_+ of f_{N,p}: turning points of Phi_{N,p}",
+          r"Roots $k_- \le k_+$ of $f_{N,p}$: the turning points of $\Phi_{N,p}$")
+def _d11() -> dict:
     km, kp = _roots()
     disc = (N * p - 1) ** 2 - 4 * p
     paper = (((N * p - 1) - sp.sqrt(disc)) / (2 * p), ((N * p - 1) + sp.sqrt(disc)) / (2 * p))
@@ -207,60 +235,77 @@ def _d11() -> Derivation:
         a, b = rhs(d)
         return sym_equal(a + b, (N * p - 1) / p) and sym_equal(sp.expand(a * b), 1 / p)
 
-    return Derivation(
-        "11", "Roots k_- <= k_+ of f_{N,p}: turning points of Phi_{N,p}",
-        sp.Eq(sp.Tuple(kms, kps), sp.Tuple(km, kp)),
+    return dict(
+        result=sp.Eq(sp.Tuple(kms, kps), sp.Tuple(km, kp)),
         checks=(
-            Check("both are zeros of f (eq. 10), symbolic", "symbolic", roots_of_f),
+            Check("both are zeros of f (eq. 10), symbolic", "symbolic", roots_of_f,
+                  "both are zeros of $f$ (eq. 10), symbolically"),
             Check("equal the paper's [(Np-1) -+ sqrt((Np-1)^2 - 4p)]/(2p), symbolic", "symbolic",
-                  vs_paper),
-            Check("Vieta: sum (Np-1)/p, product 1/p, symbolic", "symbolic", vieta),
+                  vs_paper, r"equal the paper's "
+                  r"$\bigl[(Np-1) \mp \sqrt{(Np-1)^2 - 4p}\bigr]/(2p)$, symbolically"),
+            Check("Vieta: sum (Np-1)/p, product 1/p, symbolic", "symbolic", vieta,
+                  r"Vieta: sum $(Np-1)/p$, product $1/p$, symbolically"),
         ),
-        paper=sp.Tuple(*paper), section=6,
+        paper=sp.Tuple(*paper),
     )
 
 
-def _simple_eval(label: str, desc: str, lhs: sp.Expr, derived: sp.Expr, definition: sp.Expr,
-                 paper: sp.Expr, extra_checks: tuple[Check, ...] = ()) -> Derivation:
-    return Derivation(
-        label, desc, sp.Eq(lhs, derived),
+def _simple_eval(lhs: sp.Expr, derived: sp.Expr, definition: sp.Expr, paper: sp.Expr,
+                 extra_checks: tuple[Check, ...] = ()) -> dict:
+    return dict(
+        result=sp.Eq(lhs, derived),
         checks=(
             Check("equals eq. (10) evaluated, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), definition)),
+                  lambda d: sym_equal(rhs(d), definition),
+                  "equals eq. (10) evaluated there, symbolically"),
             Check(f"equals the paper's {sp.sstr(paper)}, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  f"equals the paper's ${sp.latex(paper)}$, symbolically"),
             *extra_checks,
         ),
-        paper=paper, section=6,
+        paper=paper,
     )
 
 
-def _d12_15() -> list[Derivation]:
-    fx = f()
-    d12 = _simple_eval("12", "f_{N,p} at k = 0", f_sym(0), sp.expand(fx.subs(k, 0)),
-                       fx.subs(k, 0), sp.Integer(-1))
-    d13 = _simple_eval("13", "f_{N,p} at k = N", f_sym(N), sp.factor(fx.subs(k, N)),
-                       fx.subs(k, N), -(N + 1))
-    d14 = _simple_eval(
-        "14", "f_{N,0}(k) (no impacts): negative for every k > 0",
-        sp.Function("f_{N,0}")(k), sp.factor(fx.subs(p, 0)), fx.subs(p, 0), -(k + 1),
+@register("12", 6, "f_{N,p} at k = 0", r"$f_{N,p}$ at $k = 0$")
+def _d12() -> dict:
+    return _simple_eval(f_sym(0), sp.expand(f().subs(k, 0)), f().subs(k, 0), sp.Integer(-1))
+
+
+@register("13", 6, "f_{N,p} at k = N", r"$f_{N,p}$ at $k = N$")
+def _d13() -> dict:
+    return _simple_eval(f_sym(N), sp.factor(f().subs(k, N)), f().subs(k, N), -(N + 1))
+
+
+@register("14", 6, "f_{N,0}(k) (no impacts): negative for every k > 0",
+          r"$f_{N,0}(k)$ (no impacts): negative for every $k > 0$")
+def _d14() -> dict:
+    return _simple_eval(
+        sp.Function("f_{N,0}")(k), sp.factor(f().subs(p, 0)), f().subs(p, 0), -(k + 1),
         (Check("negative for k > 0 (sympy assumptions)", "symbolic",
-               lambda d: bool(rhs(d).is_negative)),))
+               lambda d: bool(rhs(d).is_negative), r"negative for $k > 0$ (sympy assumptions)"),))
+
+
+@register("15", 6, "Derivative of f_{N,p}(k) in p: positive for 0 < k < N",
+          r"Derivative of $f_{N,p}(k)$ in $p$: positive for $0 < k < N$")
+def _d15() -> dict:
+    fx = f()
     dfdp = sp.factor(sp.diff(fx, p))
     dfdp = sp.Mul(k, sp.expand(dfdp / k))  # display as k (N - k)
-    d15 = _simple_eval(
-        "15", "Derivative of f_{N,p}(k) in p: positive for 0 < k < N",
+    return _simple_eval(
         sp.Derivative(f_sym(k), p), dfdp, sp.diff(fx, p), k * (N - k),
         (Check("positive for 0 < k < N (N = k + m, m > 0)", "symbolic",
-               lambda d: _positive_for_0_lt_k_lt_N(rhs(d))),))
-    return [d12, d13, d14, d15]
+               lambda d: _positive_for_0_lt_k_lt_N(rhs(d)),
+               r"positive for $0 < k < N$ (with $N = k + m$, $m > 0$)"),))
 
 
-def _d16() -> list[Derivation]:
+@register("16", 6, "p_d: the discriminant of f vanishes, double root of f inside 0 < k < N",
+          r"$p_d$: the discriminant of $f$ vanishes, with the double root of $f$ inside "
+          r"$0 < k < N$")
+def _d16() -> dict:
     info = _disc_roots()
     disc = info["disc"]
     paper = ((1 + sp.sqrt(N + 1)) / N) ** 2
-    pd_s, kd_s = sp.Symbol("p_d"), sp.Symbol("k_d")
 
     def disc_zero(d: Derivation) -> bool:
         return sp.simplify(sp.expand(disc.subs(p, rhs(d)))) == 0
@@ -275,21 +320,32 @@ def _d16() -> list[Derivation]:
         got = {sp.simplify(r - rhs(d)) == 0 for r in sp.solve(disc, p)}
         return info["n_roots"] == 2 and got == {True, False}
 
-    d16 = Derivation(
-        "16", "p_d: the discriminant of f vanishes, double root of f inside 0 < k < N",
-        sp.Eq(pd_s, p_d()),
+    return dict(
+        result=sp.Eq(sp.Symbol("p_d"), p_d()),
         checks=(
-            Check("the discriminant of f in k vanishes there, symbolic", "symbolic", disc_zero),
+            Check("the discriminant of f in k vanishes there, symbolic", "symbolic", disc_zero,
+                  r"the discriminant of $f$ in $k$ vanishes there, symbolically"),
             Check("equals the paper's ((1 + sqrt(N+1))/N)^2, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  r"equals the paper's $\bigl((1 + \sqrt{N+1})/N\bigr)^2$, symbolically"),
             Check("its double root k = -b/(2a) lies in (0, N) for every N > 0, symbolic",
-                  "symbolic", repeated_root_inside),
+                  "symbolic", repeated_root_inside,
+                  r"its double root $k = -b/(2a)$ lies in $(0, N)$ for every $N > 0$, "
+                  "symbolically"),
             Check("it is one of exactly two zeros of the discriminant, symbolic", "symbolic",
-                  both_roots),
+                  both_roots, "it is one of exactly two zeros of the discriminant, symbolically"),
         ),
-        steps=(("discriminant of f in k", disc), ("zeros in p", sp.Tuple(*sp.solve(disc, p)))),
-        paper=paper, section=6,
+        steps=(Step("discriminant of f in k", disc, r"The discriminant of $f$ in $k$:"),
+               Step("zeros in p", sp.Tuple(info["pos"], info["neg"]), r"Its zeros in $p$:")),
+        paper=paper,
     )
+
+
+@register("16-spurious", 6, "The other zero of the discriminant: its double root has k < 0",
+          r"The other zero of the discriminant: its double root has $k < 0$")
+def _d16_spurious() -> dict:
+    info = _disc_roots()
+    disc = info["disc"]
 
     def spurious_disc_zero(d: Derivation) -> bool:
         pr, _ = rhs(d)
@@ -300,18 +356,28 @@ def _d16() -> list[Derivation]:
         krep = _in_t((N * pr - 1) / (2 * pr))
         return sp.simplify(krep - _in_t(kr)) == 0 and bool(krep.is_negative)
 
-    d16s = Derivation(
-        "16-spurious", "The other zero of the discriminant: its double root has k < 0",
-        sp.Eq(sp.Tuple(sp.Symbol("p_s"), sp.Symbol("k_s")), sp.Tuple(info["neg"], info["neg_k"])),
+    return dict(
+        result=sp.Eq(sp.Tuple(sp.Symbol("p_s"), sp.Symbol("k_s")),
+                     sp.Tuple(info["neg"], info["neg_k"])),
         checks=(
-            Check("the discriminant vanishes at p_s, symbolic", "symbolic", spurious_disc_zero),
+            Check("the discriminant vanishes at p_s, symbolic", "symbolic", spurious_disc_zero,
+                  r"the discriminant vanishes at $p_s$, symbolically"),
             Check("k_s is the double root there and is negative for every N > 0, symbolic",
-                  "symbolic", spurious_negative),
+                  "symbolic", spurious_negative,
+                  r"$k_s$ is the double root there and is negative for every $N > 0$, "
+                  "symbolically"),
             Check("equals ((1 - sqrt(N+1))/N)^2, symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d)[0], ((1 - sp.sqrt(N + 1)) / N) ** 2)),
+                  lambda d: sym_equal(rhs(d)[0], ((1 - sp.sqrt(N + 1)) / N) ** 2),
+                  r"equals $\bigl((1 - \sqrt{N+1})/N\bigr)^2$, symbolically"),
         ),
-        paper=((1 - sp.sqrt(N + 1)) / N) ** 2, section=6,
+        paper=((1 - sp.sqrt(N + 1)) / N) ** 2,
     )
+
+
+@register("16-k", 6, "Where the double root of f appears at p = p_d: k_d = sqrt(N+1) - 1",
+          r"Where the double root of $f$ appears at $p = p_d$: $k_d = \sqrt{N+1} - 1$")
+def _d16_k() -> dict:
+    info = _disc_roots()
 
     def kd_double(d: Derivation) -> bool:
         kd = rhs(d)
@@ -319,24 +385,24 @@ def _d16() -> list[Derivation]:
         return (sp.simplify(sp.expand(fx.subs(k, kd))) == 0
                 and sp.simplify(sp.expand(sp.diff(fx, k).subs(k, kd))) == 0)
 
-    d16k = Derivation(
-        "16-k", "Where the double root of f appears at p = p_d: k_d = sqrt(N+1) - 1",
-        sp.Eq(kd_s, info["pos_k"]),
+    return dict(
+        result=sp.Eq(sp.Symbol("k_d"), info["pos_k"]),
         checks=(
-            Check("f and df/dk vanish at (k_d, p_d), symbolic", "symbolic", kd_double),
+            Check("f and df/dk vanish at (k_d, p_d), symbolic", "symbolic", kd_double,
+                  r"$f$ and $\partial f/\partial k$ vanish at $(k_d, p_d)$, symbolically"),
             Check("0 < k_d < N for N > 0, symbolic", "symbolic", lambda d: (
                 bool(sp.factor(_in_t(rhs(d))).is_positive)
-                and bool(sp.factor(_in_t(N - rhs(d))).is_positive))),
+                and bool(sp.factor(_in_t(N - rhs(d))).is_positive)),
+                r"$0 < k_d < N$ for $N > 0$, symbolically"),
         ),
-        section=6,
     )
-    return [d16, d16s, d16k]
 
 
-def _crossing_derivations() -> list[Derivation]:
+@register("crossing", 6, "Crossing condition of the jump: Phi(k) = Phi(1) exactly at p = c_k",
+          r"Crossing condition of the jump: $\Phi(k) = \Phi(1)$ exactly at $p = c_k$")
+def _d_crossing() -> dict:
     cr = _crossing()
     c = cr["c"]
-    c_s = sp.Symbol("c_k")
 
     def back_subst(d: Derivation) -> bool:
         val = cr["ratio"].subs(p, rhs(d))
@@ -356,42 +422,65 @@ def _crossing_derivations() -> list[Derivation]:
         return True
 
     paper = (k * sp.factorial(N - k) / sp.factorial(N - 1)) ** (1 / (k - 1))
-    d_cross = Derivation(
-        "crossing", "Crossing condition of the jump: Phi(k) = Phi(1) exactly at p = c_k",
-        sp.Eq(c_s, c),
+    return dict(
+        result=sp.Eq(sp.Symbol("c_k"), c),
         checks=(
             Check("Phi(k)/Phi(1) = 1 at p = c_k, symbolic (positive base, 2 <= k <= N)",
-                  "symbolic", back_subst),
+                  "symbolic", back_subst,
+                  r"$\Phi(k)/\Phi(1) = 1$ at $p = c_k$, symbolically (positive base, "
+                  r"$2 \le k \le N$)"),
             Check("equals (k (N-k)!/(N-1)!)^(1/(k-1)), symbolic", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  r"equals $\bigl(k\,(N-k)!/(N-1)!\bigr)^{1/(k-1)}$, symbolically"),
             Check("c_k^(k-1) * phi(N,k)/phi(N,1) == 1 exactly, 2 <= k <= N <= 25", "exact",
-                  exact),
+                  exact, r"$c_k^{k-1}\,\phi(N,k)/\phi(N,1) = 1$ exactly for "
+                  r"$2 \le k \le N \le 25$"),
         ),
-        steps=(("Phi(k)/Phi(1) from eq. (8)", cr["ratio"]), ("solve = 1 for p", c)),
-        paper=paper, section=6,
+        steps=(Step("Phi(k)/Phi(1) from eq. (8)", cr["ratio"],
+                    r"$\Phi(k)/\Phi(1)$ from eq. (8):"),
+               Step("solve = 1 for p", c, r"Solved for $p$ where it equals 1:")),
+        paper=paper,
     )
 
-    ratio_form = (p / c_s) ** (k - 1)
+
+@register("crossing-ratio", 6, "Phi(k)/Phi(1) = (p/c_k)^(k-1): the mode leaves k = 1 at "
+          "p_c = min_{k>=2} c_k", r"$\Phi(k)/\Phi(1) = (p/c_k)^{k-1}$: the mode leaves $k = 1$ "
+          r"at $p_c = \min_{k\ge 2} c_k$")
+def _d_crossing_ratio() -> dict:
+    cr = _crossing()
+    c_s = sp.Symbol("c_k")
 
     def ratio_identity(d: Derivation) -> bool:
-        return log_equal(rhs(d).subs(c_s, c), cr["ratio"])  # both sides positive
+        return log_equal(rhs(d).subs(c_s, cr["c"]), cr["ratio"])  # both sides positive
 
-    d_ratio = Derivation(
-        "crossing-ratio", "Phi(k)/Phi(1) = (p/c_k)^(k-1): the mode leaves k = 1 at "
-        "p_c = min_{k>=2} c_k",
-        sp.Eq(Phi_sym(k) / Phi_sym(1), ratio_form),
+    return dict(
+        result=sp.Eq(Phi_sym(k) / Phi_sym(1), (p / c_s) ** (k - 1)),
         checks=(Check("equals Phi(k)/Phi(1) from eq. (8) with c_k of 'crossing', symbolic",
-                      "symbolic", ratio_identity),),
-        section=6,
+                      "symbolic", ratio_identity,
+                      r"equals $\Phi(k)/\Phi(1)$ from eq. (8) with the $c_k$ of `crossing`, "
+                      "symbolically"),),
     )
 
-    # continuous relaxation: factorials -> gamma, k -> kappa (real), take logs
-    relaxed = sp.expand_log(
-        sp.log(N * c.rewrite(sp.gamma).subs(k, kappa)), force=True)
+
+@lru_cache(maxsize=1)
+def _relaxed() -> tuple[sp.Expr, sp.Expr]:
+    """log(N c_kappa) with factorials -> Gamma (expanded in loggamma) and its stationarity
+    condition (kappa - 1)^2 d/dkappa = 0."""
+    c = _crossing()["c"]
+    relaxed = sp.expand_log(sp.log(N * c.rewrite(sp.gamma).subs(k, kappa)), force=True)
     relaxed = sp.expand(sp.expand_log(relaxed.rewrite(sp.loggamma), force=True))
     relaxed = sp.collect(relaxed, 1 / (kappa - 1))
-    lhs = sp.log(N * sp.Function("c")(kappa))
     stationary = sp.simplify(sp.diff(relaxed, kappa) * (kappa - 1) ** 2)
+    return relaxed, stationary
+
+
+@register("crossing-relaxed", 6, "Continuous relaxation of log(N c_k) in k (factorials -> "
+          "Gamma) and its stationarity condition",
+          r"Continuous relaxation of $\log(N c_k)$ in $k$ (factorials $\to$ $\Gamma$) and its "
+          "stationarity condition")
+def _d_crossing_relaxed() -> dict:
+    relaxed, stationary = _relaxed()
+    lhs = sp.log(N * sp.Function("c")(kappa))
 
     def relaxed_integer(d: Derivation) -> bool:
         from symhx.circuits import phi
@@ -406,43 +495,39 @@ def _crossing_derivations() -> list[Derivation]:
         return True
 
     def stationary_numeric(d: Derivation) -> bool:
-        import mpmath
+        from symhx._mpctx import mp
 
         e = rhs(d)
         n = 1000
-        fun = sp.lambdify(kappa, e.subs(N, n), "mpmath")
-        dfun = sp.lambdify(kappa, sp.diff(e, kappa).subs(N, n), "mpmath")
-        st = sp.lambdify(kappa, d.extra["stationary"].lhs.subs(N, n), "mpmath")
-        with mpmath.workdps(40):
-            root = mpmath.findroot(dfun, (40, 200), solver="anderson")
+        fun = mp_lambdify(kappa, e.subs(N, n))
+        dfun = mp_lambdify(kappa, sp.diff(e, kappa).subs(N, n))
+        st = mp_lambdify(kappa, d.extra["stationary"].lhs.subs(N, n))
+        ctx = mp()
+        with ctx.workdps(40):
+            root = ctx.findroot(dfun, (40, 200), solver="anderson")
             # golden-section minimum of the relaxed function, independent of the derivative
-            a, b = mpmath.mpf(40), mpmath.mpf(200)
-            g = (mpmath.sqrt(5) - 1) / 2
+            a, b = ctx.mpf(40), ctx.mpf(200)
+            g = (ctx.sqrt(5) - 1) / 2
             for _ in range(150):
                 x1, x2 = b - g * (b - a), a + g * (b - a)
                 if fun(x1) < fun(x2):
                     b = x2
                 else:
                     a = x1
-            return (abs(root - a) < mpmath.mpf(10) ** -12
-                    and abs(st(root)) < mpmath.mpf(10) ** -30)
+            return bool(abs(root - a) < ctx.mpf(10) ** -12
+                        and abs(st(root)) < ctx.mpf(10) ** -30)
 
-    d_relax = Derivation(
-        "crossing-relaxed", "Continuous relaxation of log(N c_k) in k (factorials -> Gamma) "
-        "and its stationarity condition",
-        sp.Eq(lhs, relaxed),
+    return dict(
+        result=sp.Eq(lhs, relaxed),
         checks=(
             Check("exp((k-1) * value) == (N c_k)^(k-1) exactly at integer k, N = 3..27",
-                  "exact", relaxed_integer),
+                  "exact", relaxed_integer,
+                  r"$\exp\bigl((k-1)\cdot\text{value}\bigr) = (N c_k)^{k-1}$ exactly at integer "
+                  r"$k$, $N = 3, 6, \dots, 27$"),
             Check("the stationarity condition's root is the relaxed minimum (N = 1000, "
-                  "40 digits, golden section)", "numeric", stationary_numeric),
+                  "40 digits, golden section)", "numeric", stationary_numeric,
+                  r"the root of the stationarity condition is the relaxed minimum "
+                  r"($N = 1000$, 40 digits, golden-section search)"),
         ),
         extra={"stationary": sp.Eq(stationary, 0)},
-        section=6,
     )
-    return [d_cross, d_ratio, d_relax]
-
-
-def build() -> list[Derivation]:
-    """All derivations of section 6."""
-    return [_d9(), _d10(), _d11(), *_d12_15(), *_d16(), *_crossing_derivations()]

@@ -19,9 +19,20 @@ from functools import lru_cache
 
 import sympy as sp
 
-from symhx.symbolic._core import Check, Derivation, N, all_exact, k, p, rhs, sym_equal
+from symhx.symbolic._core import (
+    Check,
+    Derivation,
+    N,
+    Step,
+    all_exact,
+    k,
+    p,
+    register,
+    rhs,
+    sym_equal,
+)
 
-__all__ = ["Gamma_sym", "Phi", "Phi_sym", "build", "paths", "phi", "phi_sym"]
+__all__ = ["Gamma_sym", "Phi", "Phi_sym", "paths", "phi", "phi_sym"]
 
 m = sp.Symbol("m", integer=True, positive=True)
 j = sp.Symbol("j", integer=True, positive=True)
@@ -35,7 +46,7 @@ PX_sym = sp.Symbol(r"P(X=k)")
 
 
 @lru_cache(maxsize=1)
-def _paths_steps() -> tuple[tuple[str, sp.Basic], ...]:
+def _paths_steps() -> tuple[Step, ...]:
     prod = sp.Product(N - m, (m, 1, k - 1))
     # re-index m -> N - m: the product of the integers N-k+1, ..., N-1
     reindexed = sp.Product(m, (m, N - k + 1, N - 1))
@@ -46,10 +57,11 @@ def _paths_steps() -> tuple[tuple[str, sp.Basic], ...]:
         as_fact = as_fact.args[0].expr
     as_fact = as_fact.rewrite(sp.factorial)
     return (
-        ("choose k-1 further distinct vertices", prod),
-        ("re-index m -> N - m", reindexed),
-        ("evaluate", evaluated),
-        ("as factorials (1 <= k <= N)", as_fact),
+        Step("choose k-1 further distinct vertices", prod,
+             r"Choose the $k - 1$ further vertices, in order, all distinct:"),
+        Step("re-index m -> N - m", reindexed, r"Re-index $m \to N - m$:"),
+        Step("evaluate", evaluated, "Evaluate the product:"),
+        Step("as factorials (1 <= k <= N)", as_fact, r"As factorials ($1 \le k \le N$):"),
     )
 
 
@@ -99,7 +111,9 @@ def _brute_simple(n: int, length: int) -> int:
 
 
 # ----------------------------------------------------------------------------- builders
-def _d4() -> Derivation:
+@register("4", 3, "Simple closed paths of length k through a fixed vertex of the complete digraph",
+          r"Simple closed paths of length $k$ through a fixed vertex of the complete digraph")
+def _d4() -> dict:
     paper = sp.factorial(N - 1) / sp.factorial(N - k)
 
     def sym(d: Derivation) -> bool:
@@ -117,19 +131,23 @@ def _d4() -> Derivation:
         return all_exact((e.subs({N: n, k: kk}), _perm_count(n - 1, kk - 1))
                          for n in range(1, 7) for kk in range(1, n + 1))
 
-    return Derivation(
-        "4", "Simple closed paths of length k through a fixed vertex of the complete digraph",
-        sp.Eq(P_sym(k), paths()),
+    return dict(
+        result=sp.Eq(P_sym(k), paths()),
         checks=(
-            Check("equals the paper's (N-1)!/(N-k)! for symbolic N, k", "symbolic", sym),
-            Check("equals math.perm(N-1, k-1) for 1 <= k <= N <= 12", "exact", exact),
-            Check("equals an itertools enumeration of paths for N <= 6", "exact", brute),
+            Check("equals the paper's (N-1)!/(N-k)! for symbolic N, k", "symbolic", sym,
+                  r"equals the paper's $(N-1)!/(N-k)!$ for symbolic $N, k$"),
+            Check("equals math.perm(N-1, k-1) for 1 <= k <= N <= 12", "exact", exact,
+                  r"equals `math.perm(N-1, k-1)` for $1 \le k \le N \le 12$"),
+            Check("equals an itertools enumeration of paths for N <= 6", "exact", brute,
+                  r"equals an `itertools` enumeration of the paths for $N \le 6$"),
         ),
-        steps=_paths_steps(), paper=paper, section=3,
+        steps=_paths_steps(), paper=paper,
     )
 
 
-def _d5() -> Derivation:
+@register("5", 3, "Number of simple circuits of length k, phi_N(k)",
+          r"Number of simple circuits of length $k$, $\phi_N(k)$")
+def _d5() -> dict:
     paper = sp.factorial(N) / (k * sp.factorial(N - k))
 
     def exact(d: Derivation) -> bool:
@@ -144,22 +162,28 @@ def _d5() -> Derivation:
         return all_exact((e.subs({N: n, k: kk}), _brute_simple(n, kk))
                          for n in range(1, 6) for kk in range(1, n + 1))
 
-    return Derivation(
-        "5", "Number of simple circuits of length k, phi_N(k)",
-        sp.Eq(phi_sym(k), phi()),
+    return dict(
+        result=sp.Eq(phi_sym(k), phi()),
         checks=(
             Check("equals the paper's N!/(k (N-k)!) for symbolic N, k", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
-            Check("equals symhx.circuits.phi for 1 <= k <= N <= 15", "exact", exact),
-            Check("equals brute-force circuit enumeration (FKM) for N <= 5", "exact", brute),
+                  lambda d: sym_equal(rhs(d), paper),
+                  r"equals the paper's $N!/(k\,(N-k)!)$ for symbolic $N, k$"),
+            Check("equals symhx.circuits.phi for 1 <= k <= N <= 15", "exact", exact,
+                  r"equals `symhx.circuits.phi` for $1 \le k \le N \le 15$"),
+            Check("equals brute-force circuit enumeration (FKM) for N <= 5", "exact", brute,
+                  r"equals brute-force circuit enumeration (FKM) for $N \le 5$"),
         ),
-        steps=(("N starting vertices times eq. (4), each circuit counted k times",
-                N * sp.Symbol("P_N(k)") / k), ("", phi())),
-        paper=paper, section=3,
+        steps=(Step("N starting vertices times eq. (4), each circuit counted k times",
+                    N * sp.Symbol("P_N(k)") / k,
+                    r"$N$ starting vertices times eq. (4), each circuit counted $k$ times:"),
+               Step("", phi())),
+        paper=paper,
     )
 
 
-def _d6() -> Derivation:
+@register("6", 3, "Ratio phi_N(k) / phi_N(N): all but the longest circuits are rare",
+          r"Ratio $\phi_N(k)/\phi_N(N)$: all but the longest circuits are rare")
+def _d6() -> dict:
     derived = sp.gammasimp(phi() / phi(N)).rewrite(sp.factorial)
     paper = N / (k * sp.factorial(N - k))
 
@@ -170,17 +194,20 @@ def _d6() -> Derivation:
         return all_exact((e.subs({N: n, k: kk}), Fraction(phi_int(n, kk), phi_int(n, n)))
                          for n in range(1, 16) for kk in range(1, n + 1))
 
-    return Derivation(
-        "6", "Ratio phi_N(k) / phi_N(N): all but the longest circuits are rare",
-        sp.Eq(phi_sym(k) / phi_sym(N), derived),
+    return dict(
+        result=sp.Eq(phi_sym(k) / phi_sym(N), derived),
         checks=(
             Check("equals the paper's N/(k (N-k)!) for symbolic N, k", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper)),
+                  lambda d: sym_equal(rhs(d), paper),
+                  r"equals the paper's $N/(k\,(N-k)!)$ for symbolic $N, k$"),
             Check("equals phi(N,k)/phi(N,N) (exact Fractions) for 1 <= k <= N <= 15", "exact",
-                  exact),
+                  exact, r"equals $\phi(N,k)/\phi(N,N)$ (exact fractions) for "
+                  r"$1 \le k \le N \le 15$"),
         ),
-        steps=(("ratio of eq. (5) at k and at N", phi() / phi(N)), ("simplified", derived)),
-        paper=paper, section=3,
+        steps=(Step("ratio of eq. (5) at k and at N", phi() / phi(N),
+                    r"The ratio of eq. (5) at $k$ and at $N$:"),
+               Step("simplified", derived, "Simplified:")),
+        paper=paper,
     )
 
 
@@ -218,22 +245,28 @@ def _pmf_brute(d: Derivation) -> bool:
     return True
 
 
-def _d7() -> Derivation:
+@register("7", 5, "Distribution of the number X of distinct impacts over simple circuits",
+          r"Distribution of the number $X$ of distinct impacts over the simple circuits")
+def _d7() -> dict:
     pmf = Phi() / _gamma_expr()
-    return Derivation(
-        "7", "Distribution of the number X of distinct impacts over simple circuits",
-        sp.Eq(PX_sym, pmf),
+    return dict(
+        result=sp.Eq(PX_sym, pmf),
         checks=(
-            Check("sums to 1 identically in p for N = 1..8", "exact", _pmf_sums_to_one),
+            Check("sums to 1 identically in p for N = 1..8", "exact", _pmf_sums_to_one,
+                  r"sums to 1 identically in $p$ for $N = 1, \dots, 8$"),
             Check("equals p**length-weighted brute-force enumeration, N <= 5, p in "
-                  "{1/3, 2/7, 5/2}", "exact", _pmf_brute),
+                  "{1/3, 2/7, 5/2}", "exact", _pmf_brute,
+                  r"equals a brute-force enumeration weighted by $p^{\text{length}}$, "
+                  r"$N \le 5$, $p \in \{1/3, 2/7, 5/2\}$"),
         ),
-        steps=(("weight p**k per circuit, phi_N(k) circuits, normalised", pmf),),
-        section=5,
+        steps=(Step("weight p**k per circuit, phi_N(k) circuits, normalised", pmf,
+                    r"Weight $p^k$ per circuit, $\phi_N(k)$ circuits, normalised:"),),
     )
 
 
-def _d8() -> Derivation:
+@register("8", 5, "Numerator Phi_{N,p}(k) and normaliser Gamma_{N,p} of eq. (7)",
+          r"Numerator $\Phi_{N,p}(k)$ and normaliser $\Gamma_{N,p}$ of eq. (7)")
+def _d8() -> dict:
     paper_Phi = p**k * sp.factorial(N) / (k * sp.factorial(N - k))
     paper_Gamma = sp.Sum(p**j * sp.factorial(N) / (j * sp.factorial(N - j)), (j, 1, N))
     gamma_eq = sp.Eq(Gamma_sym, _gamma_expr())
@@ -257,22 +290,19 @@ def _d8() -> Derivation:
         return all(sp.expand(e.subs({N: n, k: kk}) - phi_int(n, kk) * p**kk) == 0
                    for n in range(1, 11) for kk in range(1, n + 1))
 
-    return Derivation(
-        "8", "Numerator Phi_{N,p}(k) and normaliser Gamma_{N,p} of eq. (7)",
-        sp.Eq(Phi_sym(k), Phi()),
+    return dict(
+        result=sp.Eq(Phi_sym(k), Phi()),
         checks=(
             Check("Phi equals the paper's p^k N!/(k (N-k)!) for symbolic N, p, k", "symbolic",
-                  lambda d: sym_equal(rhs(d), paper_Phi)),
+                  lambda d: sym_equal(rhs(d), paper_Phi),
+                  r"$\Phi$ equals the paper's $p^k N!/(k\,(N-k)!)$ for symbolic $N, p, k$"),
             Check("Phi equals phi(N,k) p^k (polynomial in p) for 1 <= k <= N <= 10", "exact",
-                  phi_exact),
+                  phi_exact, r"$\Phi$ equals $\phi(N,k)\,p^k$ (a polynomial in $p$) for "
+                  r"$1 \le k \le N \le 10$"),
             Check("Gamma equals sum_k phi(N,k) p^k and the paper's sum, N = 1..10", "exact",
-                  gamma_poly),
+                  gamma_poly, r"$\Gamma$ equals $\sum_k \phi(N,k)\,p^k$ and the paper's sum, "
+                  r"$N = 1, \dots, 10$"),
         ),
         extra={"Gamma": gamma_eq},
-        paper=paper_Phi, section=5,
+        paper=paper_Phi,
     )
-
-
-def build() -> list[Derivation]:
-    """All derivations of sections 3-5."""
-    return [_d4(), _d5(), _d6(), _d7(), _d8()]

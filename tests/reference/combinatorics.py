@@ -1,11 +1,14 @@
 """Brute-force references for circuit counts, independent of symhx's formulas and its FKM
-enumeration: every word of length L over N letters, reduced to its least rotation."""
+enumeration: every word of length L over N letters, reduced to its least rotation; exact
+Bernoulli numbers and p-adic valuations; the contacts of pipe rows and lattices counted one by
+one."""
 
 from __future__ import annotations
 
 import itertools
 import math
 from collections import Counter
+from fractions import Fraction
 from functools import cache
 
 
@@ -75,3 +78,43 @@ def integer_partitions(L: int) -> list[tuple[int, ...]]:
         parts.append(cur)
         out.add(tuple(sorted(parts, reverse=True)))
     return sorted(out, reverse=True)
+
+
+def bernoulli_numbers(n: int) -> list[Fraction]:
+    """``B_0 .. B_n`` exactly (Akiyama-Tanigawa algorithm; ``B_1 = +1/2``, only even indices
+    are used by Stirling's series)."""
+    out = []
+    a = [Fraction(0)] * (n + 1)
+    for m in range(n + 1):
+        a[m] = Fraction(1, m + 1)
+        for j in range(m, 0, -1):
+            a[j - 1] = j * (a[j - 1] - a[j])
+        out.append(a[0])
+    return out
+
+
+def valuation(n: int, p: int) -> int:
+    """The exponent of the prime ``p`` in the positive int ``n``, by repeated division."""
+    v = 0
+    while n % p == 0:
+        n //= p
+        v += 1
+    return v
+
+
+# ------------------------------------------------------------------ the graph of impacts
+def row_contacts(n: int) -> set[tuple[str, str]]:
+    """The contacts of a row: walls L and R with pipes 1..n between them, neighbours touch."""
+    line = ["L", *[str(i) for i in range(1, n + 1)], "R"]
+    return set(itertools.pairwise(line))
+
+
+def lattice_contacts(m: int) -> tuple[int, int]:
+    """``(pipe-pipe, pipe-wall)`` contacts of an ``m x m`` grid with 8-neighbour contact; a pipe
+    on the boundary touches the wall it faces (one contact per boundary side of a boundary
+    pipe)."""
+    cells = [(i, j) for i in range(m) for j in range(m)]
+    pp = {frozenset((a, b)) for a in cells for b in cells
+          if a != b and max(abs(a[0] - b[0]), abs(a[1] - b[1])) == 1}
+    walls = sum((i == 0) + (i == m - 1) + (j == 0) + (j == m - 1) for i, j in cells)
+    return len(pp), walls

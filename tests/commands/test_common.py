@@ -1,0 +1,40 @@
+"""The CLI's shared output helpers (:mod:`symhx.commands._common`): strict JSON, exact integers of
+any size, 17-digit CSV cells."""
+
+from __future__ import annotations
+
+import json
+from decimal import Decimal
+from fractions import Fraction
+
+import mpmath
+import pytest
+
+from symhx.commands._common import csv_num, dump_json, int_show, int_str, jsonable
+
+
+def test_dump_json_is_strict_json():
+    text = dump_json({"a": float("nan"), "b": float("inf"), "c": mpmath.mpf("-inf"),
+                      "d": [mpmath.mpf(1) / 3, Fraction(2, 3), 2**80]})
+    data = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-strict JSON {c}"))
+    assert data == {"a": None, "b": "inf", "c": "-inf",
+                    "d": [data["d"][0], "2/3", str(2**80)]}
+    assert jsonable(mpmath.mpf("nan")) is None
+
+
+def test_int_str_prints_every_digit_beyond_the_int_str_limit_and_int_show_abbreviates():
+    n = 7**20000  # 16902 digits, beyond Python's default 4300-digit str limit
+    s = int_str(n)
+    # read back by Decimal, which has no digit limit (independent of int_str)
+    assert len(s) == 16902 and int(Decimal(s)) == n
+    assert int_show(10**100) == "10**100"
+    assert int_show(2**300).endswith("(exact integer, 91 digits)")
+
+
+def test_csv_num_round_trips_float64():
+    for x in (Fraction(1, 3), mpmath.mpf(2) ** -1000 / 3, 10**100, Fraction(10**40 + 1, 7)):
+        cell = csv_num(x)
+        assert len(str(cell)) <= 26
+        with mpmath.workdps(40):
+            v = mpmath.mpf(x.numerator) / x.denominator if isinstance(x, (int, Fraction)) else x
+            assert float(cell) == float(v)

@@ -1,0 +1,46 @@
+"""The derivation sub-commands (:mod:`symhx.commands.derive`): ``derive``, ``asymptotics`` and
+their section of ``symhx paper``."""
+
+from __future__ import annotations
+
+import json
+
+from symhx.cli import main
+
+
+def test_derive_prints_latex_with_the_equation_number(capsys):
+    assert main(["derive", "16", "--latex"]) == 0
+    out = capsys.readouterr().out
+    assert r"\sqrt{N + 1}" in out and "(16)" in out
+
+
+def test_derive_verify_json_reports_each_label_verified(capsys):
+    assert main(["derive", "13", "38", "--verify", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [d["label"] for d in data] == ["13", "38"]
+    assert all(d["verified"] for d in data)
+
+
+def test_derive_lists_labels_and_refuses_an_unknown_one(capsys):
+    assert main(["derive", "--list"]) == 0
+    assert "crossing" in capsys.readouterr().out
+    assert main(["derive", "999"]) == 2
+    assert "999" in capsys.readouterr().err
+
+
+def test_asymptotics_json_agrees_with_the_exact_jump(capsys):
+    assert main(["asymptotics", "1e10", "--json", "--exact", "--order", "best"]) == 0
+    (row,) = json.loads(capsys.readouterr().out)
+    assert row["k"] == row["k_exact"]
+    assert main(["asymptotics", "1e6"]) == 0
+    assert "corrected" in capsys.readouterr().out
+
+
+def test_derive_paper_section_verifies_every_derivation(tmp_path):
+    from symhx.commands.derive import paper
+
+    lines = paper(tmp_path, False)
+    data = json.loads((tmp_path / "derivations.json").read_text())
+    assert all(d["verified"] for d in data)
+    assert (tmp_path / "asymptotic_errors.csv").exists()
+    assert lines and "verified" in lines[0]

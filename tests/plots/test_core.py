@@ -1,0 +1,64 @@
+"""Figures 4-6 (:mod:`symhx.plots.core`): the distribution, the mode path and f/Phi, checked by
+their data against exact references."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import symhx
+import symhx.plots as plots
+from tests.reference.distribution import pmf_table
+
+
+def test_figure4_panels_a_to_d_hold_the_pmf():
+    ps = (0.01, 0.02, 0.05, 0.1)
+    fig = plots.plot_distributions(31, ps)
+    assert len(fig.axes) == 4
+    for letter, ax, p in zip("abcd", fig.axes, ps, strict=True):
+        assert ax.get_title().startswith(f"({letter})") and f"{p:g}" in ax.get_title()
+        assert ax.get_legend() is not None
+        ks, ys = ax.lines[0].get_data()
+        ref = pmf_table(31, Fraction(p))
+        assert list(ks) == list(range(1, 32))
+        for y, r in zip(ys, ref, strict=True):
+            assert abs(y - float(r)) <= 1e-13 * float(r) + 1e-300
+
+
+def test_figure5_has_a_blow_up_and_the_mode_of_each_step():
+    N = 21
+    fig = plots.plot_mode_path(N, p_max=0.5)
+    a, b = fig.axes
+    assert a.get_title().startswith("(a)") and b.get_title().startswith("(b)")
+    assert b.get_xlim()[1] < a.get_xlim()[1] / 2  # a real blow-up
+    for ax in (a, b):
+        assert ax.get_legend() is not None
+        xs, ys = ax.lines[0].get_data()
+        # between consecutive breakpoints the mode is the brute-force argmax of the pmf
+        for x0, x1, y in zip(xs[:-1], xs[1:], ys[:-1], strict=True):
+            if x1 - x0 > 1e-9:
+                pmf = pmf_table(N, Fraction((x0 + x1) / 2))
+                assert y == 1 + max(range(N), key=lambda i: pmf[i]), (x0, x1, y)
+
+
+def test_figure6_same_colour_for_same_p_and_a_legend_on_each_panel():
+    fig = plots.plot_f_and_phi(101)
+    top, bottom = fig.axes
+    assert top.get_legend() is not None and bottom.get_legend() is not None
+    top_colour = {ln.get_label(): ln.get_color() for ln in top.lines if not
+                  ln.get_label().startswith("_")}
+    legend_labels = [t.get_text() for t in bottom.get_legend().get_texts()]
+    assert len(legend_labels) == len(top_colour) == 4
+    for ln in bottom.lines:
+        lab = ln.get_label()
+        if lab.startswith("_"):
+            continue
+        key = next(k for k in top_colour if lab.startswith(k))
+        assert ln.get_color() == top_colour[key], lab
+    # the message of the figure: below p_c, Phi(k) < Phi(1) for every k >= 2; above, not
+    cp = symhx.critical_point(101, dps=30)
+    for ln in bottom.lines:
+        x, y = ln.get_data()
+        if len(x) == 0 or ln.get_label().startswith("_"):
+            continue
+        p = float(ln.get_label().rsplit("=", 1)[1].strip(" $"))
+        assert (max(y[1:]) > 0) == (p > float(cp.p)), ln.get_label()

@@ -1,0 +1,136 @@
+"""scripts/mutation.py without running a campaign: the tests of a module come from the mirror
+layout, the C operators change exactly one token of code (never a comment, a string or an
+include), and the committed report reads fine, including which modules have no run yet."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+spec = importlib.util.spec_from_file_location("mutation_script", ROOT / "scripts" / "mutation.py")
+mutation = importlib.util.module_from_spec(spec)
+sys.modules.setdefault("mutation_script", mutation)
+spec.loader.exec_module(mutation)
+
+
+def _tree(tmp_path: Path, files: dict[str, str]) -> Path:
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    return tmp_path
+
+
+def test_mirror_stem_drops_the_leading_underscore():
+    assert mutation.mirror_stem("rayleigh.py") == "rayleigh"
+    assert mutation.mirror_stem("_dist.py") == "dist"
+    assert mutation.mirror_stem("_fast.c") == "fast"
+    assert mutation.mirror_stem("__init__.py") == "init"
+    assert mutation.mirror_stem("__main__.py") == "main"
+
+
+def test_tests_of_a_module_are_its_mirror_files_and_their_named_extras(tmp_path):
+    root = _tree(tmp_path, {
+        "symhx/a/b.py": "", "symhx/a/b_c.py": "", "symhx/a/_d.py": "", "symhx/a/_b.c": "",
+        "tests/a/test_b.py": 'MUTATION_ALSO = ("tests/system/test_job.py", "tests/gone.py")\n',
+        "tests/a/test_b_tails.py": "", "tests/a/test_b_c.py": "", "tests/a/test_b_c_x.py": "",
+        "tests/a/test_d.py": "", "tests/a/test_bx.py": "", "tests/system/test_job.py": "",
+    })
+    assert mutation.mirror_tests("symhx/a/b.py", root) == [
+        "tests/a/test_b.py", "tests/a/test_b_tails.py", "tests/system/test_job.py"]
+    assert mutation.mirror_tests("symhx/a/b_c.py", root) == [
+        "tests/a/test_b_c.py", "tests/a/test_b_c_x.py"]
+    assert mutation.mirror_tests("symhx/a/_d.py", root) == ["tests/a/test_d.py"]
+    # the C source symhx/a/_b.c has the mirror of b: its tests are b's
+    assert mutation.mirror_tests("symhx/a/_b.c", root)[:2] == [
+        "tests/a/test_b.py", "tests/a/test_b_tails.py"]
+    assert mutation.all_modules(root) == ["symhx/a/_b.c", "symhx/a/_d.py", "symhx/a/b.py",
+                                          "symhx/a/b_c.py"]
+
+
+def test_every_module_of_the_package_is_a_mutation_target():
+    modules = mutation.all_modules()
+    assert "symhx/impact/_fast.c" in modules and "symhx/graph.py" in modules
+    assert mutation.mirror_tests("symhx/cli.py") == ["tests/test_cli.py"]
+    assert "tests/commands/test_common.py" in mutation.mirror_tests("symhx/commands/_common.py")
+
+
+C_SNIPPET = """#include <math.h>
+#define TOLF 64.0
+/* a < b in a comment, 3 + 4 */
+static double f(double a, double b, int n) {
+    const char *s = "x < 1 && y";   // if (a < b) return 1;
+    if (!(a < b) && n >= 2) return -a + b / 2.0;
+    n += 1;
+    return p->x - 0.0;
+}
+"""
+
+
+def test_c_operators_change_one_token_of_code_only():
+    muts = mutation.c_mutants(C_SNIPPET, "m.c")
+    changes = {(m.line, m.old, m.new) for m in muts}
+    assert changes == {
+        (2, "64.0", "128.0"),
+        (6, "!", ""), (6, "<", "<="), (6, "&&", "||"), (6, ">=", ">"), (6, "2", "3"),
+        (6, "+", "-"), (6, "/", "*"), (6, "2.0", "4.0"),
+        (7, "+=", "-="), (7, "1", "2"),
+        (8, "-", "+"), (8, "0.0", "1.0"),
+    }
+    # the unary minus of "-a", "->", the include, the comments and the string are left alone
+    for m in muts:
+        mutated = m.apply(C_SNIPPET)
+        assert mutated != C_SNIPPET
+        assert len([ln for ln in zip(C_SNIPPET.splitlines(), mutated.splitlines(), strict=True)
+                    if ln[0] != ln[1]]) == 1
+        assert m.diff(C_SNIPPET).startswith("- ") and "\n+ " in m.diff(C_SNIPPET)
+    (sub,) = [m for m in muts if m.old == "/"]
+    assert sub.name == "m.c:6:43:/->*"  # line and column from 1
+
+
+def test_c_mutants_of_the_engine_cover_its_lines_and_a_spread_sample_is_even():
+    text = (ROOT / "symhx" / "impact" / "_fast.c").read_text()
+    muts = mutation.c_mutants(text, "symhx/impact/_fast.c")
+    assert len(muts) > 500 and len({m.name for m in muts}) == len(muts)
+    assert all(m.apply(text) != text for m in muts)
+    sample = mutation.spread(muts, 10)
+    lines = [m.line for m in sample]
+    assert len(sample) == 10 and lines == sorted(lines)
+    assert lines[0] < len(text.splitlines()) / 10 and lines[-1] > len(text.splitlines()) * 0.8
+    assert mutation.spread(muts, None) == muts
+
+
+def test_the_committed_report_reads_and_lists_the_modules_without_a_run():
+    report = json.loads((ROOT / "tests" / "mutation-report.json").read_text())
+    lines = mutation.summary_lines(report)
+    run = set(report["modules"])
+    assert len(lines) == len(set(mutation.all_modules()) | run) + 1
+    for m in mutation.all_modules():
+        line = next(ln for ln in lines if ln.startswith(m + ":"))
+        assert ("no run yet" in line) == (m not in run), line
+    assert lines[-1].startswith("all modules: kill rate")
+
+
+@pytest.mark.parametrize("old_entry", [
+    {"total": 10, "killed": 8, "survived": 0, "no_tests": 0, "equivalent": 2, "not_checked": 0,
+     "kill_rate": 1.0, "survivors": {}},  # written before the timeouts were counted
+    {"total": 5, "killed": 5, "timeouts": 1, "survived": 0, "no_tests": 0, "equivalent": 0,
+     "not_checked": 0, "kill_rate": 1.0, "kill_rate_without_timeouts": 0.8, "survivors": {}},
+])
+def test_old_reports_merge_with_new_c_entries(old_entry):
+    c_entry = {"total": 20, "killed": 3, "timeouts": 1, "survived": 1, "no_tests": 0,
+               "equivalent": 1, "not_checked": 15, "kill_rate": 0.75, "survivors": {"x": "d"},
+               "tool": mutation.C_TOOL}
+    merged = mutation.merge_reports([{"modules": {"symhx/graph.py": old_entry}},
+                                     {"modules": {"symhx/impact/_fast.c": c_entry}}])
+    t = merged["totals"]
+    assert t["total"] == old_entry["total"] + 20
+    assert t["killed"] == old_entry["killed"] + 3
+    assert t["kill_rate"] == round(t["killed"] / (t["killed"] + 1), 4)
+    assert mutation.C_TOOL in merged["tool"]
+    assert "symhx/impact/_fast.c" not in merged["modules_without_run"]
+    assert "symhx/critical.py" in merged["modules_without_run"]

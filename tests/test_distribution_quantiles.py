@@ -1,0 +1,89 @@
+"""Quantiles of the simple distribution: ``ppf`` / ``isf`` decided on the exact cdf for exact
+``p`` (no tolerance), resolved to the ``dps`` digits of the cdf on the mpmath path (exactly the
+documented ``10**(1 - dps)``), in the support on the float64 path; ``q`` and ``confidence`` are
+checked like probabilities.
+
+Reference: the exact table of ``Phi(k)`` from factorials
+(:class:`tests.reference.distribution.ExactTable`), a float p at its binary value.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import symhx
+from symhx.distribution import SimpleDistribution
+from tests.harness.errors import assert_refuses
+from tests.reference.distribution import ExactTable, fraction_of
+
+
+def test_mpmath_quantiles_resolve_q_to_dps_digits() -> None:
+    """A q within a relative 10**(1 - dps) of cdf(k) counts as equal to it (documented), and
+    one a little further does not."""
+    N, pf, dps = 12, 0.3, 20
+    t = ExactTable.simple(N, Fraction(pf))
+    d = symhx.distribution_of(N, pf, dps=dps)
+    for k in (2, 5, 8):
+        c, s = t.cdf(k), t.sf(k)
+        assert d.ppf(c * (1 + Fraction(1, 10**25))) == k
+        assert d.ppf(c * (1 + Fraction(1, 10**15))) == k + 1
+        assert d.isf(s * (1 - Fraction(1, 10**25))) == k
+        assert d.isf(s * (1 - Fraction(1, 10**15))) == k + 1
+        assert d.ppf(c * (1 - Fraction(1, 10**15))) == k
+        assert d.isf(s * (1 + Fraction(1, 10**15))) == k
+
+
+@pytest.mark.parametrize("dps", [20, 30])
+def test_mpmath_quantile_resolution_is_exactly_ten_to_one_minus_dps(dps: int) -> None:
+    """The documented resolution: ppf gives k when q <= cdf(k) (1 + 10**(1 - dps)) and isf
+    gives k when q >= sf(k) (1 - 10**(1 - dps)), against the returned (rounded) cdf / sf
+    values; half the resolution inside counts as equal, twice outside does not."""
+    N, pf = 12, 0.3
+    d = symhx.distribution_of(N, pf, dps=dps)
+    eps = Fraction(10) ** (1 - dps)
+    for k in (3, 6, 9):
+        c, s = fraction_of(d.cdf(k)), fraction_of(d.sf(k))
+        assert d.ppf(c * (1 + eps / 2)) == k and d.ppf(c * (1 + 2 * eps)) == k + 1
+        assert d.isf(s * (1 - eps / 2)) == k and d.isf(s * (1 - 2 * eps)) == k + 1
+
+
+def test_exact_quantiles_have_no_tolerance() -> None:
+    """Exact p: q a relative 10**-40 away from cdf(k) / sf(k) moves the quantile."""
+    d = symhx.distribution_of(12, "0.3", dps=30)
+    t = ExactTable.simple(12, Fraction(3, 10))
+    tiny = Fraction(1, 10**40)
+    for k in (3, 6, 9):
+        assert d.ppf(t.cdf(k) * (1 + tiny)) == k + 1
+        assert d.ppf(t.cdf(k)) == k
+        assert d.isf(t.sf(k) * (1 - tiny)) == k + 1
+        assert d.isf(t.sf(k)) == k
+
+
+def test_float_ppf_near_one_stays_in_the_support() -> None:
+    """N = 2, p = 0.05: the float cdf ends at 1 - 2**-52; q = 1 - 2**-53 lies above it and
+    must still give N (not N + 1)."""
+    q = float(np.nextafter(1.0, 0.0))
+    for N, pf in ((2, 0.05), (3, 0.5), (20, 0.3)):
+        d = symhx.distribution_of(N, pf, dps=None)
+        assert d.ppf(q) == N and d.ppf([q]).tolist() == [N]
+
+
+def test_q_is_checked_like_a_probability() -> None:
+    d = symhx.distribution_of(6, 0.4, dps=20)
+    for bad in (1.5, "2", Fraction(101, 100)):
+        assert_refuses(d.ppf, bad, arg="q", value=repr(bad), allowed="<= 1")
+    assert_refuses(d.isf, -0.25, arg="q", value="-0.25", allowed=">= 0")
+    assert_refuses(d.ppf, [0.5, True], exc=TypeError, arg="q", value="bool True",
+                   allowed="a real number")
+    assert_refuses(d.isf, [0.5, 1.5], arg="q", value="1.5", allowed="<= 1")
+    assert_refuses(d.interval, 1.5, arg="confidence", value="1.5", allowed="<= 1")
+
+
+@pytest.mark.parametrize("c", [-0.5, "-1/3", Fraction(-1, 10**9)])
+def test_interval_refuses_a_negative_confidence(c: object) -> None:
+    """A negative confidence would give reversed ppf bounds: refused like c > 1."""
+    d = SimpleDistribution(20, "1/10")
+    assert_refuses(d.interval, c, arg="confidence", value=repr(c), allowed=">= 0")
