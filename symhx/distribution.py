@@ -225,8 +225,7 @@ class Distribution:
             raise ValueError(
                 f"{what} on the mpmath path is limited to N <= {_n_show(limit)} "
                 f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
-                f"Use dps=None (float64, N <= {FLOAT_N_LIMIT}), mode()/modes() (any N) or "
-                f"symhx.asymptotic_critical_point for huge N")
+                f"Use mode()/modes() (any N) or symhx.asymptotic_critical_point for huge N")
 
     def _check_exact_work(self, what: str, limit: int, name: str) -> None:
         """Refuse (before any work) exact sums whose integers would be too large."""
@@ -352,9 +351,11 @@ class Distribution:
     def _ftab(self) -> dict[str, np.ndarray]:
         if self.N > FLOAT_N_LIMIT:
             raise ValueError(
-                f"the float64 path (dps=None) and rvs() tabulate the whole support; N={self.N} "
-                f"is above symhx.distribution.FLOAT_N_LIMIT={FLOAT_N_LIMIT}. Use an int dps for "
-                f"the mpmath path, or raise FLOAT_N_LIMIT if you have the memory.")
+                f"the float64 table of the whole support (rvs(), and dps=None where the space "
+                f"has no summation engine) is limited to N <= "
+                f"symhx.distribution.FLOAT_N_LIMIT={FLOAT_N_LIMIT}; got N={_n_show(self.N)}. "
+                f"Use an int dps for the mpmath path, or raise FLOAT_N_LIMIT if you have the "
+                f"memory.")
         from scipy.special import logsumexp
 
         lw = self._float_logw()
