@@ -64,9 +64,7 @@ import mpmath
 import numpy as np
 
 from symhx._mpctx import export, is_mpf, local, mp
-from symhx._numeric import (
-    digits_of,
-)
+from symhx._numeric import digits_of, mp_value
 from symhx.certify import (
     MAX_IRRATIONAL_BITS,
     G_arb,
@@ -289,15 +287,20 @@ class Distribution:
         with ctx.workdps(self.dps or 15):
             return export(+local(x))
 
+    def _round_abs(self, x: Any) -> mpmath.mpf:
+        """``x`` rounded once to ``dps`` digits after the point (absolute error below
+        ``10**-dps``; for the entropy, of size up to ``log N``), as a global mpf."""
+        ctx = mp()
+        xl = local(x)
+        digits = max(0, int(ctx.mag(xl) * 0.30103) + 1) if xl else 0
+        with ctx.workdps((self.dps or 15) + digits):
+            return export(+xl)
+
     @property
     def _wdps(self) -> int:
         """The working precision of the mpmath path: ``dps`` + guard digits."""
         assert self.dps is not None, "the mpmath path needs an int dps"
         return self.dps + self._guard
-
-    def _wp(self) -> Any:
-        """The working-precision context: ``dps`` + guard digits."""
-        return mpmath.workdps(self._wdps)
 
     def _log_fraction(self, x: Fraction) -> mpmath.mpf:
         """``log x`` of an exact positive fraction to ``dps`` significant digits: ``log1p`` of
@@ -402,8 +405,9 @@ class Distribution:
     # ----------------------------------------------------------------- cdf and sf
     def _mp_sum(self, lo: int, hi: int) -> mpmath.mpf:
         """``P(lo <= X <= hi)`` at dps + guard digits (relative accuracy, also in the tails)."""
-        with self._wp():
-            return mpmath.fsum(w for _, w in self._mp_terms(lo, hi))
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            return export(ctx.fsum(w for _, w in self._mp_terms(lo, hi)))
 
     def _cdf1(self, k: int) -> Any:
         if k < 1:
@@ -591,10 +595,11 @@ class Distribution:
             lp = self._ftab["logpmf"]
             pm = self._ftab["pmf"]
             return float(-np.sum(np.where(pm > 0, pm * lp, 0.0)))
-        terms = self._mp_terms(1, self.N)
-        with self._wp():
-            h = -mpmath.fsum(w * mpmath.log(w) for _, w in terms if w > 0)
-        return self._round(h)
+        terms = local(self._mp_terms(1, self.N))
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            h = -ctx.fsum(w * ctx.log(w) for _, w in terms if w > 0)
+        return self._round_abs(h)
 
     def mode(self) -> int:
         """The smallest maximiser of ``P(X = k)``."""
@@ -709,7 +714,7 @@ class SimpleDistribution(Distribution):
         ctx = mp()
         n = (self.dps or 17) + digits_of(self.N) + 30
         with ctx.workdps(n):
-            pm = ctx.mpf(str(self.p.evalf(n + 10)))
+            pm = mp_value(self.p, None)  # a rigorous Arb enclosure's midpoint (no sympy evalf)
         return mpf_to_fraction(export(pm))
 
     def _engine(self, dps: int | None = None) -> SimpleSums:
@@ -721,7 +726,7 @@ class SimpleDistribution(Distribution):
         eng = cache.get(d)
         if eng is None:
             fr = self._fr_work
-            hump = _hump(self.N, fr, mpmath.mpf(0))
+            hump = _hump(self.N, fr, None)
             eng = cache[d] = SimpleSums(self.N, fr, d, None if hump is None else hump[1])
         return eng
 
@@ -777,7 +782,7 @@ class SimpleDistribution(Distribution):
                 return float(self._float_engine.entropy())
             return super().entropy()
         self._mp_moments  # noqa: B018
-        return self._round(self._mp_extra[2])
+        return self._round_abs(self._mp_extra[2])
 
     @property
     def normaliser(self) -> Any:
@@ -993,7 +998,7 @@ def _logp_float(p: Any, fr: Fraction | None) -> float:
         return math.log(fr.numerator) - math.log(fr.denominator)
     ctx = mp()
     with ctx.workdps(30):
-        return float(ctx.log(ctx.mpf(str(p.evalf(40)))))
+        return float(ctx.log(mp_value(p, None)))
 
 
 # --------------------------------------------------------------------------- structure of Phi

@@ -412,19 +412,23 @@ class SimpleSums:
             else:
                 bad = x
         dbad = self.D(bad) - level
-        for _ in range(400):
-            if abs(good - bad) <= 1:
-                break
+        steps = 0
+        while abs(good - bad) > 1:
+            steps += 1
             lo_, hi_ = min(good, bad), max(good, bad)
             cand = None
-            for x0, f0, other in ((good, dgood, bad), (bad, dbad, good)):
+            # Newton for the first 100 steps; bisection after that (it always finishes: each
+            # step at least halves the bracket, geometrically or arithmetically)
+            for x0, f0, other in ((good, dgood, bad), (bad, dbad, good)) if steps <= 100 else ():
                 s = self.dD(x0)
                 if s:
                     step = -f0 / s
                     if abs(step) < hi_ - lo_:
                         c1 = x0 + int(ctx.nint(step))
-                        if c1 == x0:  # within one of the root: one step toward the other end
-                            c1 = x0 + (1 if other > x0 else -1)
+                        if c1 == x0:
+                            if abs(f0) > abs(s):  # a steep end far from the root: no step
+                                continue
+                            c1 = x0 + (1 if other > x0 else -1)  # within one of the root
                         if lo_ < c1 < hi_:
                             cand = c1
                             break
@@ -485,7 +489,7 @@ class SimpleSums:
                     out.append((self._level_cut(lo, hi, lev, True, guess), hi))
                 else:
                     guess = hi
-                    if lo == top:
+                    if top is not None and lo >= top:  # the hump's decreasing side
                         span = int(ctx.nint(self._sigma_at(top) * ctx.sqrt(2 * (dtop - lev))
                                             * 1.05)) + 2
                         guess = min(hi, lo + span)

@@ -11,6 +11,7 @@ import mpmath
 import pytest
 
 import symhx
+from symhx.distribution import MP_QUANTILE_N_LIMIT
 from symhx.validation import mpf_to_fraction
 from tests.reference.distribution_large_n import direct_sums, head_sums, poisson_side_sums
 from tests.reference.mp import rel_err
@@ -96,8 +97,8 @@ def _q_scaled(e: int, s: str) -> Fraction:
 @pytest.mark.parametrize(("e", "r"), _GRID + [(e, s) for e in (6, 100, 1000)
                                                for s in ("q0.5", "q2")])
 def test_dps_against_twice_dps(e: int, r) -> None:
-    """Mean, var, entropy and the cdf at the median agree with a run at 2 dps to dps digits
-    (errors in units of 10**-dps below 1)."""
+    """Mean, var, entropy and the cdf at the median (at the mode beyond the quantile limit)
+    agree with a run at 2 dps to dps digits (errors in units of 10**-dps below 1)."""
     N = 10**e
     p = _q_scaled(e, r[1:]) if isinstance(r, str) else _pc(N) * r
     dps = 30
@@ -108,7 +109,8 @@ def test_dps_against_twice_dps(e: int, r) -> None:
         assert rel_err(a, b) <= 10.0 ** -dps, (name, a, b)
     with mpmath.workdps(2 * dps):
         assert abs(lo.entropy() - hi.entropy()) <= mpmath.mpf(10) ** -dps
-    k = lo.median()
+    # the median within the quantile limit, else the (exact) mode: where the mass is
+    k = lo.median() if N <= MP_QUANTILE_N_LIMIT else lo.mode()
     for name in ("cdf", "sf", "logcdf", "pmf"):
         a, b = getattr(lo, name)(k), getattr(hi, name)(k)
         assert rel_err(a, b) <= 10.0 ** -dps, (name, a, b)
@@ -195,3 +197,17 @@ def test_slow_head_below_the_jump_at_huge_N() -> None:
     a = symhx.distribution_of(N, p, dps=25).mean()
     b = symhx.distribution_of(N, p, dps=50).mean()
     assert rel_err(a, b) <= 1e-25
+
+
+def test_cdf_and_sf_add_to_one_just_past_the_hump_top_at_huge_N() -> None:
+    """A range starting one past the hump's top ([k + 1, N], k the mode; the slope of log Phi
+    there is ~1e-99 and at N it is huge) still finds the whole decreasing side of the hump:
+    sf(k + j) + cdf(k + j) = 1 and sf of the mode is about one half (the hump is symmetric to
+    leading order)."""
+    N = 10**100
+    d = symhx.distribution_of(N, _pc(N) * 10, dps=30)
+    k = d.mode()
+    with mpmath.workdps(60):
+        for j in (0, 1, 2, 10, 10**40):
+            assert abs(d.cdf(k + j) + d.sf(k + j) - 1) <= mpmath.mpf(10) ** -29, j
+        assert abs(d.sf(k) - mpmath.mpf(1) / 2) < 0.01
