@@ -825,7 +825,13 @@ class SimpleDistribution(Distribution):
     @cached_property
     def _float_engine(self) -> SimpleDistribution:
         """For ``dps=None`` and ``N > FLOAT_N_LIMIT``: the summation engine at 17 digits, its
-        results rounded to float64 (no table of the support)."""
+        results rounded to float64 (no table of the support); refused for an N beyond the
+        float64 range (the mean would be inf)."""
+        if self.N > sys.float_info.max:
+            raise ValueError(
+                f"the float64 path (dps=None) needs N to fit a float64 (N <= 1.8e308); got "
+                f"N={_n_show(self.N)}. Use an int dps for the mpmath path (N <= "
+                f"{_n_show(MP_SUM_N_LIMIT)}, symhx.distribution.MP_SUM_N_LIMIT)")
         return SimpleDistribution(self.N, self.p, dps=17)
 
     def _ftake(self, name: str, kk: np.ndarray, below: float, above: float) -> np.ndarray:

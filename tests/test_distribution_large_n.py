@@ -211,3 +211,14 @@ def test_cdf_and_sf_add_to_one_just_past_the_hump_top_at_huge_N() -> None:
         for j in (0, 1, 2, 10, 10**40):
             assert abs(d.cdf(k + j) + d.sf(k + j) - 1) <= mpmath.mpf(10) ** -29, j
         assert abs(d.sf(k) - mpmath.mpf(1) / 2) < 0.01
+
+
+def test_float_path_refuses_an_N_beyond_the_float64_range() -> None:
+    """dps=None returns float64: an N that does not fit one (the mean would be inf) is refused
+    by name; N = 10**300 still answers (mean = N - 2 to float64 for p = 0.5)."""
+    from tests.harness.errors import assert_refuses
+
+    d = symhx.distribution_of(10**1000, 0.5, dps=None)
+    for method in (d.mean, d.var, d.entropy):
+        assert_refuses(method, arg="N", value="N=10**1000", allowed="float64")
+    assert symhx.distribution_of(10**300, 0.5, dps=None).mean() == 1e300
