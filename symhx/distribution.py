@@ -95,6 +95,8 @@ __all__ = [
     "EXACT_QUANTILE_WORK_LIMIT",
     "EXACT_WORK_LIMIT",
     "FLOAT_N_LIMIT",
+    "MAX_EXACT_TABLE_N",
+    "MAX_TABLE_N",
     "MP_QUANTILE_N_LIMIT",
     "MP_SUM_N_LIMIT",
     "Distribution",
@@ -128,6 +130,14 @@ MP_SUM_N_LIMIT = 10**1000
 #: a median at N = 10**20 takes 1.2 s, at 10**100 about 40 s (the partial sums near the hump at
 #: 10**100 dominate), so the documented cap is 10**30.
 MP_QUANTILE_N_LIMIT = 10**30
+
+#: ``table()`` (one row ``(k, P(X = k))`` per k, also ``symhx distribution --table``) on the
+#: mpmath path is refused above this N: each row is a pmf at dps digits (10**4 rows at dps = 50
+#: take ~4 s); the float64 table (``dps=None``) follows ``FLOAT_N_LIMIT``.
+MAX_TABLE_N = 10_000
+#: the same for an exact (Fraction) table: row k has ~k log2(N/p) bits, so the table grows like
+#: N**2 (2000 rows take ~6 s, 4000 rows ~50 s).
+MAX_EXACT_TABLE_N = 2_000
 
 _LN10 = math.log(10)
 _LN2 = math.log(2)
@@ -224,6 +234,22 @@ class Distribution:
                 f"{what} on the mpmath path is limited to N <= {_n_show(limit)} "
                 f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
                 f"Use mode()/modes() (any N) or symhx.asymptotic_critical_point for huge N")
+
+    def _check_table(self) -> None:
+        """Refuse (before any work) a ``table()`` beyond its documented row limit."""
+        if self.dps is None:
+            limit, name = FLOAT_N_LIMIT, "FLOAT_N_LIMIT"
+        elif self.exact:
+            limit, name = MAX_EXACT_TABLE_N, "MAX_EXACT_TABLE_N"
+        else:
+            limit, name = MAX_TABLE_N, "MAX_TABLE_N"
+        if self.N > limit:
+            raise ValueError(
+                f"table() lists one row per k = 1..N: limited to N <= {limit} "
+                f"(symhx.distribution.{name}, a work limit"
+                f"{' of exact rows' if self.exact else ''}); got N={_n_show(self.N)}. Use "
+                f"pmf(k) on the k you need (an array of k works)"
+                f"{', or a float p' if self.exact else ''}")
 
     def _check_exact_work(self, what: str, limit: int, name: str) -> None:
         """Refuse (before any work) exact sums whose integers would be too large."""
@@ -816,7 +842,10 @@ class SimpleDistribution(Distribution):
         return simple_modes(self.N, self.fr, self.p)
 
     def table(self) -> list[tuple[int, Any]]:
-        """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N)."""
+        """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N: refused above
+        ``MAX_TABLE_N``, ``MAX_EXACT_TABLE_N`` for exact rows, ``FLOAT_N_LIMIT`` for
+        ``dps=None``)."""
+        self._check_table()
         if self.dps is None:
             return [(k, float(v)) for k, v in enumerate(self._ftab["pmf"], 1)]
         return [(k, self._pmf1(k)) for k in range(1, self.N + 1)]

@@ -84,7 +84,9 @@ def register(sub: Any) -> None:
                    help="sample space: simple, eq41, eq41-printed or excess<=m")
     d.add_argument("--float", action="store_true",
                    help="evaluate with mpmath at --dps instead of exactly")
-    d.add_argument("--table", action="store_true", help="include P(X=k) for every k")
+    d.add_argument("--table", action="store_true",
+                   help="include P(X=k) for every k (N <= 10000; exact p: N <= 2000; "
+                        "symhx.distribution.MAX_TABLE_N, MAX_EXACT_TABLE_N)")
     add_json(d)
     d.set_defaults(func=cmd_distribution)
 
@@ -153,11 +155,17 @@ def cmd_distribution(args: argparse.Namespace) -> int:
         with ctx.workdps(args.dps + 10):
             p = export(ctx.mpf(p.numerator) / p.denominator)
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
+    rows = None
+    if args.table:  # first: a refused table costs nothing
+        try:
+            rows = d.table()
+        except ValueError as e:
+            raise ValueError(f"--table: {e}") from None
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
                            "mean": d.mean(), "variance": d.var(), "modes": list(d.modes()),
                            "mode": d.mode(), "log_normaliser": d.log_normaliser}
-    if args.table:
-        out["pmf"] = {k: d.pmf(k) for k in range(1, d.N + 1)}
+    if rows is not None:
+        out["pmf"] = dict(rows)
     if args.json:
         print(dump_json(out))
         return 0

@@ -493,7 +493,9 @@ class SpaceDistribution(Distribution):
         return space_modes(self.sample_space, self.N, self.p, self.fr)
 
     def table(self) -> list[tuple[int, Any]]:
-        """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range)."""
+        """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range;
+        refused above the row limits of :meth:`symhx.distribution.SimpleDistribution.table`)."""
+        self._check_table()
         if self.dps is None:
             return [(k, float(v)) for k, v in enumerate(self._ftab["pmf"], 1)]
         if self.exact:

@@ -123,8 +123,6 @@ def test_distribution_float_table_sums_to_one_within_its_digits(capsys):
                 < mpmath.mpf(10) ** -28, k
 
 
-@pytest.mark.xfail(strict=True, reason="symhx distribution --table walks every k of a huge N "
-                   "(no documented row limit, as circuits has MAX_PHI_TABLE_N); reported")
 def test_distribution_table_of_a_huge_N_is_refused_at_once():
     try:
         proc = subprocess.run([sys.executable, "-m", "symhx", "distribution", "1e100", "0.1",
