@@ -54,10 +54,12 @@ from __future__ import annotations
 
 import math
 import sys
+import threading
 import warnings
+from collections import OrderedDict
 from collections.abc import Callable
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any
 
 import mpmath
@@ -748,25 +750,15 @@ class SimpleDistribution(Distribution):
         self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
         d = self.dps if dps is None else dps
         assert d is not None
-        cache = self.__dict__.setdefault("_engines", {})
-        eng = cache.get(d)
-        if eng is None:
-            fr = self._fr_work
-            hump = _hump(self.N, fr, None)
-            eng = cache[d] = SimpleSums(self.N, fr, d, None if hump is None else hump[1])
-        return eng
+        return _shared_engine(self.N, self._fr_work, d)
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
         """``(log Gamma, mean, variance)`` (global mpf with the engine's guard digits)."""
-        eng = self._engine()
-        ctx = mp()
-        with ctx.workdps(eng.W):
-            s0, s1, s2, s3 = eng.sums(1, self.N, (0, 1, 2, 3))
-            r1 = s1 / s0
-            log_s0 = ctx.log(s0)
-            self._mp_extra = (export(s0), export(log_s0), export(log_s0 - s3 / s0))
-            return export((eng.log_phi_ref() + log_s0, eng.c + r1, s2 / s0 - r1 * r1))
+        self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
+        assert self.dps is not None
+        moments, self._mp_extra = _shared_moments(self.N, self._fr_work, self.dps)
+        return moments
 
     def _mp_sum(self, lo: int, hi: int) -> Any:
         """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too)."""
@@ -1012,6 +1004,45 @@ class SimpleDistribution(Distribution):
         with ctx.workdps(30):
             g = local(mu) + z * ctx.sqrt(max(local(var), 0))
             return int(min(max(ctx.nint(g), 1), self.N))
+
+
+#: frozen distributions of the same (N, p, dps) share the summation engine and its one full
+#: pass (``symhx.mean(N, p)`` then ``symhx.var(N, p)`` or ``symhx.cdf(N, p, k)`` sum the
+#: hump once).  The one-pass results are exported (global mpf, immutable) and shared by every
+#: thread; an engine holds mpf of the context of the thread that built it, so engines are
+#: cached per thread.
+_SHARED_CACHE_SIZE = 32
+_ENGINES = threading.local()
+
+
+def _shared_engine(N: int, fr: Fraction, dps: int) -> SimpleSums:
+    """The summation engine of :mod:`symhx.simple_sums` for ``(N, p, dps)`` (this thread's)."""
+    cache = _ENGINES.__dict__.setdefault("lru", OrderedDict())
+    key = (N, fr, dps)
+    eng = cache.get(key)
+    if eng is None:
+        hump = _hump(N, fr, None)
+        eng = cache[key] = SimpleSums(N, fr, dps, None if hump is None else hump[1])
+        while len(cache) > _SHARED_CACHE_SIZE // 4:
+            cache.popitem(last=False)
+    else:
+        cache.move_to_end(key)
+    return eng
+
+
+@lru_cache(maxsize=_SHARED_CACHE_SIZE)
+def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any],
+                                                            tuple[Any, Any, Any]]:
+    """One pass over the support: ``(log Gamma, mean, variance)`` and ``(Gamma relative to
+    the reference term, its log, entropy)``, exported with the engine's guard digits."""
+    eng = _shared_engine(N, fr, dps)
+    ctx = mp()
+    with ctx.workdps(eng.W):
+        s0, s1, s2, s3 = eng.sums(1, N, (0, 1, 2, 3))
+        r1 = s1 / s0
+        log_s0 = ctx.log(s0)
+        extra = export((s0, log_s0, log_s0 - s3 / s0))
+        return export((eng.log_phi_ref() + log_s0, eng.c + r1, s2 / s0 - r1 * r1)), extra
 
 
 def _exact_value(x: Any) -> Fraction:
