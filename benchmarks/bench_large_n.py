@@ -4,10 +4,12 @@
 
 For N = 10^2 ... 10^1000 at p = 2 p_c (above the jump) and at p with N p - 1 = N p_c - 1 (the
 hard case: head and hump both weigh), each of ``mean``, ``var`` and ``cdf`` at the median is
-timed on a fresh frozen distribution (dps = 50; the moments share one pass, so ``var`` after
-``mean`` is nearly free: each statistic is timed alone) and its error measured against the same
-quantity at dps = 100.  On the same axes the direct summation a user would write (every term
-added in mpmath at 50 digits, ratio recurrence) where it can run (N <= 10^5), and
+timed cold (a fresh frozen distribution with the shared caches of one full pass cleared: each
+statistic is timed alone) and warm (after ``mean`` of the same N, p, dps: distributions share
+the one full pass, so ``var`` is then free and ``cdf`` costs one partial sum), and its error
+measured against the same quantity at dps = 100.  The cdf is taken at the median (at the mode
+beyond ``MP_QUANTILE_N_LIMIT``).  On the same axes the direct summation a user would write
+(every term added in mpmath at 50 digits, ratio recurrence) where it can run (N <= 10^5), and
 ``critical_point(N, dps=50)`` for the scale of the targets (~30 of its calls per statistic).
 """
 
@@ -24,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import RESULTS, write
 
 import symhx
+from symhx import distribution as _dist
 from symhx.validation import mpf_to_fraction
 
 DPS = 50
@@ -54,6 +57,12 @@ def direct_mean(N: int, p: Fraction, dps: int):
         return s1 / s0
 
 
+def cold() -> None:
+    """Forget the shared one-pass results and this thread's engines (a cold call)."""
+    _dist._shared_moments.cache_clear()
+    _dist._ENGINES.__dict__.clear()
+
+
 def main() -> None:
     rows = []
     for e in NS:
@@ -64,18 +73,23 @@ def main() -> None:
             cases = {"2 p_c": 2 * cp.p, "N p - 1 = 2 (N p_c - 1)": (1 + 2 * cp.q) / N}
         for label, p in cases.items():
             ref = symhx.distribution_of(N, p, dps=2 * DPS)
-            k = ref.median() if e <= 100 else None
-            for stat in ("mean", "var", "cdf"):
-                if stat == "cdf" and k is None:
-                    continue
-                d = symhx.distribution_of(N, p, dps=DPS)
-                call = (lambda d=d, k=k: d.cdf(k)) if stat == "cdf" else getattr(d, stat)
-                val, t = timed(call)
-                want = ref.cdf(k) if stat == "cdf" else getattr(ref, stat)()
-                rows.append({"N": f"1e{e}", "case": label, "stat": stat, "time_s": t,
-                             "rel_err": rel_err(val, want), "critical_point_s": t_cp,
-                             "ratio_to_critical_point": t / t_cp})
-                print(rows[-1], flush=True)
+            k = ref.median() if N <= _dist.MP_QUANTILE_N_LIMIT else ref.mode()
+            for warm in (False, True):
+                for stat in ("mean", "var", "cdf"):
+                    if warm and stat == "mean":
+                        continue
+                    cold()
+                    if warm:
+                        symhx.distribution_of(N, p, dps=DPS).mean()
+                    d = symhx.distribution_of(N, p, dps=DPS)
+                    call = (lambda d=d, k=k: d.cdf(k)) if stat == "cdf" else getattr(d, stat)
+                    val, t = timed(call)
+                    want = ref.cdf(k) if stat == "cdf" else getattr(ref, stat)()
+                    rows.append({"N": f"1e{e}", "case": label,
+                                 "stat": stat + (" after mean" if warm else ""), "time_s": t,
+                                 "rel_err": rel_err(val, want), "critical_point_s": t_cp,
+                                 "ratio_to_critical_point": t / t_cp})
+                    print(rows[-1], flush=True)
             if N <= 10**5:
                 pf = mpf_to_fraction(p)
                 val, t = timed(lambda N=N, pf=pf: direct_mean(N, pf, DPS))
@@ -94,7 +108,8 @@ def plot(rows: list[dict]) -> None:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(7.6, 4.4))
-    marks = {"mean": "o", "var": "s", "cdf": "^", "mean (direct sum)": "x"}
+    marks = {"mean": "o", "var": "s", "cdf": "^", "var after mean": "D",
+             "cdf after mean": "v", "mean (direct sum)": "x"}
     colours = {f"1e{e}": c for e, c in zip(NS, plt.cm.viridis([i / (len(NS) - 1)
                                                                for i in range(len(NS))]),
                                            strict=True)}

@@ -37,8 +37,12 @@ Arithmetic
   comparison with ``Phi(1)`` is certified by interval arithmetic (exact integers on a near tie).
   The mode never needs the normaliser.
 
-Costs (2-core machine, dps = 50): about 0.1-0.5 s per statistic at N = 10**100 (all moments
-share one pass), a few seconds at 10**1000; quantiles a few partial sums more.
+Costs (2-core machine, loaded, dps = 50; ``benchmarks/bench_large_n.py``): the first statistic
+of an (N, p, dps) costs one full pass, 0.45-1.0 s at N = 10**100 (about 1100-2500
+``critical_point`` calls: the issue's target of ~30 is not met) and 5.4-6.3 s at 10**1000
+(135-155 calls); frozen distributions of the same (N, p, dps) share that pass, so ``var``,
+``entropy`` and the normaliser after ``mean`` are free and a ``cdf`` then costs one partial
+sum (0.18-0.21 s at 10**100 and at 10**1000); quantiles a few partial sums more.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
