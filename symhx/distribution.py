@@ -312,6 +312,11 @@ class Distribution:
         """All maximisers of ``P(X = k)``, increasing (certified exact for every rational p)."""
         raise NotImplementedError
 
+    def table(self) -> list[tuple[int, Any]]:  # pragma: no cover - interface
+        """``[(k, P(X = k)) for k in 1..N]``, refused above the documented row limits
+        (``MAX_TABLE_N``, ``MAX_EXACT_TABLE_N``, ``FLOAT_N_LIMIT``)."""
+        raise NotImplementedError
+
     # ----------------------------------------------------------------- helpers
     def _round(self, x: Any) -> mpmath.mpf:
         """``x`` (an mpf of any context) rounded once to ``dps`` digits, as a global mpf."""
