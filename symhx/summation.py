@@ -20,11 +20,11 @@ endpoint.
 
 >>> from symhx._mpctx import mp
 >>> ctx = mp()
->>> with ctx.workdps(30):
+>>> with ctx.workdps(30):  # int_{-1}^{1} e**x dx with 8 nodes: the rule's own error
 ...     nodes = gauss_legendre(ctx, 8)
-...     s = ctx.fsum(w * ctx.exp(x) for x, w in nodes)
->>> ctx.nstr(s - (ctx.e - 1 / ctx.e), 3)  # int_{-1}^{1} e**x dx with 8 nodes
-'3.4e-16'
+...     err = ctx.fsum(w * ctx.exp(x) for x, w in nodes) - (ctx.e - 1 / ctx.e)
+>>> ctx.nstr(err, 3)
+'-2.26e-18'
 """
 
 from __future__ import annotations
