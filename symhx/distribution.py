@@ -9,21 +9,43 @@ user-facing functions that pick a space (``symhx.pmf``, ``symhx.mean``, ...) liv
 
 Arithmetic
 ----------
-* **Exact** for ``p`` an int, ``Fraction``, sympy ``Rational`` or decimal string: pmf, cdf, sf,
-  normaliser, mean and variance are ``Fraction`` (binary splitting; ``N <= EXACT_N_LIMIT``;
-  larger N raise ``ValueError`` -- pass a float or mpf ``p`` for the mpmath path).
-* **mpmath** otherwise (floats and mpf are converted exactly, then evaluated at ``dps`` digits):
-  log space throughout, so nothing overflows; only terms within ``dps`` + guard digits of the
-  largest one (of the whole support, or of the summed range for cdf/sf) are summed (``Phi`` is
-  decreasing, increasing, decreasing in k, so the significant terms form at most two runs,
-  found by bisection).  ``N = 10**6`` runs in a fraction of a second to seconds; the cost grows
-  with the width of the distribution (~sqrt(N)), so ``N`` up to ~10**9 is practical for the
-  moments and ``N`` of any size for ``pmf``/``logpmf`` near the modes.
-* **float64** for ``dps=None``: numpy arrays over the whole support (``N <= FLOAT_N_LIMIT``).
+* **Exact** for ``p`` an int, ``Fraction``, sympy ``Rational`` or decimal string, while binary
+  splitting is within its work limit (``N (bits of N + bits of p) <= EXACT_WORK_LIMIT``,
+  ``N <= EXACT_N_LIMIT``): pmf, cdf, sf, normaliser, mean and variance are ``Fraction``.
+  **Beyond it the exact rational p is evaluated on the mpmath path at ``dps`` digits** (results
+  are mpf; never the binary neighbour of p): ``mean(10**10, "2e-10", dps=20)`` is
+  ``4999999999.0`` to 20 digits of that p.  Quantiles of an exact p beyond
+  ``EXACT_QUANTILE_WORK_LIMIT`` use the mpmath-path rule below.
+* **mpmath** otherwise (floats and mpf are taken at their exact binary value; sympy irrationals
+  at ``dps + digits(N) + 30`` digits): :mod:`symhx.simple_sums` sums the terms *without walking
+  them*, for any ``N <= MP_SUM_N_LIMIT = 10**1000`` and any ``p > 0``: short runs of significant
+  terms term by term, long ones (width ~ sqrt(N) above the jump, ~1/|N p - 1| below it) by
+  Euler-Maclaurin with Gauss-Legendre panels, every error term bounded below ``10**-(dps+guard)``
+  of a proved lower bound of the sum (see that module for the bounds).  Everything is relative to
+  the largest term, so nothing overflows and ``N p - 1 = 1e-49`` costs no extra digits.  One
+  pass gives the normaliser, mean, variance and entropy; ``cdf``/``sf`` sum their own range
+  (relative accuracy in the tails, measured down to ``cdf ~ 10**-21718`` at N = 10**100;
+  a known limit: far deeper, ``cdf ~ 10**(-10**20)`` there at dps = 30, the value is off by a
+  factor of a few while ``logcdf``/``logsf`` keep their digits, because the guard digits do
+  not grow with ``|log cdf|``; ``logcdf``/``logsf`` near 0 are ``log1p`` of the other tail).
+  Quantiles: a Newton search on ``k`` (one partial sum per step); the integer is then
+  checked against the sums' error bound and the decision repeated with more digits when ``q`` is
+  within it (``q`` is resolved to the ``dps`` digits of the cdf: the smallest ``k`` with
+  ``cdf(k) >= q (1 - 10**(1 - dps))``); ``N <= MP_QUANTILE_N_LIMIT = 10**30``.
+* **float64** for ``dps=None``: numpy arrays over the whole support for ``N <= FLOAT_N_LIMIT``
+  (a memory limit of the table); above it the same engine at 17 digits, rounded to float64
+  (vectorised over ``k`` and ``p`` by the API; ``rvs`` still needs the table).
 * **mode / modes** are decided exactly for every rational ``p`` (floats and mpf included) and
   any N (``10**100`` too): integer arithmetic locates the local maximum of ``Phi`` and a single
   comparison with ``Phi(1)`` is certified by interval arithmetic (exact integers on a near tie).
   The mode never needs the normaliser.
+
+Costs (2-core machine, loaded, dps = 50; ``benchmarks/bench_large_n.py``): the first statistic
+of an (N, p, dps) costs one full pass, 0.45-1.0 s at N = 10**100 (about 1100-2500
+``critical_point`` calls: the issue's target of ~30 is not met) and 5.4-6.3 s at 10**1000
+(135-155 calls); frozen distributions of the same (N, p, dps) share that pass, so ``var``,
+``entropy`` and the normaliser after ``mean`` are free and a ``cdf`` then costs one partial
+sum (0.18-0.21 s at 10**100 and at 10**1000); quantiles a few partial sums more.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
@@ -38,22 +60,20 @@ Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them
 from __future__ import annotations
 
 import math
+import sys
+import threading
 import warnings
+from collections import OrderedDict
 from collections.abc import Callable
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any
 
 import mpmath
 import numpy as np
 
-from symhx._mpctx import export
-from symhx._mpctx import mp as thread_mp
-from symhx._numeric import (
-    G_mp,
-    digits_of,
-    mp_value,
-)
+from symhx._mpctx import export, is_mpf, local, mp
+from symhx._numeric import digits_of, mp_value
 from symhx.certify import (
     MAX_IRRATIONAL_BITS,
     G_arb,
@@ -65,6 +85,7 @@ from symhx.certify import (
     real_ball,
     to_arb,
 )
+from symhx.simple_sums import SimpleSums
 from symhx.validation import (
     DEFAULT_DPS,
     InputError,
@@ -86,6 +107,8 @@ __all__ = [
     "EXACT_QUANTILE_WORK_LIMIT",
     "EXACT_WORK_LIMIT",
     "FLOAT_N_LIMIT",
+    "MAX_EXACT_TABLE_N",
+    "MAX_TABLE_N",
     "MP_QUANTILE_N_LIMIT",
     "MP_SUM_N_LIMIT",
     "Distribution",
@@ -108,14 +131,25 @@ EXACT_WORK_LIMIT = 500_000
 #: the same measure for exact quantiles (``ppf``, ``isf``, ``median``, ``interval``: one exact
 #: partial sum per bisection step): ``median(10**4, "0.1")`` (1.8e5) takes 0.9 s.
 EXACT_QUANTILE_WORK_LIMIT = 200_000
-#: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs, ``entropy``):
-#: the working precision carries two guard digits per digit of N, so the cost grows like a power
-#: of ``log N`` (0.25 s at N = 10**100, 1.6 s at 10**300, minutes at 10**1000).  ``mode`` and
-#: ``modes`` are decided without these sums and take any N.
-MP_SUM_N_LIMIT = 10**100
-#: largest N for the quantiles of the mpmath path (``ppf``, ``isf``, ``median``, ``interval``):
-#: a bisection over ``[1, N]`` with one tail sum per step (0.2 s at N = 10**6, 14 s at 10**8).
-MP_QUANTILE_N_LIMIT = 10**6
+#: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs,
+#: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (exact integers of
+#: ``log2 N`` bits, panels of the hump), about 0.1-0.5 s per statistic at N = 10**100 and a few
+#: seconds at 10**1000, whatever p; ``mode`` and ``modes`` take any N.
+MP_SUM_N_LIMIT = 10**1000
+#: largest N for the quantiles of the mpmath path (``ppf``, ``isf``, ``median``, ``interval``): a
+#: Newton search on k with one partial sum per step, then the integer decision checked against
+#: the sums' error bound (repeated with more digits when it is within it).  Measured at dps = 50:
+#: a median at N = 10**20 takes 1.2 s, at 10**100 about 40 s (the partial sums near the hump at
+#: 10**100 dominate), so the documented cap is 10**30.
+MP_QUANTILE_N_LIMIT = 10**30
+
+#: ``table()`` (one row ``(k, P(X = k))`` per k, also ``symhx distribution --table``) on the
+#: mpmath path is refused above this N: each row is a pmf at dps digits (10**4 rows at dps = 50
+#: take ~4 s); the float64 table (``dps=None``) follows ``FLOAT_N_LIMIT``.
+MAX_TABLE_N = 10_000
+#: the same for an exact (Fraction) table: row k has ~k log2(N/p) bits, so the table grows like
+#: N**2 (2000 rows take ~6 s, 4000 rows ~50 s).
+MAX_EXACT_TABLE_N = 2_000
 
 _LN10 = math.log(10)
 _LN2 = math.log(2)
@@ -195,11 +229,18 @@ class Distribution:
     exact: bool
     _guard: int
 
-    def _setup(self, N: Any, p: Any, dps: Any) -> None:
+    def _setup(self, N: Any, p: Any, dps: Any, exact_fallback: bool = False) -> None:
         self.N = check_N(N, minimum=1)
         self.fr, self.p = check_p(p)
         self.dps = check_dps(dps, allow_none=True)
         self.exact = self.dps is not None and is_exact_type(p)
+        if self.exact and exact_fallback:
+            # exact results where binary splitting is within its work limit; beyond it the
+            # mpmath path evaluates at the exact rational p (never its binary neighbour)
+            assert self.fr is not None
+            work = self.N * (self.N.bit_length() + self.fr.numerator.bit_length()
+                             + self.fr.denominator.bit_length())
+            self.exact = work <= EXACT_WORK_LIMIT and self.N <= EXACT_N_LIMIT
         if self.exact and self.N > EXACT_N_LIMIT:
             raise InputError(
                 f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT} "
@@ -214,8 +255,23 @@ class Distribution:
             raise InputError(
                 f"{what} on the mpmath path is limited to N <= {_n_show(limit)} "
                 f"(symhx.distribution.{name}, a work limit); got N={_n_show(self.N)}. "
-                f"Use dps=None (float64, N <= {FLOAT_N_LIMIT}), mode()/modes() (any N) or "
-                f"symhx.asymptotic_critical_point for huge N")
+                f"Use mode()/modes() (any N) or symhx.asymptotic_critical_point for huge N")
+
+    def _check_table(self) -> None:
+        """Refuse (before any work) a ``table()`` beyond its documented row limit."""
+        if self.dps is None:
+            limit, name = FLOAT_N_LIMIT, "FLOAT_N_LIMIT"
+        elif self.exact:
+            limit, name = MAX_EXACT_TABLE_N, "MAX_EXACT_TABLE_N"
+        else:
+            limit, name = MAX_TABLE_N, "MAX_TABLE_N"
+        if self.N > limit:
+            raise InputError(
+                f"table() lists one row per k = 1..N: limited to N <= {limit} "
+                f"(symhx.distribution.{name}, a work limit"
+                f"{' of exact rows' if self.exact else ''}); got N={_n_show(self.N)}. Use "
+                f"pmf(k) on the k you need (an array of k works)"
+                f"{', or a float p' if self.exact else ''}")
 
     def _check_exact_work(self, what: str, limit: int, name: str) -> None:
         """Refuse (before any work) exact sums whose integers would be too large."""
@@ -237,7 +293,7 @@ class Distribution:
 
     @property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:  # pragma: no cover
-        """``(normaliser or its log, mean, variance)`` at ``dps`` + guard digits."""
+        """``(log normaliser, mean, variance)`` at ``dps`` + guard digits (every space)."""
         raise NotImplementedError
 
     @property
@@ -272,20 +328,32 @@ class Distribution:
         """All maximisers of ``P(X = k)``, increasing (certified exact for every rational p)."""
         raise NotImplementedError
 
+    def table(self) -> list[tuple[int, Any]]:  # pragma: no cover - interface
+        """``[(k, P(X = k)) for k in 1..N]``, refused above the documented row limits
+        (``MAX_TABLE_N``, ``MAX_EXACT_TABLE_N``, ``FLOAT_N_LIMIT``)."""
+        raise NotImplementedError
+
     # ----------------------------------------------------------------- helpers
     def _round(self, x: Any) -> mpmath.mpf:
-        with mpmath.workdps(self.dps or 15):
-            return +x
+        """``x`` (an mpf of any context) rounded once to ``dps`` digits, as a global mpf."""
+        ctx = mp()
+        with ctx.workdps(self.dps or 15):
+            return export(+local(x))
+
+    def _round_abs(self, x: Any) -> mpmath.mpf:
+        """``x`` rounded once to ``dps`` digits after the point (absolute error below
+        ``10**-dps``; for the entropy, of size up to ``log N``), as a global mpf."""
+        ctx = mp()
+        xl = local(x)
+        digits = max(0, int(ctx.mag(xl) * 0.30103) + 1) if xl else 0
+        with ctx.workdps((self.dps or 15) + digits):
+            return export(+xl)
 
     @property
     def _wdps(self) -> int:
         """The working precision of the mpmath path: ``dps`` + guard digits."""
         assert self.dps is not None, "the mpmath path needs an int dps"
         return self.dps + self._guard
-
-    def _wp(self) -> Any:
-        """The working-precision context: ``dps`` + guard digits."""
-        return mpmath.workdps(self._wdps)
 
     def _log_fraction(self, x: Fraction) -> mpmath.mpf:
         """``log x`` of an exact positive fraction to ``dps`` significant digits: ``log1p`` of
@@ -295,13 +363,14 @@ class Distribution:
             return mpmath.ninf
         dps = self.dps or 15
         d = x - 1
+        ctx = mp()
         if abs(d) < Fraction(1, 2):
-            with mpmath.workdps(dps + 10):
-                v = mpmath.log1p(mpmath.mpf(d.numerator) / d.denominator)
+            with ctx.workdps(dps + 10):
+                v = ctx.log1p(ctx.mpf(d.numerator) / d.denominator)
         else:  # |log x| > 0.29: log(num) ~ bits * 0.69 cancels about digits(bits) digits
             bits = max(x.numerator.bit_length(), x.denominator.bit_length())
-            with mpmath.workdps(dps + 10 + digits_of(bits)):
-                v = mpmath.log(x.numerator) - mpmath.log(x.denominator)
+            with ctx.workdps(dps + 10 + digits_of(bits)):
+                v = ctx.log(x.numerator) - ctx.log(x.denominator)
         return self._round(v)
 
     def _map_k(self, k: Any, one: Callable[[int], Any], table: Callable[[np.ndarray], Any]
@@ -338,10 +407,11 @@ class Distribution:
     def _ftab(self) -> dict[str, np.ndarray]:
         if self.N > FLOAT_N_LIMIT:
             raise InputError(
-                f"the float64 path (dps=None) and rvs() tabulate the whole support; "
-                f"N={_n_show(self.N)} is above symhx.distribution.FLOAT_N_LIMIT="
-                f"{FLOAT_N_LIMIT}. Use an int dps for the mpmath path, or raise FLOAT_N_LIMIT if "
-                f"you have the memory.")
+                f"the float64 table of the whole support (rvs(), and dps=None where the space "
+                f"has no summation engine) is limited to N <= "
+                f"symhx.distribution.FLOAT_N_LIMIT={FLOAT_N_LIMIT}; got N={_n_show(self.N)}. "
+                f"Use an int dps for the mpmath path, or raise FLOAT_N_LIMIT if you have the "
+                f"memory.")
         from scipy.special import logsumexp
 
         lw = self._float_logw()
@@ -388,8 +458,9 @@ class Distribution:
     # ----------------------------------------------------------------- cdf and sf
     def _mp_sum(self, lo: int, hi: int) -> mpmath.mpf:
         """``P(lo <= X <= hi)`` at dps + guard digits (relative accuracy, also in the tails)."""
-        with self._wp():
-            return mpmath.fsum(w for _, w in self._mp_terms(lo, hi))
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            return export(ctx.fsum(w for _, w in self._mp_terms(lo, hi)))
 
     def _cdf1(self, k: int) -> Any:
         if k < 1:
@@ -417,12 +488,13 @@ class Distribution:
         if (upper and k < 1) or (not upper and k >= self.N):
             return mpmath.mpf(0)
         s = self._mp_sum(k + 1, self.N) if upper else self._mp_sum(1, k)
-        with self._wp():
+        ctx = mp()
+        with ctx.workdps(self._wdps):
             if s > 0.5:  # log s is small: log1p of the other tail, summed directly, keeps
                 # its relative accuracy (log of s itself would only be absolutely accurate)
                 rest = self._mp_sum(1, k) if upper else self._mp_sum(k + 1, self.N)
-                return self._round(mpmath.log1p(-rest))
-            return self._round(mpmath.log(s))
+                return self._round(ctx.log1p(-local(rest)))
+            return self._round(ctx.log(local(s)))
 
     def cdf(self, k: Any) -> Any:
         """``P(X <= k)``; exactly ``1 - sf(k)`` for rational ``p``.
@@ -558,8 +630,9 @@ class Distribution:
         v = self.var()
         if self.dps is None:
             return math.sqrt(v)
-        with mpmath.workdps(self.dps + 10):
-            s = mpmath.sqrt(mpmath.mpf(v.numerator) / v.denominator if self.exact else v)
+        ctx = mp()
+        with ctx.workdps(self.dps + 10):
+            s = ctx.sqrt(ctx.mpf(v.numerator) / v.denominator if self.exact else local(v))
         return self._round(s)
 
     def variance(self) -> Any:
@@ -575,10 +648,11 @@ class Distribution:
             lp = self._ftab["logpmf"]
             pm = self._ftab["pmf"]
             return float(-np.sum(np.where(pm > 0, pm * lp, 0.0)))
-        terms = self._mp_terms(1, self.N)
-        with self._wp():
-            h = -mpmath.fsum(w * mpmath.log(w) for _, w in terms if w > 0)
-        return self._round(h)
+        terms = local(self._mp_terms(1, self.N))
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            h = -ctx.fsum(w * ctx.log(w) for _, w in terms if w > 0)
+        return self._round_abs(h)
 
     def mode(self) -> int:
         """The smallest maximiser of ``P(X = k)``."""
@@ -648,7 +722,7 @@ class SimpleDistribution(Distribution):
     space = "simple"
 
     def __init__(self, N: int, p: Any, *, dps: int | None = DEFAULT_DPS) -> None:
-        self._setup(N, p, dps)
+        self._setup(N, p, dps, exact_fallback=True)
 
     # ----------------------------------------------------------------- exact path
     def _split(self, weight: Callable[[int], tuple[int, int]], stop: int | None = None
@@ -682,144 +756,94 @@ class SimpleDistribution(Distribution):
             - np.log(ks)
 
     # ----------------------------------------------------------------- mpmath path
-    def _log_phi(self, k: int) -> mpmath.mpf:
-        """log Phi(k) at the working precision (caller sets it)."""
-        # log Phi(k) = k log p + log N + lgamma(N) - lgamma(N-k+1) - log k, written without
-        # the O(N log N) lgamma terms: lgamma(N) - lgamma(N-k+1) = G(N, k-1) + (k-1) log N
-        return (k * self._logp + k * self._logN + _at_global_prec(G_mp, self.N, k - 1)
-                - mpmath.log(k))
-
     @cached_property
-    def _ctx(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-        """``(p, log p, log N)`` as mpf at ``dps`` + guard digits."""
-        with self._wp():
-            pm = _mp_of(self.p, self.fr)
-            return pm, mpmath.log(pm), mpmath.log(self.N)
+    def _fr_work(self) -> Fraction:
+        """``p`` as an exact rational for the summation engine: ``fr`` itself, or for a sympy
+        irrational its value at ``dps + digits(N) + 30`` digits (``log Phi(k)`` has condition
+        number ``k <= N`` in ``p``)."""
+        if self.fr is not None:
+            return self.fr
+        ctx = mp()
+        n = (self.dps or 17) + digits_of(self.N) + 30
+        with ctx.workdps(n):
+            pm = mp_value(self.p, None)  # a rigorous Arb enclosure's midpoint (no sympy evalf)
+        return mpf_to_fraction(export(pm))
 
-    @property
-    def _pm(self) -> mpmath.mpf:
-        return self._ctx[0]
-
-    @property
-    def _logp(self) -> mpmath.mpf:
-        return self._ctx[1]
-
-    @property
-    def _logN(self) -> mpmath.mpf:
-        return self._ctx[2]
-
-    def _runs_above(self, cut: mpmath.mpf, lo: int, hi: int, shift: mpmath.mpf
-                    ) -> list[tuple[int, list[mpmath.mpf]]]:
-        """``[(k0, [Phi(k) e**-shift for k = k0, k0+1, ...])]`` over the k in ``[lo, hi]``
-        with ``log Phi(k) >= cut`` (at most two runs); working precision set by the caller."""
-        N, pm = self.N, self._pm
-        runs = []
-        for a, b in _significant_ranges(N, self.fr, pm, self._log_phi, cut):
-            a, b = max(a, lo), min(b, hi)
-            if a > b:
-                continue
-            w = mpmath.exp(self._log_phi(a) - shift)
-            ws = [w]
-            for k in range(a, b):
-                w = w * pm * (N - k) * k / (k + 1)
-                ws.append(w)
-            runs.append((a, ws))
-        return runs
-
-    def _below(self) -> mpmath.mpf:
-        return self._wdps * _LN10 + 2 * mpmath.log(self.N) + 5
-
-    def _compute_runs(self, below: mpmath.mpf) -> tuple[mpmath.mpf, list[tuple[int, list]]]:
-        """(log of the largest term, [(k0, [Phi(k)/max for k = k0, k0+1, ...]), ...]) keeping
-        every term within ``exp(-below)`` of the largest (at most two runs)."""
-        with self._wp():
-            top = _candidates(self.N, self.fr, self._pm)
-            lmax = max(self._log_phi(k) for k in top)
-            return lmax, self._runs_above(lmax - below, 1, self.N, lmax)
+    def _engine(self, dps: int | None = None) -> SimpleSums:
+        """The summation engine of :mod:`symhx.simple_sums` at ``dps`` (default: ``self.dps``)."""
+        self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
+        d = self.dps if dps is None else dps
+        assert d is not None
+        return _shared_engine(self.N, self._fr_work, d)
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        """``(log Gamma, mean, variance)`` (global mpf with the engine's guard digits)."""
         self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
-        with self._wp():
-            below = self._below()
-            lmax, runs = self._compute_runs(below)
-            s0 = mpmath.fsum(w for _, ws in runs for w in ws)
-            self._pmf_runs = [(k0, [w / s0 for w in ws]) for k0, ws in runs]
-            s1 = mpmath.fsum(w * (k0 + i) for k0, ws in runs for i, w in enumerate(ws))
-            mu = s1 / s0
+        assert self.dps is not None
+        moments, self._mp_extra = _shared_moments(self.N, self._fr_work, self.dps)
+        return moments
 
-            def central(runs: list[tuple[int, list]]) -> mpmath.mpf:
-                return mpmath.fsum(w * (k0 + i - mu) ** 2 for k0, ws in runs
-                                   for i, w in enumerate(ws))
+    def _mp_sum(self, lo: int, hi: int) -> Any:
+        """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too)."""
+        self._mp_moments  # noqa: B018 - the normaliser
+        eng = self._engine()
+        ctx = mp()
+        with ctx.workdps(eng.W):
+            s = eng.sums(max(lo, 1), min(hi, self.N), (0,))[0]
+            return export(s / local(self._mp_extra[0]))
 
-            # dropped terms contribute < N**3 exp(-below) to the variance numerator; when the
-            # variance is tiny (p -> 0: all mass at k = 1) widen the window until that is
-            # below the requested relative accuracy of the variance itself
-            v = central(runs)
-            for _ in range(4):
-                if v > 0:
-                    lv = mpmath.log(v)
-                else:  # one term holds all the kept mass: the variance is ~ its neighbours
-                    edge = [k for k0, ws in runs for k in (k0 - 1, k0 + len(ws))
-                            if 1 <= k <= self.N]
-                    if not edge:
-                        break
-                    lv = max(self._log_phi(k) for k in edge) - lmax
-                need = self._wdps * _LN10 - lv + 3 * mpmath.log(self.N) + 5
-                if need <= below:
-                    break
-                below = need
-                _, runs = self._compute_runs(below)
-                v = central(runs)
-            return lmax + mpmath.log(s0), mu, v / s0
-
-    def _mp_terms(self, lo: int, hi: int) -> list[tuple[int, mpmath.mpf]]:
-        log_gamma = self._mp_moments[0]
-        with self._wp():
-            hump = _hump(self.N, self.fr, self._pm)
-            cand = {lo, hi} | ({hump[1]} if hump and lo <= hump[1] <= hi else set())
-            lmax = max(self._log_phi(k) for k in cand)
-            runs = self._runs_above(lmax - self._below(), lo, hi, log_gamma)
-        return [(k0 + i, w) for k0, ws in runs for i, w in enumerate(ws)]
-
-    def _logpmf_raw(self, k: int) -> mpmath.mpf:
-        """log P(X = k) at the working precision with guard digits (not rounded: exp() of a
-        log rounded to dps digits would lose log10|log P| digits)."""
-        log_gamma = self._mp_moments[0]
-        with self._wp():
-            return self._log_phi(k) - log_gamma
+    def _logpmf_raw(self, k: int) -> Any:
+        """log P(X = k) with the engine's guard digits (not rounded)."""
+        self._mp_moments  # noqa: B018
+        eng = self._engine()
+        ctx = mp()
+        with ctx.workdps(eng.W):
+            return export(eng.D(k) - local(self._mp_extra[1]))
 
     # ----------------------------------------------------------------- per-k values
     def _pmf1(self, k: int) -> Any:
         if self.exact:
             return self._phi_exact(k) / self._exact_moments[0]
-        self._mp_moments  # noqa: B018 - fills the cached, normalised significant terms
-        for k0, ws in self._pmf_runs:
-            if k0 <= k < k0 + len(ws):
-                return self._round(ws[k - k0])
-        with self._wp():
-            return self._round(mpmath.exp(self._logpmf_raw(k)))
+        if self.dps is None:
+            return float(self._float_engine._pmf1(k))
+        ctx = mp()
+        with ctx.workdps(self._engine().W):
+            return self._round(ctx.exp(local(self._logpmf_raw(k))))
 
-    def _logpmf1(self, k: int) -> mpmath.mpf:
+    def _logpmf1(self, k: int) -> Any:
         if self.exact:
             return self._log_fraction(self._pmf1(k))
         return self._round(self._logpmf_raw(k))
+
+    def entropy(self) -> Any:
+        """Shannon entropy ``-sum_k P(X=k) log P(X=k)`` (nats): mpf with absolute error below
+        ``10**-dps`` (float for ``dps=None``), from the same one-pass sums as the moments."""
+        if self.dps is None:
+            if self.N > FLOAT_N_LIMIT:
+                return float(self._float_engine.entropy())
+            return super().entropy()
+        self._mp_moments  # noqa: B018
+        return self._round_abs(self._mp_extra[2])
 
     @property
     def normaliser(self) -> Any:
         """``Gamma_{N,p}`` (eq. 8): Fraction when exact, else mpf (float for ``dps=None``;
         may overflow there: see :attr:`log_normaliser`)."""
         if self.dps is None:
-            return float(np.exp(self._ftab["lognorm"]))
+            return float(np.exp(self.log_normaliser))
         if self.exact:
             return self._exact_moments[0]
-        with self._wp():
-            return self._round(mpmath.exp(self._mp_moments[0]))
+        ctx = mp()
+        with ctx.workdps(self._engine().W):
+            return self._round(ctx.exp(local(self._mp_moments[0])))
 
     @property
     def log_normaliser(self) -> Any:
         """``log Gamma_{N,p}``."""
         if self.dps is None:
+            if self.N > FLOAT_N_LIMIT:
+                return float(self._float_engine.log_normaliser)
             return float(self._ftab["lognorm"])
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
@@ -834,24 +858,215 @@ class SimpleDistribution(Distribution):
         return simple_modes(self.N, self.fr, self.p)
 
     def table(self) -> list[tuple[int, Any]]:
-        """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N).
-
-        The mpmath path runs the term ratio ``Phi(k+1)/Phi(k) = p (N-k) k/(k+1)`` across the
-        whole support from ``P(X = 1)``, with guard digits for the ``N`` roundings.
-        """
+        """``[(k, P(X = k)) for k in 1..N]`` (for plots and moderate N: refused above
+        ``MAX_TABLE_N``, ``MAX_EXACT_TABLE_N`` for exact rows, ``FLOAT_N_LIMIT`` for
+        ``dps=None``)."""
+        self._check_table()
         if self.dps is None:
             return [(k, float(v)) for k, v in enumerate(self._ftab["pmf"], 1)]
-        if self.exact:
-            return [(k, self._pmf1(k)) for k in range(1, self.N + 1)]
-        N = self.N
-        with self._wp():
-            w = mpmath.exp(self._logpmf_raw(1))
-            pm = self._pm
-            out = []
-            for k in range(1, N + 1):
-                out.append((k, self._round(w)))
-                w = w * pm * (N - k) * k / (k + 1)
+        return [(k, self._pmf1(k)) for k in range(1, self.N + 1)]
+
+    # ----------------------------------------------------------------- float64 beyond the table
+    @cached_property
+    def _float_engine(self) -> SimpleDistribution:
+        """For ``dps=None`` and ``N > FLOAT_N_LIMIT``: the summation engine at 17 digits, its
+        results rounded to float64 (no table of the support); refused for an N beyond the
+        float64 range (the mean would be inf)."""
+        if self.N > sys.float_info.max:
+            raise InputError(
+                f"the float64 path (dps=None) needs N to fit a float64 (N <= 1.8e308); got "
+                f"N={_n_show(self.N)}. Use an int dps for the mpmath path (N <= "
+                f"{_n_show(MP_SUM_N_LIMIT)}, symhx.distribution.MP_SUM_N_LIMIT)")
+        return SimpleDistribution(self.N, self.p, dps=17)
+
+    def _ftake(self, name: str, kk: np.ndarray, below: float, above: float) -> np.ndarray:
+        if self.N <= FLOAT_N_LIMIT:
+            return super()._ftake(name, kk, below, above)
+        eng = self._float_engine
+        out = np.empty(kk.shape, dtype=float)
+        edge = self.N if name in ("pmf", "logpmf") else self.N - 1
+        for idx, v in np.ndenumerate(kk):
+            k = int(v)
+            if k < 1:
+                out[idx] = below
+            elif k > edge:
+                out[idx] = above
+            else:
+                out[idx] = float(getattr(eng, name)(k))
         return out
+
+    def mean(self) -> Any:
+        """``E[X]``: a Fraction when exact, an mpf to ``dps`` digits, or a float."""
+        if self.dps is None and self.N > FLOAT_N_LIMIT:
+            return float(self._float_engine.mean())
+        return super().mean()
+
+    def var(self) -> Any:
+        """``Var[X]`` (one pass of central sums on the mpmath path: no cancellation)."""
+        if self.dps is None and self.N > FLOAT_N_LIMIT:
+            return float(self._float_engine.var())
+        return super().var()
+
+    # ----------------------------------------------------------------- quantiles (mpmath)
+    def _ppf1(self, q: Fraction) -> int:
+        if self.dps is None and self.N > FLOAT_N_LIMIT and 0 < q < 1:
+            return int(self._float_engine._ppf1(q))
+        if self.dps is None or q in (0, 1) or (self.exact and self._exact_quantiles_ok()):
+            return super()._ppf1(q)
+        return self._quantile_mp(q * (1 - Fraction(10) ** (1 - self.dps)), upper=False)
+
+    def _isf1(self, q: Fraction) -> int:
+        if self.dps is None and self.N > FLOAT_N_LIMIT and 0 < q < 1:
+            return int(self._float_engine._isf1(q))
+        if self.dps is None or q in (0, 1) or (self.exact and self._exact_quantiles_ok()):
+            return super()._isf1(q)
+        return self._quantile_mp(q * (1 + Fraction(10) ** (1 - self.dps)), upper=True)
+
+    def _exact_quantiles_ok(self) -> bool:
+        assert self.fr is not None
+        work = self.N * (self.N.bit_length() + self.fr.numerator.bit_length()
+                         + self.fr.denominator.bit_length())
+        return work <= EXACT_QUANTILE_WORK_LIMIT
+
+    def _quantile_mp(self, qq: Fraction, upper: bool) -> int:
+        """The smallest ``k`` with ``cdf(k) >= qq`` (``upper``: ``sf(k) <= qq``), decided on the
+        engine's sums: a Newton iteration on ``k`` (the cdf's slope is the pmf) inside a bracket
+        that only shrinks, then the decision ``C(k-1) < qq <= C(k)`` checked against the sums'
+        error bound; a margin inside the bound repeats the search with 20 more digits (up to
+        ``dps + digits(N) + 40``), so rounding never decides the integer."""
+        self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
+        dps = self.dps or 17
+        top = dps + digits_of(self.N) + 40
+        k, certain = self._quantile_at(qq, upper, dps)
+        while not certain and dps < top:
+            dps = min(top, dps + 20 + dps // 2)
+            k, certain = self._quantile_refine(qq, upper, dps, k)
+        return k
+
+    def _quantile_refine(self, qq: Fraction, upper: bool, dps: int, k: int
+                         ) -> tuple[int, bool]:
+        """The decision near ``k`` at ``dps`` digits: step ``k`` by one until ``C(k-1)`` and
+        ``C(k)`` straddle ``qq`` (the answer moves by a few at most), then report whether both
+        are outside the error bound."""
+        eng = self._engine(dps)
+        ctx = mp()
+        N = self.N
+        with ctx.workdps(eng.W):
+            s0 = eng.sums(1, N, (0,))[0]
+            target = ctx.mpf(qq.numerator) / qq.denominator * s0
+            tol = s0 * ctx.mpf(10) ** (-(eng.W - 4))
+
+            def C(j: int) -> Any:
+                if upper:
+                    return eng.sums(j + 1, N, (0,))[0] if j < N else ctx.mpf(0)
+                return eng.sums(1, j, (0,))[0] if j >= 1 else ctx.mpf(0)
+
+            def ok(val: Any) -> bool:
+                return bool(val <= target) if upper else bool(val >= target)
+
+            for _ in range(64):
+                here, below = C(k), C(k - 1)
+                if ok(here) and not ok(below):
+                    break
+                k = k + 1 if not ok(here) else k - 1
+            return k, abs(here - target) > tol and abs(below - target) > tol
+
+    def _quantile_at(self, qq: Fraction, upper: bool, dps: int) -> tuple[int, bool]:
+        eng = self._engine(dps)
+        ctx = mp()
+        N = self.N
+        with ctx.workdps(eng.W):
+            s0 = eng.sums(1, N, (0,))[0]
+            target = ctx.mpf(qq.numerator) / qq.denominator * s0
+            tol = s0 * ctx.mpf(10) ** (-(eng.W - 4))
+
+            def C(k: int) -> Any:  # mass counted toward the decision at k
+                if upper:
+                    return eng.sums(k + 1, N, (0,))[0] if k < N else ctx.mpf(0)
+                return eng.sums(1, k, (0,))[0] if k >= 1 else ctx.mpf(0)
+
+            def ok(val: Any) -> bool:  # k satisfies the quantile condition
+                return val <= target if upper else val >= target
+
+            lo, hi = 0, N  # not ok(lo) ... ok(hi)
+            k = self._quantile_guess(qq, upper)
+            for _ in range(300):
+                if hi - lo <= 1:
+                    break
+                k = min(max(k, lo + 1), hi - 1)
+                val = C(k)
+                if ok(val):
+                    hi = k
+                else:
+                    lo = k
+                if hi - lo <= 1:
+                    break
+                fk = ctx.exp(eng.D(k + 1 if upper else k))
+                step = (target - val) / fk
+                if upper:
+                    step = -step
+                nk = k + int(ctx.nint(step)) if abs(step) < hi - lo else None
+                if nk == k:  # within one of the answer: test the neighbour on the other side
+                    nk = k - 1 if k == hi else k + 1
+                if nk is None or not lo < nk < hi:
+                    nk = math.isqrt(max(lo, 1) * hi) if hi > 4 * max(lo, 1) else (lo + hi) // 2
+                k = nk
+            k = hi
+            near = [abs(C(j) - target) for j in (k - 1, k) if 0 <= j <= N]
+            return k, all(v > tol for v in near)
+
+    def _quantile_guess(self, qq: Fraction, upper: bool) -> int:
+        """A start for the Newton iteration: the normal approximation around the mean."""
+        from statistics import NormalDist
+
+        ctx = mp()
+        mu, var = self._mp_moments[1], self._mp_moments[2]
+        q = min(max(float(qq), 1e-300), 1 - 1e-16)
+        z = NormalDist().inv_cdf(q)
+        if upper:
+            z = -z
+        with ctx.workdps(30):
+            g = local(mu) + z * ctx.sqrt(max(local(var), 0))
+            return int(min(max(ctx.nint(g), 1), self.N))
+
+
+#: frozen distributions of the same (N, p, dps) share the summation engine and its one full
+#: pass (``symhx.mean(N, p)`` then ``symhx.var(N, p)`` or ``symhx.cdf(N, p, k)`` sum the
+#: hump once).  The one-pass results are exported (global mpf, immutable) and shared by every
+#: thread; an engine holds mpf of the context of the thread that built it, so engines are
+#: cached per thread.
+_SHARED_CACHE_SIZE = 32
+_ENGINES = threading.local()
+
+
+def _shared_engine(N: int, fr: Fraction, dps: int) -> SimpleSums:
+    """The summation engine of :mod:`symhx.simple_sums` for ``(N, p, dps)`` (this thread's)."""
+    cache = _ENGINES.__dict__.setdefault("lru", OrderedDict())
+    key = (N, fr, dps)
+    eng = cache.get(key)
+    if eng is None:
+        hump = _hump(N, fr, None)
+        eng = cache[key] = SimpleSums(N, fr, dps, None if hump is None else hump[1])
+        while len(cache) > _SHARED_CACHE_SIZE // 4:
+            cache.popitem(last=False)
+    else:
+        cache.move_to_end(key)
+    return eng
+
+
+@lru_cache(maxsize=_SHARED_CACHE_SIZE)
+def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any],
+                                                            tuple[Any, Any, Any]]:
+    """One pass over the support: ``(log Gamma, mean, variance)`` and ``(Gamma relative to
+    the reference term, its log, entropy)``, exported with the engine's guard digits."""
+    eng = _shared_engine(N, fr, dps)
+    ctx = mp()
+    with ctx.workdps(eng.W):
+        s0, s1, s2, s3 = eng.sums(1, N, (0, 1, 2, 3))
+        r1 = s1 / s0
+        log_s0 = ctx.log(s0)
+        extra = export((s0, log_s0, log_s0 - s3 / s0))
+        return export((eng.log_phi_ref() + log_s0, eng.c + r1, s2 / s0 - r1 * r1)), extra
 
 
 def _exact_value(x: Any) -> Fraction:
@@ -860,49 +1075,23 @@ def _exact_value(x: Any) -> Fraction:
     Internal values (a cdf far in its tail can be ~10**-2000000) are converted directly from the
     mantissa and exponent, without the input cap of :func:`symhx.validation.to_rational`.
     """
-    if isinstance(x, mpmath.mpf):
-        return mpf_to_fraction(x)
+    if is_mpf(x):
+        return mpf_to_fraction(export(x))
     exact = to_rational(x, "value")
     assert exact is not None
     return exact
-
-
-def _mp_of(p: Any, fr: Fraction | None) -> mpmath.mpf:
-    """``p`` at the working precision; a rational with huge numerator/denominator (a tiny
-    binary float such as ``mpf('1e-1000000')`` has a 3.3-million-bit denominator) is cut to
-    ``prec + 64`` bits of each part first (relative error ``2**-(prec+60)``): converting the
-    huge ints to mpf directly takes seconds."""
-    if fr is None:
-        return _at_global_prec(mp_value, p, None)
-    keep = mpmath.mp.prec + 64
-    a, b = fr.numerator, fr.denominator
-    sa, sb = max(0, a.bit_length() - keep), max(0, b.bit_length() - keep)
-    return mpmath.ldexp(mpmath.mpf(a >> sa) / (b >> sb), sa - sb)
 
 
 def _logp_float(p: Any, fr: Fraction | None) -> float:
     """float64 ``log p`` for any size of numerator and denominator."""
     if fr is not None:
         return math.log(fr.numerator) - math.log(fr.denominator)
-    with mpmath.workdps(30):
-        return float(mpmath.log(_at_global_prec(mp_value, p, None)))
-
-
-def _at_global_prec(fn: Callable[..., Any], *args: Any) -> Any:
-    """``fn(*args)`` of a thread-context helper (symhx._numeric) run at the precision this
-    module's mpmath path has set with ``mpmath.workdps``, returned as a global ``mpf``."""
-    ctx = thread_mp()
-    with ctx.workprec(mpmath.mp.prec):
-        return export(fn(*args))
+    ctx = mp()
+    with ctx.workdps(30):
+        return float(ctx.log(mp_value(p, None)))
 
 
 # --------------------------------------------------------------------------- structure of Phi
-def _candidates(N: int, fr: Fraction | None, pm: mpmath.mpf) -> list[int]:
-    """Indices that may hold the global maximum of Phi: 1 and the hump's local maximum."""
-    hump = _hump(N, fr, pm)
-    return [1] if hump is None else sorted({1, hump[0], hump[1]})
-
-
 def _hump(N: int, fr: Fraction | None, pm: Any) -> tuple[int, int, bool] | None:
     """``(j, j + 1, tie)`` with ``j = floor(k_+)`` when the increasing stretch of Phi contains an
     integer (``f(j) >= 0``, so ``Phi(j+1) >= Phi(j)``; ``tie`` when ``f(j) == 0``); else None.
@@ -1055,86 +1244,17 @@ def simple_modes(N: int, fr: Fraction | None, p: Any) -> tuple[int, ...]:
     return (1,)
 
 
-def _significant_ranges(N: int, fr: Fraction | None, pm: mpmath.mpf,
-                        log_phi: Callable[[int], mpmath.mpf], cut: mpmath.mpf
-                        ) -> list[tuple[int, int]]:
-    """Maximal runs ``[lo, hi]`` of k with ``log Phi(k) >= cut`` (Phi is decreasing on
-    ``[1, m]``, increasing on ``[m, j+1]``, decreasing after: at most two runs)."""
-    hump = _hump(N, fr, pm)
-
-    def last_above(lo: int, hi: int) -> int:
-        # Phi decreasing on [lo, hi], log_phi(lo) >= cut: largest k with log_phi(k) >= cut
-        while lo < hi:
-            mid = (lo + hi + 1) // 2
-            if log_phi(mid) >= cut:
-                lo = mid
-            else:
-                hi = mid - 1
-        return lo
-
-    def first_above(lo: int, hi: int) -> int:
-        # Phi increasing on [lo, hi], log_phi(hi) >= cut: smallest k with log_phi(k) >= cut
-        while lo < hi:
-            mid = (lo + hi) // 2
-            if log_phi(mid) >= cut:
-                hi = mid
-            else:
-                lo = mid + 1
-        return lo
-
-    if hump is None:
-        return [(1, last_above(1, N))]
-    j, top, _ = hump
-    # local minimum m: last k <= j with f(k-1) < 0 ... find by bisection on f's sign:
-    # Phi(k+1) < Phi(k) iff f(k) < 0; f < 0 on [1, r_-), f >= 0 on [r_-, j]
-    a, b = (fr.numerator, fr.denominator) if fr is not None else _frac(pm)
-    A = N * a - b
-
-    def fb(k: int) -> int:
-        return -a * k * k + A * k - b
-
-    lo, hi = 1, j
-    while lo < hi:  # smallest k in [1, j] with f(k) >= 0
-        mid = (lo + hi) // 2
-        if fb(mid) >= 0:
-            hi = mid
-        else:
-            lo = mid + 1
-    m = lo  # Phi decreasing on [1, m], increasing on [m, top], decreasing on [top, N]
-    runs: list[tuple[int, int]] = []
-    left_end = last_above(1, m) if log_phi(1) >= cut else 0
-    if log_phi(top) >= cut:
-        start = first_above(m, top)
-        end = last_above(top, N)
-        if left_end >= start - 1 and left_end > 0:
-            runs.append((1, end))
-        else:
-            if left_end:
-                runs.append((1, left_end))
-            runs.append((start, end))
-    elif left_end:
-        runs.append((1, left_end))
-    return runs
-
-
-def _frac(x: mpmath.mpf) -> tuple[int, int]:
-    man, exp = x.man_exp
-    f = Fraction(man) * Fraction(2) ** exp
-    return f.numerator, f.denominator
-
-
 # --------------------------------------------------------------------------- deprecated names
 _MOVED = ("distribution_of", "pmf", "logpmf", "normaliser", "mean", "variance", "mode", "modes")
 
 
 def __getattr__(name: str) -> Any:
-    """``symhx.distribution.mean`` etc. moved to :mod:`symhx.api` (``symhx.mean``): the old
-    names still work, with a DeprecationWarning (a lazy forward, not an import of the upper
-    layer at load time)."""
+    """``symhx.distribution.mean`` etc. moved to ``symhx.mean`` (defined in :mod:`symhx.api`,
+    exported lazily by the package): the old names still work, with a DeprecationWarning.  The
+    value is read from the already-loaded package ``symhx`` (its lazy table of public names), so
+    this module imports nothing above itself."""
     if name in _MOVED:
         warnings.warn(f"symhx.distribution.{name} moved to symhx.{name} (symhx.api.{name})",
                       DeprecationWarning, stacklevel=2)
-        import importlib
-
-        return getattr(importlib.import_module("symhx.api"), name)
+        return getattr(sys.modules["symhx"], name)
     raise AttributeError(f"module 'symhx.distribution' has no attribute {name!r}")

@@ -42,9 +42,6 @@ TABLE_NS = (2, 3, 4, 5, 6, 7, 8, 10, 20, 50, 100, 101, 1000, 10**4, 10**6, 10**1
 MAX_CIRCUIT_LENGTH = 40
 #: ``circuits N`` (the table of phi_N(k), k = 1..N) is refused above this N
 MAX_PHI_TABLE_N = 2000
-#: ``distribution N p --table`` (one row P(X = k) per k = 1..N) is refused above this N, before
-#: any work (a row limit: N = 10**4 rows print in ~1 s; a huge N would run for ever)
-MAX_PMF_TABLE_N = 10_000
 
 def register(sub: Any) -> None:
     c = sub.add_parser("critical", help="critical point p_c, the jump of the mode and p_d "
@@ -75,7 +72,8 @@ def register(sub: Any) -> None:
     d.add_argument("--float", action="store_true",
                    help="evaluate with mpmath at --dps instead of exactly")
     d.add_argument("--table", action="store_true",
-                   help=f"include P(X=k) for every k (N <= {MAX_PMF_TABLE_N}, a row limit)")
+                   help="include P(X=k) for every k (N <= 10000; exact p: N <= 2000; "
+                        "symhx.distribution.MAX_TABLE_N, MAX_EXACT_TABLE_N)")
     add_json(d)
     d.set_defaults(func=cmd_distribution)
 
@@ -175,19 +173,21 @@ def p_or_sites(args: argparse.Namespace) -> tuple[Any, Any]:
 def cmd_distribution(args: argparse.Namespace) -> int:
     from symhx.api import distribution_of
 
-    if args.table and args.N > MAX_PMF_TABLE_N:
-        raise InputError(f"--table lists one row per k: N={int_show(args.N)} is beyond the "
-                         f"documented row limit N <= {MAX_PMF_TABLE_N} "
-                         f"(symhx.commands.core.MAX_PMF_TABLE_N); omit --table")
     p, sites = p_or_sites(args)
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
+    rows = None
+    if args.table:  # first: a refused table costs nothing
+        try:
+            rows = d.table()
+        except ValueError as e:
+            raise InputError(f"--table: {e}") from None
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
                            "mean": d.mean(), "variance": d.var(), "modes": list(d.modes()),
                            "mode": d.mode(), "log_normaliser": d.log_normaliser}
     if sites is not None:
         out["sites"] = sites_json(sites)
-    if args.table:
-        out["pmf"] = {k: d.pmf(k) for k in range(1, d.N + 1)}
+    if rows is not None:
+        out["pmf"] = dict(rows)
     if args.json:
         print(dump_json(out, args.dps))
         return 0

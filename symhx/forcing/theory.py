@@ -13,8 +13,10 @@ from symhx.validation import InputError, check_dps, check_N
 
 __all__ = ["THEORY_MAX_N", "THEORY_P_FLOOR", "TheoryCurve", "theory_curve"]
 
-#: largest ``N`` of :func:`theory_curve` (mean and mode are float64/int64 arrays)
-THEORY_MAX_N = 10**15
+#: largest ``N`` of :func:`theory_curve`: the mean is a float64 array, so N must stay inside the
+#: float range (the simple-space distribution itself is summed up to
+#: ``symhx.distribution.MP_SUM_N_LIMIT = 10**1000``); modes beyond int64 come as Python ints
+THEORY_MAX_N = 10**300
 #: below this ``p`` the graph model is evaluated at ``THEORY_P_FLOOR`` itself: there ``X = 1``
 #: with probability ``1 - O(N p)``, so mean and mode are already 1 in float64 (checked at the
 #: call); an exact ``p`` with an exponent of millions of bits would make the model's exact
@@ -77,7 +79,7 @@ def theory_curve(
     N = check_N(N)
     if N > THEORY_MAX_N:
         shown = f"{N}" if N < 10**30 else f"an integer of {len(str(N))} digits"
-        raise InputError(f"N must be <= THEORY_MAX_N = 10**15, got {shown}")
+        raise InputError(f"N must be <= THEORY_MAX_N = 10**300, got {shown}")
     dps = check_dps(dps)
     s = np.atleast_1d(float_arg("sigma", sigma))
     fp = ForcingParams.validated(1, sigma1, omega, Omega, d, dps=dps)
@@ -112,6 +114,6 @@ def theory_curve(
         sigma=s,
         p=np.array(ps).reshape(s.shape),
         mean=np.array(means).reshape(s.shape),
-        mode=np.array(modes_, dtype=np.int64).reshape(s.shape),
+        mode=np.array(modes_, dtype=np.int64 if N < 2**63 else object).reshape(s.shape),
         N=N,
     )

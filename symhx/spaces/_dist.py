@@ -437,15 +437,24 @@ class SpaceDistribution(Distribution):
         return out
 
     @cached_property
-    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-        """``(sum W, mean, variance)`` at dps + guard digits (exported)."""
+    def _mp_norm(self) -> mpmath.mpf:
+        """``sum_k W(k)`` at ``dps`` + guard digits (exported)."""
         terms = local(self._terms)  # this thread's values: operators round in its context
         ctx = mp()
         with ctx.workdps(self._wdps):
-            s0 = ctx.fsum(terms.values())
+            return export(ctx.fsum(terms.values()))
+
+    @cached_property
+    def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+        """``(log normaliser, mean, variance)`` at dps + guard digits (the meaning of every
+        space; exported)."""
+        terms = local(self._terms)
+        ctx = mp()
+        s0 = local(self._mp_norm)
+        with ctx.workdps(self._wdps):
             mu = ctx.fsum(k * w for k, w in terms.items()) / s0
             var = ctx.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
-            return export((s0, mu, var))
+            return export((ctx.log(s0), mu, var))
 
     def _float_logw(self) -> np.ndarray:
         return log_W_float(self.sample_space, self.N, self._logp())
@@ -467,7 +476,7 @@ class SpaceDistribution(Distribution):
             cut = lw.max() - self._wdps * math.log(10) - 20
             ks = [lo + int(i) for i in np.nonzero(lw >= cut)[0]]
         ctx = mp()
-        s0 = local(self._mp_moments[0])
+        s0 = local(self._mp_norm)
         with ctx.workdps(self._wdps):
             return [(k, export(self._mp_weight(k) / s0)) for k in ks]
 
@@ -480,7 +489,7 @@ class SpaceDistribution(Distribution):
         if self.exact:
             return self.weight_exact(k) / self._exact_moments[0]
         ctx = mp()
-        s0 = local(self._mp_moments[0])
+        s0 = local(self._mp_norm)
         with ctx.workdps(self._wdps):
             return export(self._mp_weight(k) / s0, self.dps)
 
@@ -488,7 +497,7 @@ class SpaceDistribution(Distribution):
         if self.exact:
             return self._log_fraction(self._pmf1(k))
         ctx = mp()
-        s0 = local(self._mp_moments[0])
+        s0 = local(self._mp_norm)
         with ctx.workdps(self._wdps):
             w = self._terms.get(k)
             if w is not None:
@@ -504,7 +513,7 @@ class SpaceDistribution(Distribution):
             return float(np.exp(self._ftab["lognorm"]))
         if self.exact:
             return self._exact_moments[0]
-        return export(self._mp_moments[0], self.dps)
+        return export(self._mp_norm, self.dps)
 
     @property
     def log_normaliser(self) -> Any:
@@ -513,9 +522,7 @@ class SpaceDistribution(Distribution):
             return float(self._ftab["lognorm"])
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
-        ctx = mp()
-        with ctx.workdps(self._wdps):
-            return export(ctx.log(self._mp_moments[0]), self.dps)
+        return export(self._mp_moments[0], self.dps)
 
     def modes(self) -> tuple[int, ...]:
         """All maximisers of ``P(X = k)`` (exact for rational ``p``; proved on Arb balls for
@@ -523,7 +530,9 @@ class SpaceDistribution(Distribution):
         return space_modes(self.sample_space, self.N, self.p, self.fr)
 
     def table(self) -> list[tuple[int, Any]]:
-        """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range)."""
+        """``[(k, P(X = k)) for k in 1..N]`` (zeros for k outside the significant range;
+        refused above the row limits of :meth:`symhx.distribution.SimpleDistribution.table`)."""
+        self._check_table()
         if self.dps is None:
             return [(k, float(v)) for k, v in enumerate(self._ftab["pmf"], 1)]
         if self.exact:
@@ -531,7 +540,7 @@ class SpaceDistribution(Distribution):
             return [(k, self.weight_exact(k) / g) for k in range(1, self.N + 1)]
         terms = self._terms
         ctx = mp()
-        s0 = local(self._mp_moments[0])
+        s0 = local(self._mp_norm)
         with ctx.workdps(self._wdps):
             vals = [(k, local(terms[k]) / s0 if k in terms else ctx.mpf(0))
                     for k in range(1, self.N + 1)]

@@ -102,7 +102,7 @@ def test_commands_that_need_a_jump_refuse_N_1_like_the_api(capsys, argv):
 
 
 def test_distribution_table_has_a_documented_row_limit(capsys):
-    from symhx.commands.core import MAX_PMF_TABLE_N
+    from symhx.distribution import MAX_TABLE_N as MAX_PMF_TABLE_N
 
     rc, cap = run(capsys, "distribution", str(MAX_PMF_TABLE_N + 1), "0.1", "--float", "--table")
     assert rc == 2 and "--table" in cap.err and str(MAX_PMF_TABLE_N) in cap.err

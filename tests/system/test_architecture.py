@@ -49,12 +49,7 @@ ROOT = Path(__file__).resolve().parents[2]
 PKG = ROOT / "symhx"
 TESTS = ROOT / "tests"
 
-KNOWN_CYCLE_EDGES: set[tuple[str, str]] = {
-    # symhx.distribution.__getattr__ forwards the deprecated names (mean, pmf, ...) to symhx.api
-    # through importlib: a lazy upward edge (distribution <- api).  Its owner removes the
-    # forwarding; then delete this entry.
-    ("symhx.distribution", "symhx.api"),
-}
+KNOWN_CYCLE_EDGES: set[tuple[str, str]] = set()
 # The only exception: the C extension module of the float64 engine is private by its name
 # (``symhx.impact._fast``) and is imported by its one Python wrapper.
 KNOWN_PRIVATE_IMPORTS: set[tuple[str, str, str]] = {
@@ -228,9 +223,8 @@ def test_importlib_calls_are_read_as_imports() -> None:
     assert targets('importlib.import_module(f"{__name__}.{name}")', "symhx.commands") == [
         "symhx.commands.core", "symhx.commands.spaces"]
     assert targets("importlib.import_module(name)") == []
-    # the graph sees both importlib edges of the package
+    # the graph sees the importlib edge of the package
     edges, _ = _imports()
-    assert "symhx.api" in edges["symhx.distribution"]
     assert "symhx.commands.core" in edges["symhx.commands"]
 
 

@@ -904,7 +904,7 @@ def _huge_N_above_pc(N: int, p: Any, dps: int | None) -> list[tuple[str, Callabl
 
     def mean() -> Any:
         m = d().mean()
-        if not 1 <= _mpf(m) <= N * slack:
+        if not 1 <= _mpf(m) <= N * mpmath.mpf(slack):
             raise InvariantBroken(f"mean {m} outside [1, N]")
         return m
 

@@ -9,9 +9,7 @@ with a tiny GIL switch interval so that threads interleave inside the computatio
 dask's threaded scheduler; every result must be bit-identical to the serial one (``_mpf_``
 tuples, exact ints and Fractions).
 
-Routes whose modules are converted to thread contexts in other branches (the frozen
-distribution in ``symhx/distribution.py``) are marked ``xfail(strict=False)`` until those
-branches are merged; forcing and the mpmath impact engine run in the thread's context.
+Every route runs in thread contexts: nothing is marked xfail.
 """
 
 from __future__ import annotations
@@ -41,7 +39,6 @@ import symhx.spaces
 THREADS = 8
 REPEATS = 4  # each case is called this many times concurrently (after the serial reference)
 
-DIST_BRANCH = "symhx/distribution.py is converted to thread contexts in its own branch"
 
 
 def bits(x: Any) -> Any:
@@ -268,7 +265,7 @@ GROUPS: dict[str, Callable[[], list[Case]]] = {
     "forcing": _forcing_cases,
     "impact": _impact_cases,
 }
-XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH, "site-moments": DIST_BRANCH}
+XFAIL: dict[str, str] = {}
 
 
 def _params() -> list[Any]:
@@ -344,7 +341,6 @@ def test_a_critical_point_object_is_shared_by_threads():
     assert all(g[0] == ref and g[1:] == got[0][1:] for g in got)
 
 
-@pytest.mark.xfail(strict=False, reason=DIST_BRANCH)
 def test_a_frozen_simple_distribution_is_shared_by_threads():
     def read(d: Any, k: int) -> Any:
         return bits((d.pmf(k), d.sf(k), d.logcdf(k), d.mean(), d.var(), d.entropy()))
@@ -379,7 +375,6 @@ def _race(target: Callable[[], Any], noise: Callable[[], Any], calls: int) -> in
     return sum(g != ref for g in got)
 
 
-@pytest.mark.xfail(strict=False, reason=DIST_BRANCH)
 def test_issue_reproducer_sf_next_to_a_low_precision_mean():
     # before the fix about 4 % of these calls came back with mean()'s 5-digit arithmetic
     # (0.42522022276997954125 instead of 0.425220222769979362573...)

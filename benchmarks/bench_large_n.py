@@ -1,0 +1,139 @@
+"""Time against error of the simple-space statistics at large N (issue 27).
+
+    python benchmarks/bench_large_n.py     # writes benchmarks/results/large_n.json, large_n.png
+
+For N = 10^2 ... 10^1000 at p = 2 p_c (above the jump) and at p with N p - 1 = N p_c - 1 (the
+hard case: head and hump both weigh), each of ``mean``, ``var`` and ``cdf`` at the median is
+timed cold (a fresh frozen distribution with the shared caches of one full pass cleared: each
+statistic is timed alone) and warm (after ``mean`` of the same N, p, dps: distributions share
+the one full pass, so ``var`` is then free and ``cdf`` costs one partial sum), and its error
+measured against the same quantity at dps = 100.  The cdf is taken at the median (at the mode
+beyond ``MP_QUANTILE_N_LIMIT``).  On the same axes the direct summation a user would write
+(every term added in mpmath at 50 digits, ratio recurrence) where it can run (N <= 10^5), and
+``critical_point(N, dps=50)`` for the scale of the targets (~30 of its calls per statistic).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from fractions import Fraction
+from pathlib import Path
+
+import mpmath
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _common import RESULTS, write
+
+import symhx
+from symhx import distribution as _dist
+from symhx.validation import mpf_to_fraction
+
+DPS = 50
+NS = (2, 4, 6, 10, 100, 1000)
+
+
+def rel_err(x, ref) -> float:
+    with mpmath.workdps(300):
+        e = abs(mpmath.mpf(x) - ref) / abs(ref)
+    return max(float(e), 1e-120)
+
+
+def timed(fn):
+    t = time.perf_counter()
+    v = fn()
+    return v, time.perf_counter() - t
+
+
+def direct_mean(N: int, p: Fraction, dps: int):
+    with mpmath.workdps(dps + 2 * len(str(N))):
+        pm = mpmath.mpf(p.numerator) / p.denominator
+        f = N * pm
+        s0 = s1 = mpmath.mpf(0)
+        for k in range(1, N + 1):
+            s0 += f
+            s1 += k * f
+            f = f * pm * (N - k) * k / (k + 1)
+        return s1 / s0
+
+
+def cold() -> None:
+    """Forget the shared one-pass results and this thread's engines (a cold call)."""
+    _dist._shared_moments.cache_clear()
+    _dist._ENGINES.__dict__.clear()
+
+
+def main() -> None:
+    rows = []
+    for e in NS:
+        N = 10**e
+        cp = symhx.critical_point(N, dps=2 * DPS + 20)
+        _, t_cp = timed(lambda N=N: symhx.critical_point(N + 2, dps=DPS))
+        with mpmath.workdps(2 * e + 2 * DPS + 40):  # mpf p: the mpmath path at every N
+            cases = {"2 p_c": 2 * cp.p, "N p - 1 = 2 (N p_c - 1)": (1 + 2 * cp.q) / N}
+        for label, p in cases.items():
+            ref = symhx.distribution_of(N, p, dps=2 * DPS)
+            k = ref.median() if N <= _dist.MP_QUANTILE_N_LIMIT else ref.mode()
+            for warm in (False, True):
+                for stat in ("mean", "var", "cdf"):
+                    if warm and stat == "mean":
+                        continue
+                    cold()
+                    if warm:
+                        symhx.distribution_of(N, p, dps=DPS).mean()
+                    d = symhx.distribution_of(N, p, dps=DPS)
+                    call = (lambda d=d, k=k: d.cdf(k)) if stat == "cdf" else getattr(d, stat)
+                    val, t = timed(call)
+                    want = ref.cdf(k) if stat == "cdf" else getattr(ref, stat)()
+                    rows.append({"N": f"1e{e}", "case": label,
+                                 "stat": stat + (" after mean" if warm else ""), "time_s": t,
+                                 "rel_err": rel_err(val, want), "critical_point_s": t_cp,
+                                 "ratio_to_critical_point": t / t_cp})
+                    print(rows[-1], flush=True)
+            if N <= 10**5:
+                pf = mpf_to_fraction(p)
+                val, t = timed(lambda N=N, pf=pf: direct_mean(N, pf, DPS))
+                rows.append({"N": f"1e{e}", "case": label, "stat": "mean (direct sum)",
+                             "time_s": t, "rel_err": rel_err(val, ref.mean()),
+                             "critical_point_s": t_cp, "ratio_to_critical_point": t / t_cp})
+                print(rows[-1], flush=True)
+    write("large_n", {"dps": DPS, "rows": rows})
+    plot(rows)
+
+
+def plot(rows: list[dict]) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.6, 4.4))
+    marks = {"mean": "o", "var": "s", "cdf": "^", "var after mean": "D",
+             "cdf after mean": "v", "mean (direct sum)": "x"}
+    colours = {f"1e{e}": c for e, c in zip(NS, plt.cm.viridis([i / (len(NS) - 1)
+                                                               for i in range(len(NS))]),
+                                           strict=True)}
+    for r in rows:
+        ax.scatter(r["rel_err"], r["time_s"], marker=marks[r["stat"]], color=colours[r["N"]],
+                   s=36 if r["stat"] != "mean (direct sum)" else 60)
+    for name, m in marks.items():
+        ax.scatter([], [], marker=m, color="grey", label=name)
+    for n, c in colours.items():
+        ax.scatter([], [], marker="o", color=c, label=f"N = {n}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("relative error against dps = 100")
+    ax.set_ylabel("time per call [s]")
+    ax.set_title("simple-space statistics at dps = 50")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    fig.tight_layout()
+    fig.savefig(RESULTS / "large_n.png", dpi=120)
+
+
+if __name__ == "__main__":
+    if sys.argv[1:] == ["--plot"]:  # redraw from the stored results
+        import json
+
+        plot(json.loads((RESULTS / "large_n.json").read_text())["rows"])
+    else:
+        main()

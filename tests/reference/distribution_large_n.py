@@ -1,0 +1,68 @@
+"""Independent references for the simple distribution at large N (not symhx.simple_sums):
+
+* :func:`direct_sums` adds every term with mpmath (loggamma at twice the digits of N, then the
+  exact ratio recurrence): any p, N up to ~1e5;
+* :func:`poisson_side_sums` sums from the top, ``j = N - k``: ``Phi(N - j) / Phi(N)
+  = (1/p)**j / j! * N / (N - j)`` (a Poisson weight), exact for every N when ``1/p`` is moderate
+  (the terms beyond ``jmax`` are below the working precision);
+* :func:`head_sums` sums the log-series head ``k = 1..K`` directly (any N, ``N p`` well below 1).
+
+Each returns ``(S0, mean, var)`` of the whole distribution at ``dps`` digits (global mpmath).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+
+
+def _mp(p: Fraction) -> mpmath.mpf:
+    return mpmath.mpf(p.numerator) / p.denominator
+
+
+def direct_sums(N: int, p: Fraction, dps: int) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+    with mpmath.workdps(dps + 2 * len(str(N)) + 10):
+        pm = _mp(p)
+        f = N * pm  # Phi(1)
+        s0 = s1 = s2 = mpmath.mpf(0)
+        for k in range(1, N + 1):
+            s0 += f
+            s1 += k * f
+            s2 += k * k * f
+            f = f * pm * (N - k) * k / (k + 1)
+        mean = s1 / s0
+        return s0, mean, s2 / s0 - mean * mean
+
+
+def poisson_side_sums(N: int, p: Fraction, dps: int, jmax: int
+                      ) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+    """``S0 = sum_j w_j`` with ``w_j = lam**j/j! * N/(N-j)``, ``lam = 1/p`` (relative to Phi(N))."""
+    with mpmath.workdps(dps + 20):
+        lam = 1 / _mp(p)
+        ws = []
+        t = mpmath.mpf(1)  # lam**j / j!
+        for j in range(0, min(jmax, N - 1) + 1):
+            ws.append(t * N / (N - j))
+            t = t * lam / (j + 1)
+        s0 = mpmath.fsum(ws)
+        mj = mpmath.fsum(j * w for j, w in enumerate(ws)) / s0  # E[N - X]
+        var = mpmath.fsum((j - mj) ** 2 * w for j, w in enumerate(ws)) / s0
+        with mpmath.workdps(dps + 20 + len(str(N))):
+            mean = N - mj
+        return s0, mean, var
+
+
+def head_sums(N: int, p: Fraction, dps: int, K: int) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+    """The first K terms from k = 1 (relative to Phi(1)), for N p well below 1."""
+    with mpmath.workdps(dps + 20):
+        pm = _mp(p)
+        f = mpmath.mpf(1)
+        s0 = s1 = s2 = mpmath.mpf(0)
+        for k in range(1, K + 1):
+            s0 += f
+            s1 += k * f
+            s2 += k * k * f
+            f = f * pm * (N - k) * k / (k + 1)
+        mean = s1 / s0
+        return s0, mean, s2 / s0 - mean * mean

@@ -1,0 +1,82 @@
+"""The simple-space summation engine (symhx.simple_sums): D(x) for real x against loggamma at
+high precision, the significant runs, and sums against every term added."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import pytest
+
+from symhx._mpctx import mp
+from symhx.simple_sums import SimpleSums
+from tests.reference.distribution_large_n import direct_sums
+
+
+def _ref_D(N: int, p: Fraction, x: mpmath.mpf, c: int) -> mpmath.mpf:
+    with mpmath.workdps(2 * len(str(N)) + 80):
+        pm = mpmath.mpf(p.numerator) / p.denominator
+
+        def lf(k):
+            return (k * mpmath.log(pm) + mpmath.loggamma(N + 1) - mpmath.loggamma(N + 1 - k)
+                    - mpmath.log(k))
+        return lf(x) - lf(c)
+
+
+@pytest.mark.parametrize(("N", "p", "top"), [(100, Fraction(1, 50), 49),
+                                             (10**6, Fraction(2, 10**6), 500000),
+                                             (10**30, Fraction(3, 10**30), 2 * 10**30 // 3),
+                                             (10**6, Fraction(1, 10**6), None)])
+def test_D_at_real_points_matches_loggamma(N: int, p: Fraction, top) -> None:
+    s = SimpleSums(N, p, 30, top)
+    ctx = mp()
+    with ctx.workdps(s.W):
+        for off in ("0.5", "-37.25", "1234.125", "-4321.75"):
+            d = ctx.mpf(off)
+            x = s.c + d
+            if not 0 < x < N + 1:
+                continue
+            got = s.D(x, d)
+            with mpmath.workdps(2 * len(str(N)) + 80):
+                want = _ref_D(N, p, mpmath.mpf(s.c) + mpmath.mpf(off), s.c)
+            with mpmath.workdps(60):
+                assert abs(mpmath.mpf(got) - want) <= mpmath.mpf(10) ** -40 * max(1, abs(want))
+        for k in (1, 2, N):
+            with mpmath.workdps(60):
+                assert abs(mpmath.mpf(s.D(k)) - _ref_D(N, p, k, s.c)) <= \
+                    mpmath.mpf(10) ** -38 * max(1, abs(_ref_D(N, p, k, s.c)))
+
+
+def _hump_top(N: int, p: Fraction) -> int | None:
+    """The local maximum of Phi beyond k = 1 by the exact term ratio
+    r(k) = Phi(k+1)/Phi(k) = p (N - k) k / (k + 1): the first k past the peak of r with r(k) < 1,
+    when r reaches 1 at all (a scan in Fractions, independent of the engine)."""
+    peak = max(range(1, N), key=lambda k: p * (N - k) * k / (k + 1))
+    if p * (N - peak) * peak / (peak + 1) < 1:
+        return None
+    return next(k for k in range(peak, N + 1) if k == N or p * (N - k) * k / (k + 1) < 1)
+
+
+@pytest.mark.parametrize(("N", "p", "top"), [(10**5, Fraction(1013, 10**8), None),
+                                             (10**5, Fraction(2, 10**5), 50000),
+                                             (10**5, Fraction(999, 10**8), None)])
+def test_sums_against_every_term(N: int, p: Fraction, top) -> None:
+    s = SimpleSums(N, p, 30, _hump_top(N, p))
+    ctx = mp()
+    with ctx.workdps(s.W):
+        s0, s1, s2 = s.sums(1, N, (0, 1, 2))
+        mean = s.c + s1 / s0
+        var = s2 / s0 - (s1 / s0) ** 2
+    _, want_mean, want_var = direct_sums(N, p, 40)
+    with mpmath.workdps(60):
+        assert abs(mpmath.mpf(mean) / want_mean - 1) < mpmath.mpf(10) ** -30
+        assert abs(mpmath.mpf(var) / want_var - 1) < mpmath.mpf(10) ** -29
+
+
+def test_runs_keep_the_tail_of_a_range() -> None:
+    """A range far in the left tail gets its own significant run (relative accuracy)."""
+    N = 10**6
+    s = SimpleSums(N, Fraction(2, N), 20, 500000)
+    runs = s.runs(1, 400000)
+    assert runs and runs[-1][1] == 400000
+    assert s.runs() == s.runs(1, N)
