@@ -140,11 +140,10 @@ def simulated_x(result: SiteHitResult, *, min_kept: int = 20,
     -------
     SimulatedX
 
-    >>> import numpy as np
     >>> t = SiteHitTable(0.2, np.array([[5, 20, 0], [0, 30, 10], [0, 0, 40]]), np.zeros(4))
     >>> sx = simulated_x(SiteHitResult({"n": 3}, [t]))
-    >>> sx.means.round(4).tolist(), sx.ratios.round(4).tolist()
-    [2.8], [0.8]
+    >>> sx.means.round(4).tolist(), sx.ratios.round(4).tolist()   # (20 + 60 + 30 + 160)/100
+    ([2.7], [0.8])
     """
     if not isinstance(result, SiteHitResult):
         raise TypeError(f"result must be a SiteHitResult, got {type(result).__name__}")
@@ -194,8 +193,12 @@ def model_pmfs(p_wall: Any, p_pipe: Any, n: int) -> np.ndarray:
     """``P(X = k)``, ``k = 1..n + 1``, of simple circuits with 2 wall sites of probability
     ``p_wall`` and ``n - 1`` pipe-pipe sites of ``p_pipe`` (float64; one row per pair).
 
-    >>> model_pmfs([0.02], [0.02], 100)[0, :3].round(10).tolist()   # one class: eq. (7)
-    [1.6e-09, 1.6e-09, 2.112e-08]
+    >>> import symhx
+    >>> pmf = model_pmfs([0.02, 0.01], [0.02, 0.02], 100)
+    >>> bool(np.all(pmf[0] == symhx.pmf(101, 0.02, np.arange(1, 102), dps=None)))  # eq. (7)
+    True
+    >>> bool(pmf[1] @ np.arange(1, 102) < pmf[0] @ np.arange(1, 102))   # walls less likely
+    True
     """
     pw = np.atleast_1d(np.asarray(p_wall, dtype=float))
     pp = np.atleast_1d(np.asarray(p_pipe, dtype=float))

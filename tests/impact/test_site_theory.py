@@ -12,6 +12,8 @@ from importlib import resources
 
 import numpy as np
 import pytest
+from symhx.site_distribution import site_modes
+from symhx.sites import SiteClasses
 
 import symhx
 from symhx.impact.site_theory import (
@@ -23,8 +25,6 @@ from symhx.impact.site_theory import (
     simulated_x,
 )
 from symhx.impact.sites import SiteHitResult, SiteHitTable
-from symhx.site_distribution import site_modes
-from symhx.sites import SiteClasses
 from tests.harness.errors import assert_refuses
 from tests.reference.sites import mode_weights
 

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from symhx.impact import EnsembleResult, PipeRow, ensemble, simulate
+from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.ensemble import run_seed
 from symhx.impact.sites import (
     SiteHitResult,
@@ -21,7 +22,6 @@ from symhx.impact.sites import (
     hit_table_chunk,
     site_hit_tables,
 )
-from symhx.impact.engine import IMPACT, STICK
 from tests.harness.errors import assert_refuses
 
 SETTING = dict(n=12, t_transient=30.0, t_window=30.0, seed=5)
