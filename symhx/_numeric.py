@@ -5,8 +5,19 @@ Certified (ball-arithmetic) signs live in :mod:`symhx.certify` (python-flint Arb
 ``certified_sign``, ``bits_for`` and ``UndecidedError`` are re-exported here for the layers that
 import them from this module.
 
-Nothing here changes the global mpmath precision: every routine works inside ``mpmath.workdps``
-and restores it.
+Precision convention (see :mod:`symhx._mpctx`): the mpmath helpers here (:func:`G_mp`,
+:func:`mp_value`, :func:`stirling_series`, :func:`log1m_series`, :func:`G_direct`) take no
+precision argument. They compute in the calling thread's context ``mp()`` at its current
+precision (the caller sets it with ``mp().workdps``), accept mpf arguments of any context, and
+return values of the calling thread's context, ready for the caller's arithmetic. They never
+read or change the global ``mpmath.mp``.
+
+>>> from symhx._mpctx import mp
+>>> ctx = mp()
+>>> with ctx.workdps(30):
+...     g = G_mp(10**6, 10**3)        # sum_{j <= 1000} log(1 - j/10**6), no cancellation
+>>> type(g) is ctx.mpf, ctx.nstr(g, 12)
+(True, '-0.5006670003')
 """
 
 from __future__ import annotations
@@ -16,6 +27,9 @@ from fractions import Fraction
 from typing import Any
 
 import mpmath
+from mpmath import libmp
+
+from symhx._mpctx import local, mp
 
 __all__ = [
     "G_mp",
@@ -28,10 +42,18 @@ __all__ = [
     "check_p",
     "digits_of",
     "log1m_series",
+    "mp_value",
     "stirling_series",
 ]
 
-from symhx.certify import UndecidedError, bits_for, certified_sign
+from symhx.certify import (
+    UndecidedError,
+    arb_prec,
+    bits_for,
+    certified_sign,
+    real_ball,
+    rel_width_ok,
+)
 from symhx.validation import (  # noqa: F401  (re-exported for the layers below the API)
     MAX_DPS,
     as_fraction,
@@ -48,10 +70,29 @@ def digits_of(N: int) -> int:
 
 
 def mp_value(p: Any, fr: Fraction | None) -> mpmath.mpf:
-    """``p`` as an mpf at the current working precision."""
+    """``p`` as an mpf of the calling thread's context at its current precision.
+
+    ``fr`` is ``p``'s exact value (rounded once); for a sympy irrational (``fr is None``) the
+    result is the midpoint of a rigorous Arb ball (:func:`symhx.certify.real_ball`) whose
+    relative radius is below ``10**-(digits + 2)``, rounded to the working precision: within
+    about one unit of the last place of ``p``.
+    """
+    ctx = mp()
     if fr is not None:
-        return mpmath.mpf(fr.numerator) / fr.denominator
-    return mpmath.mpf(str(p.evalf(mpmath.mp.dps + 10)))
+        return ctx.mpf(fr.numerator) / fr.denominator
+    prec = ctx.prec
+    digits = int(prec * 0.30103) + 2
+    bits = prec + 32
+    while True:
+        with arb_prec(bits):
+            ball = real_ball(p)
+            if ball.is_finite() and rel_width_ok(ball, digits):
+                man, exp = ball.mid().man_exp()
+                return ctx.make_mpf(libmp.from_man_exp(int(man), int(exp), prec, "n"))
+        if bits > 64 * (prec + 32):
+            raise ValueError(f"p={p} cannot be evaluated to {prec} bits: its rigorous "
+                             f"enclosure stays wide (is it 0?)")
+        bits *= 2
 
 
 # --------------------------------------------------------------------------- G(N, K)
@@ -65,18 +106,20 @@ def mp_value(p: Any, fr: Fraction | None) -> mpmath.mpf:
 # the working precision; otherwise it uses loggamma with guard digits.
 
 
-def stirling_series(x: mpmath.mpf, eps: mpmath.mpf | None = None, *,
-                    derivative: bool = False) -> mpmath.mpf:
+def stirling_series(x: Any, eps: Any = None, *, derivative: bool = False) -> mpmath.mpf:
     """``S(x) = sum_{r>=1} B_2r / (2r (2r-1) x**(2r-1))`` (``lgamma(x) - (x - 1/2) log x + x -
     log(2 pi)/2``), or its x-derivative ``-sum B_2r / (2r x**(2r))``, summed until a term is below
     ``eps`` (default: the working eps) relative to the sum (at most 400 terms; the series is
-    asymptotic, so callers use it only for ``x`` well above the working digits)."""
-    eps = mpmath.eps if eps is None else eps
-    total = mpmath.mpf(0)
+    asymptotic, so callers use it only for ``x`` well above the working digits). In the calling
+    thread's context at its precision."""
+    ctx = mp()
+    x = local(x) if hasattr(x, "_mpf_") else ctx.mpf(x)
+    eps = ctx.eps if eps is None else local(eps)
+    total = ctx.mpf(0)
     xinv2 = 1 / (x * x)
     power = xinv2 if derivative else 1 / x
     for m in range(1, 401):
-        b = mpmath.bernoulli(2 * m)
+        b = ctx.bernoulli(2 * m)
         term = (-b / (2 * m)) * power if derivative else b / (2 * m * (2 * m - 1)) * power
         total += term
         if abs(term) <= eps * abs(total):
@@ -85,12 +128,14 @@ def stirling_series(x: mpmath.mpf, eps: mpmath.mpf | None = None, *,
     return total
 
 
-def log1m_series(u: mpmath.mpf) -> mpmath.mpf:
+def log1m_series(u: Any) -> mpmath.mpf:
     """``B(u) = -(1-u) log1p(-u) - u = -sum_{m>=2} u**m / (m (m-1))`` without cancellation for
-    small ``u`` (``0 <= u < 1``)."""
-    if u < mpmath.mpf("0.01"):
-        eps = mpmath.eps
-        total = mpmath.mpf(0)
+    small ``u`` (``0 <= u < 1``); in the calling thread's context at its precision."""
+    ctx = mp()
+    u = local(u) if hasattr(u, "_mpf_") else ctx.mpf(u)
+    if u < ctx.mpf("0.01"):
+        eps = ctx.eps
+        total = ctx.mpf(0)
         power = u * u
         m = 2
         while True:
@@ -100,8 +145,8 @@ def log1m_series(u: mpmath.mpf) -> mpmath.mpf:
                 return -total
             power *= u
             m += 1
-    with mpmath.extradps(5):
-        return -(1 - u) * mpmath.log1p(-u) - u
+    with ctx.extradps(5):
+        return -(1 - u) * ctx.log1p(-u) - u
 
 
 def stirling_ok(x: int, dps: int) -> bool:
@@ -114,28 +159,29 @@ def stirling_ok(x: int, dps: int) -> bool:
 
 
 def G_mp(N: int, K: int) -> mpmath.mpf:
-    """``lgamma(N) - lgamma(N-K) - K log N`` at the working precision (relative accuracy)."""
+    """``lgamma(N) - lgamma(N-K) - K log N`` at the calling thread's working precision
+    (relative accuracy), as a value of that thread's context."""
+    ctx = mp()
     if K == 0:
-        return mpmath.mpf(0)
-    dps = mpmath.mp.dps
-    if stirling_ok(N - K, dps):
-        with mpmath.extradps(10):
-            u = mpmath.mpf(K) / N
-            eps = mpmath.eps
-            S = stirling_series(mpmath.mpf(N), eps * mpmath.mpf(10) ** -5) - stirling_series(
-                mpmath.mpf(N - K), eps * mpmath.mpf(10) ** -5)
-            val = N * log1m_series(u) + mpmath.log1p(-u) / 2 + S
+        return ctx.mpf(0)
+    if stirling_ok(N - K, ctx.dps):
+        with ctx.extradps(10):
+            u = ctx.mpf(K) / N
+            eps = ctx.eps * ctx.mpf(10) ** -5
+            S = stirling_series(ctx.mpf(N), eps) - stirling_series(ctx.mpf(N - K), eps)
+            val = N * log1m_series(u) + ctx.log1p(-u) / 2 + S
         return +val
     # direct: loggamma cancels ~log10(N) digits; G >= log((N-1)/N)*... is not tiny here
     # (N - K small or N small), but guard generously for K << N with small N.
-    with mpmath.extradps(digits_of(N) + 10):
-        val = mpmath.loggamma(N) - mpmath.loggamma(N - K) - K * mpmath.log(N)
+    with ctx.extradps(digits_of(N) + 10):
+        val = ctx.loggamma(N) - ctx.loggamma(N - K) - K * ctx.log(N)
     return +val
 
 
 def G_direct(N: int, K: int) -> mpmath.mpf:
     """The definition of ``G`` with loggamma and ``2 log10(N)`` guard digits (an independent
-    route used by the tests)."""
-    with mpmath.extradps(2 * digits_of(N) + 10):
-        val = mpmath.loggamma(N) - mpmath.loggamma(N - K) - K * mpmath.log(N)
+    route used by the tests); in the calling thread's context at its precision."""
+    ctx = mp()
+    with ctx.extradps(2 * digits_of(N) + 10):
+        val = ctx.loggamma(N) - ctx.loggamma(N - K) - K * ctx.log(N)
     return +val

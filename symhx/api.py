@@ -34,7 +34,6 @@ import warnings
 from collections.abc import Callable
 from typing import Any
 
-import mpmath
 import numpy as np
 
 from symhx.critical import CriticalPoint
@@ -392,7 +391,6 @@ def critical_point(N: Any, *, space: SpaceLike = DEFAULT_SPACE,
         cp = simple_critical_point(N, dps=work)
     else:
         cp = space_critical_point(N, space=sp, dps=work)
-    if d is None:
-        with mpmath.workdps(work):
-            cp = dataclasses.replace(cp, p=float(cp.p), q=float(cp.q), p_d=float(cp.p_d))
+    if d is None:  # float(mpf) rounds the mpf's own bits once: no context involved
+        cp = dataclasses.replace(cp, p=float(cp.p), q=float(cp.q), p_d=float(cp.p_d))
     return cp

@@ -61,6 +61,7 @@ from typing import Any
 
 import mpmath
 
+from symhx._mpctx import export, local, mp
 from symhx._numeric import digits_of, log1m_series, stirling_ok, stirling_series
 from symhx.validation import check_choice, check_dps, check_int, check_N
 
@@ -180,68 +181,71 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
     dps = _dps(dps)
     coeffs = pd_series_coefficients(n_terms + 3)
     used, omitted = coeffs[:n_terms], coeffs[n_terms:]
-    with mpmath.workdps(dps + 10):
-        eps = 1 / mpmath.sqrt(N)
-        value = mpmath.fsum(mpmath.mpf(c.numerator) / c.denominator * eps**pw for pw, c in used)
-        bound = mpmath.mpf(0)
+    ctx = mp()
+    with ctx.workdps(dps + 10):
+        eps = 1 / ctx.sqrt(N)
+        value = ctx.fsum(ctx.mpf(c.numerator) / c.denominator * eps**pw for pw, c in used)
+        bound = ctx.mpf(0)
         for pw, c in omitted:
-            bound += abs(mpmath.mpf(c.numerator) / c.denominator) * eps**pw
+            bound += abs(ctx.mpf(c.numerator) / c.denominator) * eps**pw
             if pw >= 5:
                 break
-    with mpmath.workdps(dps):
+    with ctx.workdps(dps):
         rounded = +value
-    with mpmath.workdps(dps + 10):
+    with ctx.workdps(dps + 10):
         # the returned value is rounded to dps digits: that rounding (and a generous allowance
         # for the (dps+10)-digit sum) is part of |p_d - value|; the factor covers the rounding
         # of the bound itself to dps digits
-        bound = (bound + abs(rounded - value) + abs(value) * mpmath.mpf(10) ** -(dps + 5)) * (
-            1 + mpmath.mpf(10) ** (1 - dps))
-    with mpmath.workdps(dps):
-        return PdSeries(N, n_terms, rounded, +bound, used)
+        bound = (bound + abs(rounded - value) + abs(value) * ctx.mpf(10) ** -(dps + 5)) * (
+            1 + ctx.mpf(10) ** (1 - dps))
+    return PdSeries(N, n_terms, export(rounded), export(bound, dps), used)
 
 
 # ------------------------------------------------------------------- the relaxation of h
 class _Relaxation:
     """``h(kappa) = (log kappa - G(kappa - 1)) / (kappa - 1)`` for real ``kappa`` and its
     derivative, with ``G`` rewritten as ``N B(K/N) + log1p(-K/N)/2 + Stirling`` for large ``N``
-    (no cancellation) and by ``loggamma`` with guard digits for small ``N``."""
+    (no cancellation) and by ``loggamma`` with guard digits for small ``N``; in the calling
+    thread's context at its working precision."""
 
     def __init__(self, N: int) -> None:
         self.N = N
+        self.ctx = mp()
 
     def _series(self, K: mpmath.mpf) -> bool:
         # Stirling's series (400 terms) only where it reaches the working digits at N - K
-        return stirling_ok(int(self.N - K), mpmath.mp.dps)
+        return stirling_ok(int(self.N - K), self.ctx.dps)
 
     def G(self, K: mpmath.mpf) -> mpmath.mpf:
-        N = self.N
+        N, ctx = self.N, self.ctx
         if self._series(K):
             u = K / N
-            return (N * log1m_series(u) + mpmath.log1p(-u) / 2
-                    + stirling_series(mpmath.mpf(N)) - stirling_series(N - K))
-        with mpmath.extradps(digits_of(N) + 10):
-            return mpmath.loggamma(N) - mpmath.loggamma(N - K) - K * mpmath.log(N)
+            return (N * log1m_series(u) + ctx.log1p(-u) / 2
+                    + stirling_series(ctx.mpf(N)) - stirling_series(N - K))
+        with ctx.extradps(digits_of(N) + 10):
+            return ctx.loggamma(N) - ctx.loggamma(N - K) - K * ctx.log(N)
 
     def dG(self, K: mpmath.mpf) -> mpmath.mpf:
-        N = self.N
+        N, ctx = self.N, self.ctx
         if self._series(K):  # psi(N-K) - log N with psi's asymptotic series
             x = N - K
-            return mpmath.log1p(-K / N) - 1 / (2 * x) + stirling_series(x, derivative=True)
-        with mpmath.extradps(digits_of(N) + 10):
-            return mpmath.digamma(N - K) - mpmath.log(N)
+            return ctx.log1p(-K / N) - 1 / (2 * x) + stirling_series(x, derivative=True)
+        with ctx.extradps(digits_of(N) + 10):
+            return ctx.digamma(N - K) - ctx.log(N)
 
     def h(self, kappa: mpmath.mpf) -> mpmath.mpf:
         K = kappa - 1
-        return (mpmath.log(kappa) - self.G(K)) / K
+        return (self.ctx.log(kappa) - self.G(K)) / K
 
     def F(self, K: mpmath.mpf) -> mpmath.mpf:
         """``K**2 h'(K + 1)``: negative left of the minimiser, positive right of it."""
         kappa = K + 1
-        return K * (1 / kappa - self.dG(K)) - (mpmath.log(kappa) - self.G(K))
+        return K * (1 / kappa - self.dG(K)) - (self.ctx.log(kappa) - self.G(K))
 
 
 def _lambert_v(N: int) -> mpmath.mpf:
-    return -mpmath.lambertw(-mpmath.e**2 / N, -1).real
+    ctx = mp()
+    return -ctx.lambertw(-ctx.e**2 / N, -1).real
 
 
 # -------------------------------------------------------------------------- public result
@@ -315,41 +319,42 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
     # k ~ sqrt(N ln N) has about log10(N)/2 integer digits: k_int (its nearest integer) and the
     # relaxation (which resolves k to well below one unit) need them all, hence log10(N) digits
     wdps = dps + 15 + digits_of(N)
-    with mpmath.workdps(wdps):
-        Nm = mpmath.mpf(N)
-        L = mpmath.log(Nm)
+    ctx = mp()
+    with ctx.workdps(wdps):
+        Nm = ctx.mpf(N)
+        L = ctx.log(Nm)
         if order == "leading":
-            k = mpmath.sqrt(Nm * L)
-            q = mpmath.sqrt(L / Nm)
+            k = ctx.sqrt(Nm * L)
+            q = ctx.sqrt(L / Nm)
         elif order == "next":
             lam = L - 2
-            v = lam + mpmath.log(lam)
-            k = mpmath.sqrt(Nm * v)
+            v = lam + ctx.log(lam)
+            k = ctx.sqrt(Nm * v)
             q = (v + 1) / k
         elif order in ("lambert", "corrected"):
-            k = mpmath.sqrt(Nm * _lambert_v(N))
+            k = ctx.sqrt(Nm * _lambert_v(N))
             if order == "lambert":
-                q = mpmath.expm1(1 / k + k / Nm)
+                q = ctx.expm1(1 / k + k / Nm)
             else:
-                h2 = mpmath.log(k) / (k - 1) + k / (2 * Nm) + k * (2 * k - 1) / (12 * Nm**2)
-                q = mpmath.expm1(h2)
-                lk = mpmath.log(k)
+                h2 = ctx.log(k) / (k - 1) + k / (2 * Nm) + k * (2 * k - 1) / (12 * Nm**2)
+                q = ctx.expm1(h2)
+                lk = ctx.log(k)
                 dh = ((k - 1) - (2 * k - 1) * lk) / (k**2 * (k - 1) ** 2) + (4 * k - 1) / (
                     12 * Nm**2)
                 k = k - dh / ((2 * lk - 3) / k**3)
         else:
             rel = _Relaxation(N)
-            K0 = mpmath.sqrt(Nm * _lambert_v(N)) - 1
+            K0 = ctx.sqrt(Nm * _lambert_v(N)) - 1
             lo, hi = K0 / 2, min(2 * K0, Nm - 2)
             while rel.F(lo) > 0:
                 lo /= 2
             while rel.F(hi) < 0 and hi < N - 2:
                 hi = min(2 * hi, Nm - 2)
-            Kstar = mpmath.findroot(rel.F, (lo, hi), solver="anderson")
+            Kstar = ctx.findroot(rel.F, (lo, hi), solver="anderson")
             kappa = Kstar + 1
             if order == "relaxed":
                 k = kappa
-                q = mpmath.expm1(rel.h(kappa))
+                q = ctx.expm1(rel.h(kappa))
             else:
                 # c_k is unimodal in real k, so the integer argmin is floor(kappa) or the next
                 # integer. The relaxation only seeds: the integer (an exact tie -> the larger)
@@ -358,15 +363,14 @@ def asymptotic_critical_point(N: int, *, order: str = "best",
                 # to ~2 log10(k) digits).
                 from symhx.critical import certified_argmin
 
-                kbest = certified_argmin(N, seed=max(2, int(mpmath.ceil(kappa))))[-1]
+                kbest = certified_argmin(N, seed=max(2, int(ctx.ceil(kappa))))[-1]
                 k = kbest
-                q = mpmath.expm1(rel.h(mpmath.mpf(kbest)))
+                q = ctx.expm1(rel.h(ctx.mpf(kbest)))
         p = (1 + q) / Nm
-        k_int = k if isinstance(k, int) else int(mpmath.nint(k))  # before k is cut to dps
-    with mpmath.workdps(dps):
-        k_out = k if isinstance(k, int) else +k
-        return AsymptoticCriticalPoint(N=N, order=order, p=+p, q=+q, k=k_out, k_int=k_int,
-                                       dps=dps, decay=DECAY[order])
+        k_int = k if isinstance(k, int) else int(ctx.nint(k))  # before k is cut to dps
+    k_out = k if isinstance(k, int) else export(k, dps)
+    return AsymptoticCriticalPoint(N=N, order=order, p=export(p, dps), q=export(q, dps),
+                                   k=k_out, k_int=k_int, dps=dps, decay=DECAY[order])
 
 
 # ----------------------------------------------------------------------------- error table
@@ -419,26 +423,30 @@ def error_table(Ns: tuple[int, ...] = DEFAULT_NS, *, dps: int = 120,
                    for o in _sequence(orders, "orders"))
     pd_terms = check_int(pd_terms, "pd_terms", minimum=1)
     rows: list[dict[str, Any]] = []
-    floor = mpmath.mpf(10) ** (-dps)
+    ctx = mp()
+    with ctx.workprec(53):  # errors below 10**-dps are reported as this float-sized floor
+        floor = export(ctx.mpf(10) ** (-dps))
     for N in Ns:
         cp = critical_point(N, dps=dps)
         for order in orders:
             a = asymptotic_critical_point(N, order=order, dps=dps)
-            with mpmath.workdps(dps):
-                err = max(abs(a.q / cp.q - 1), floor)
-                kerr = abs(mpmath.mpf(a.k) / cp.k_after - 1)
+            with ctx.workdps(dps):
+                err = max(abs(local(a.q) / local(cp.q) - 1), floor)
+                kerr = abs(ctx.mpf(local(a.k)) / cp.k_after - 1)
             rows.append({"N": N, "formula": order, "quantity": "q", "approx": a.q,
-                         "exact": cp.q, "rel_error": err, "k": a.k, "k_exact": cp.k_after,
-                         "k_rel_error": kerr, "decay": DECAY[order], "bound": None})
+                         "exact": cp.q, "rel_error": export(err), "k": a.k,
+                         "k_exact": cp.k_after, "k_rel_error": export(kerr),
+                         "decay": DECAY[order], "bound": None})
         s = pd_series(N, pd_terms, dps=dps)
         pdx = discriminant_root(N, dps=dps)
-        with mpmath.workdps(dps):
-            err = max(abs(s.value / pdx - 1), floor)
-            rows.append({"N": N, "formula": f"pd-series-{pd_terms}", "quantity": "p_d",
-                         "approx": s.value, "exact": pdx, "rel_error": err, "k": None,
-                         "k_exact": None, "k_rel_error": None,
-                         "decay": DECAY.get(f"pd-series-{pd_terms}", ""),
-                         "bound": s.bound / pdx})
+        with ctx.workdps(dps):
+            err = max(abs(local(s.value) / local(pdx) - 1), floor)
+            bound = local(s.bound) / local(pdx)
+        rows.append({"N": N, "formula": f"pd-series-{pd_terms}", "quantity": "p_d",
+                     "approx": s.value, "exact": pdx, "rel_error": export(err), "k": None,
+                     "k_exact": None, "k_rel_error": None,
+                     "decay": DECAY.get(f"pd-series-{pd_terms}", ""),
+                     "bound": export(bound)})
     return rows
 
 
@@ -461,6 +469,6 @@ def format_error_table(rows: list[dict[str, Any]], *, digits: int = 3) -> str:
         for f in formulas:
             v = cell.get((N, f))
             vals.append("" if v is None else (
-                "0" if v == 0 else mpmath.nstr(mpmath.mpf(v), digits)))
+                "0" if v == 0 else mp().nstr(v, digits)))
         out.append(f"| {name} | " + " | ".join(vals) + " |")
     return "\n".join(out)

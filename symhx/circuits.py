@@ -31,6 +31,7 @@ from functools import lru_cache
 
 import mpmath
 
+from symhx._mpctx import export, mp
 from symhx.validation import DEFAULT_DPS, check_dps, check_int
 
 __all__ = [
@@ -135,10 +136,10 @@ def log_phi(N: int, k: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
         raise ValueError(f"k must be <= N, got k={k}, N={N}")
     # loggamma(N+1) - loggamma(N-k+1) cancels ~log10(N) digits
     guard = 10 + int(N.bit_length() * 0.30103) + 1
-    with mpmath.workdps(dps + guard):
-        val = mpmath.loggamma(N + 1) - mpmath.loggamma(N - k + 1) - mpmath.log(k)
-    with mpmath.workdps(dps):
-        return +val
+    ctx = mp()  # this thread's context (symhx._mpctx): threads never share a precision
+    with ctx.workdps(dps + guard):
+        val = ctx.loggamma(N + 1) - ctx.loggamma(N - k + 1) - ctx.log(k)
+    return export(val, dps)
 
 
 def total_simple_circuits(N: int) -> int:

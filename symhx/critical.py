@@ -57,7 +57,9 @@ from typing import Any
 
 import mpmath
 from flint import arb, fmpz
+from mpmath import libmp
 
+from symhx._mpctx import export, make_mpf, mp, prec_of_dps
 from symhx.certify import (
     G_arb,
     UndecidedError,
@@ -117,8 +119,7 @@ def _pd_qd(N: int, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
     with arb_prec(int(dps * 3.33) + 40):
         q = 2 * (1 + to_arb(N + 1).sqrt()) / to_arb(N)
         p = (1 + q) / to_arb(N)
-    with mpmath.workdps(dps):
-        return _mid_mpf(p), _mid_mpf(q)
+        return _mid_mpf(p, dps), _mid_mpf(q, dps)
 
 
 def discriminant_root_q(N: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
@@ -155,14 +156,14 @@ def log_c(N: int, k: int, *, dps: int = DEFAULT_DPS) -> mpmath.mpf:
         if rel_width_ok(s, dps + 2) or bits > 40 * bits_for(N, int(dps * 3.33) + 20):
             break
         bits *= 2
-    with mpmath.workdps(dps):
-        return _mid_mpf(s)
+    return _mid_mpf(s, dps)
 
 
-def _mid_mpf(x: arb) -> mpmath.mpf:
+def _mid_mpf(x: arb, dps: int) -> mpmath.mpf:
+    """The ball's midpoint rounded to ``dps`` digits (nearest), as a global mpf (libmp only:
+    no mpmath context and no Arb rounding involved)."""
     man, exp = x.mid().man_exp()
-    return mpmath.mpf(mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp),
-                                                                    mpmath.mp.prec, "n")))
+    return make_mpf(libmp.from_man_exp(int(man), int(exp), prec_of_dps(dps), "n"))
 
 
 # --------------------------------------------------------------------------- certified signs
@@ -269,8 +270,8 @@ def _argmin_c(N: int, seed: int | None = None) -> tuple[int, bool, int]:
             return k, at == 0, oracle.evaluations
         if k == 2 or k >= N - 1:
             break
-        e0, e1 = oracle.values[k - 1].mid(), oracle.values[k].mid()
         with arb_prec(64 + 2 * k.bit_length()):
+            e0, e1 = oracle.values[k - 1].mid(), oracle.values[k].mid()
             new = k if e1 == e0 else _exact_int((to_arb(k - 1) - e0 / (e1 - e0)).mid().ceil())
         if new == k:
             new = k + 1 if at < 0 else k - 1
@@ -445,7 +446,7 @@ class CriticalPoint:
         return self.k_after - self.k_before
 
     def _s(self, x: mpmath.mpf) -> str:
-        return mpmath.nstr(x, self.dps)
+        return str(mp().nstr(x, self.dps))
 
     def __repr__(self) -> str:
         lo, hi = self.p_bounds
@@ -504,8 +505,7 @@ def enclose_from_s(N: int, s_fn: Any, dps: int, start_bits: int
         bits *= 2
     else:  # pragma: no cover - q = 0 cannot happen for N >= 2
         raise UndecidedError(f"could not enclose p_c to {dps} digits (N={_fmt_int(N)})")
-    with mpmath.workdps(dps):
-        pm, qm = _mid_mpf(p), _mid_mpf(q)
+    pm, qm = _mid_mpf(p, dps), _mid_mpf(q, dps)
     return pm, qm, _hull(mpf_bounds(p, dps), pm), _hull(mpf_bounds(q, dps), qm)
 
 
@@ -517,9 +517,10 @@ def _hull(b: tuple[Any, Any], x: mpmath.mpf) -> tuple[Any, Any]:
 def exact_enclosure(N: int, a: Fraction, dps: int
                     ) -> tuple[mpmath.mpf, mpmath.mpf, tuple[Any, Any], tuple[Any, Any]]:
     """``(p, q, p_bounds, q_bounds)`` for an exact rational ``p_c = a``."""
-    with mpmath.workdps(dps):
-        p = mpmath.mpf(a.numerator) / a.denominator
-        q = mpmath.mpf(N * a.numerator - a.denominator) / a.denominator
+    ctx = mp()
+    with ctx.workdps(dps):
+        p = export(ctx.mpf(a.numerator) / a.denominator)
+        q = export(ctx.mpf(N * a.numerator - a.denominator) / a.denominator)
     bits = int(dps * 3.33) + 64
     with arb_prec(bits):
         pb = mpf_bounds(to_arb(a), dps)

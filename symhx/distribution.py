@@ -52,7 +52,17 @@ from symhx._numeric import (
     digits_of,
     mp_value,
 )
-from symhx.certify import G_arb, bits_for, certified_sign, to_arb
+from symhx.certify import (
+    MAX_IRRATIONAL_BITS,
+    G_arb,
+    arb_prec,
+    bits_for,
+    certified_sign,
+    decide_with_rising_precision,
+    rational_bracket,
+    real_ball,
+    to_arb,
+)
 from symhx.validation import (
     DEFAULT_DPS,
     check_dps,
@@ -869,20 +879,26 @@ def _candidates(N: int, fr: Fraction | None, pm: mpmath.mpf) -> list[int]:
     return [1] if hump is None else sorted({1, hump[0], hump[1]})
 
 
-def _hump(N: int, fr: Fraction | None, pm: mpmath.mpf) -> tuple[int, int, bool] | None:
+def _hump(N: int, fr: Fraction | None, pm: Any) -> tuple[int, int, bool] | None:
     """``(j, j + 1, tie)`` with ``j = floor(k_+)`` when the increasing stretch of Phi contains an
     integer (``f(j) >= 0``, so ``Phi(j+1) >= Phi(j)``; ``tie`` when ``f(j) == 0``); else None.
 
-    ``f_{N,p}(k) b = -a k**2 + (N a - b) k - b`` for ``p = a/b``: all in integers.
+    ``f_{N,p}(k) b = -a k**2 + (N a - b) k - b`` for ``p = a/b``: all in integers. ``p`` is
+    ``fr`` when it is not None; else the exact binary value of the mpf ``pm`` (of any context:
+    only its bits are read), the value the mpmath sums work with. (The modes at an irrational
+    ``p`` are decided by :func:`_irrational_hump` on rational brackets of ``p`` itself.)
+
+    Since ``f(k)`` increases with ``p`` for every ``0 < k < N``, the larger root ``k_+`` and the
+    set ``{k : f(k) >= 0}`` grow with ``p``: the result is a monotone function of ``p``.
     """
     # no increasing stretch unless N p > 1 (A > 0 below): decide p < 1/(2N) from the binary
     # exponent first (a tiny p has a numerator/denominator of millions of bits)
     if fr is not None and fr.numerator * 2 * N < fr.denominator:
         return None
-    if fr is None and mpmath.mag(pm) < -N.bit_length() - 2:  # |p| < 2**(mag) <= 1/(4N)
-        return None
-    if fr is None:  # irrational p: use a rational approximation at the working precision
-        man, exp = pm.man_exp
+    if fr is None:  # the exact value of the mpf pm: (-1)**sign man 2**exp
+        sign, man, exp, bc = pm._mpf_
+        if not man or sign or exp + bc < -N.bit_length() - 2:  # p <= 0 or p < 2**mag <= 1/(4N)
+            return None
         fr = Fraction(man) * Fraction(2) ** exp
     a, b = fr.numerator, fr.denominator
     A = N * a - b
@@ -906,12 +922,20 @@ def _hump(N: int, fr: Fraction | None, pm: mpmath.mpf) -> tuple[int, int, bool] 
 
 
 def _log_ratio_iv(N: int, a: int, b: int, K: int) -> Any:
-    """Arb ball of ``log Phi(K+1) - log Phi(1) = K log(N p) + G(N, K) - log(K + 1)``."""
+    """Arb ball of ``log Phi(K+1) - log Phi(1) = K log(N p) + G(N, K) - log(K + 1)`` at the
+    rational ``p = a/b`` (inside :func:`symhx.certify.arb_prec`)."""
     return K * ((to_arb(N) * a).log() - to_arb(b).log()) + G_arb(N, K) - to_arb(K + 1).log()
 
 
+def _log_ratio_ball(N: int, pa: Any, K: int) -> Any:
+    """:func:`_log_ratio_iv` with ``p`` known as an Arb ball ``pa`` (an irrational); the result
+    contains the value for every point of the ball (inside :func:`symhx.certify.arb_prec`)."""
+    return K * (to_arb(N) * pa).log() + G_arb(N, K) - to_arb(K + 1).log()
+
+
 def _compare_with_one(N: int, fr: Fraction, K: int) -> int:
-    """Sign of ``Phi(K+1) - Phi(1)``, certified (exact integers on a near tie)."""
+    """Sign of ``Phi(K+1) - Phi(1)`` at the rational ``p = fr``, certified (exact integers on a
+    near tie)."""
     a, b = fr.numerator, fr.denominator
 
     def exact() -> int:
@@ -924,19 +948,75 @@ def _compare_with_one(N: int, fr: Fraction, K: int) -> int:
                           max_bits=32 * start, exact_fn=exact)
 
 
+def _irrational_hump(N: int, lo: Fraction, hi: Fraction) -> tuple[int, int, bool] | str | None:
+    """The hump of Phi for every ``p`` in ``[lo, hi]``: :func:`_hump` at both ends when they
+    agree (it is monotone in ``p``, so it is then constant on the bracket, and no tie lies
+    inside: a tie ``f(j) = 0`` happens at the single rational ``p = (j+1)/(j (N-j))``, which
+    would separate the ends), else ``"undecided"``."""
+    h_lo, h_hi = _hump(N, lo, None), _hump(N, hi, None)
+    if h_lo != h_hi or (h_lo is not None and h_lo[2]):
+        return "undecided"
+    return h_lo
+
+
+def _irrational_modes(N: int, p: Any) -> tuple[int, ...]:
+    """All maximisers of ``Phi_{N,p}(k)`` at a sympy irrational ``p``, proved for ``p`` itself:
+    a rigorous Arb ball of ``p`` (:func:`symhx.certify.real_ball`) gives a rational bracket
+    ``[lo, hi]``; the hump is located in integers at both ends (:func:`_irrational_hump`) and
+    ``Phi(top)`` is compared with ``Phi(1)`` on the ball; the precision doubles until both are
+    decided. A true tie ``Phi(top) = Phi(1)`` (``p**K = (K+1)/perm(N-1, K)`` with an algebraic
+    ``p``, e.g. ``N = 9``, ``p = 882**(1/3)/42`` ties ``k = 1`` and ``k = 4``) is never
+    separated: :class:`UndecidedError` after ``MAX_IRRATIONAL_BITS`` bits."""
+    state: dict[str, Any] = {}
+
+    def attempt(bits: int) -> tuple[int, ...] | None:
+        with arb_prec(bits):
+            pa = real_ball(p)
+            bracket = rational_bracket(pa) if pa > 0 else None
+            if bracket is None:
+                state["why"] = "p is not enclosed in a finite positive ball"
+                return None
+            if pa.is_exact():  # p is a dyadic rational written as an expression: exactly
+                return simple_modes(N, bracket[0], p)
+            hump = _irrational_hump(N, *bracket)
+            if isinstance(hump, str):  # "undecided"
+                state["why"] = ("p lies within the ball's width of a breakpoint "
+                                "(k+1)/(k (N-k)) of the mode")
+                return None
+            if hump is None:
+                return (1,)
+            top = hump[1]
+            d = _log_ratio_ball(N, pa, top - 1)  # log Phi(top) - log Phi(1)
+            if d > 0:
+                return (top,)
+            if d < 0:
+                return (1,)
+            state["why"] = (f"Phi(1) and Phi({top}) agree to that precision (a true tie when "
+                            f"p**{top - 1} = {top}/perm({N - 1}, {top - 1}))")
+            return None
+
+    start = 64 + 2 * N.bit_length()
+    return decide_with_rising_precision(
+        attempt, start_bits=start, max_bits=MAX_IRRATIONAL_BITS,
+        undecided=lambda bits: (
+            f"the modes of X at the irrational p={str(p)[:60]} (N={_n_show(N)}) are not "
+            f"decided at {bits} bits: {state.get('why', '')}; symhx never guesses a tie: pass "
+            f"p as an exact rational (Fraction, sympy Rational or decimal string) to have it "
+            f"decided exactly"))
+
+
 def simple_modes(N: int, fr: Fraction | None, p: Any) -> tuple[int, ...]:
-    """All maximisers of ``Phi_{N,p}(k)`` (eq. 8), certified: ``fr`` is ``p``'s exact value
-    (``None`` for a sympy irrational, then read at 60 digits).
+    """All maximisers of ``Phi_{N,p}(k)`` (eq. 8), certified: ``fr`` is ``p``'s exact value;
+    ``None`` for a sympy irrational ``p``, decided for ``p`` itself on rigorous Arb balls with
+    rising precision (:func:`_irrational_modes`; a true tie raises
+    :class:`~symhx.certify.UndecidedError`).
 
     >>> simple_modes(101, Fraction(1, 50), None)
     (50, 51)
     """
     if fr is None:
-        with mpmath.workdps(60):
-            pm = mp_value(p, None)
-        man, exp = pm.man_exp
-        fr = Fraction(man) * Fraction(2) ** exp
-    hump = _hump(N, fr, mpmath.mpf(0))
+        return _irrational_modes(N, p)
+    hump = _hump(N, fr, None)
     if hump is None:
         return (1,)
     j, top, tie = hump

@@ -20,8 +20,10 @@ Input conventions for real numbers (``p``, ``sigma``, ...)
 * Exact values are capped so that a typo cannot ask for billions of digits: decimal exponents
   beyond :data:`MAX_DECIMAL_EXPONENT` (strings, ``"b**e"`` and ``Decimal``) and binary exponents
   beyond :data:`MAX_BINARY_EXPONENT` (``mpf``, sympy ``Float``) are a ValueError.
-* sympy irrationals (``sympy.sqrt(2)/50``) are accepted where documented; they are evaluated to
-  the working precision.
+* sympy irrationals (``sympy.sqrt(2)/50``) are accepted where documented. They are never read
+  at a fixed number of digits: a decision about one (its sign here; modes elsewhere) is taken on
+  a rigorous Arb ball of the expression (:func:`symhx.certify.real_ball`), the precision raised
+  until it is proved, and a value is evaluated to the working precision of the computation.
 
 Precision
 ---------
@@ -52,10 +54,15 @@ from typing import Any, Literal, overload
 
 import mpmath
 import numpy as np
+from mpmath import libmp
+
+from symhx._mpctx import is_mpf
+from symhx.certify import UndecidedError, real_sign
 
 __all__ = [
     "DEFAULT_DPS",
     "DEFAULT_SPACE",
+    "IRRATIONAL_SIGN_BITS",
     "MAX_BINARY_EXPONENT",
     "MAX_DECIMAL_EXPONENT",
     "MAX_DPS",
@@ -79,6 +86,9 @@ DEFAULT_DPS = 50
 #: The largest ``dps`` accepted anywhere (a documented work limit: mpmath beyond this takes minutes
 #: to hours per call).  Raise it by editing this constant if you really need more digits.
 MAX_DPS = 5000
+#: The sign of a sympy irrational ``p`` is proved on Arb balls of up to this many bits (about
+#: 20 000 digits); an expression that is 0 in disguise (``pi - pi`` unevaluated) is refused.
+IRRATIONAL_SIGN_BITS = 1 << 16
 #: The default sample space of every distribution function, ``critical_point`` and the CLI.
 DEFAULT_SPACE = "simple"
 #: Decimal strings such as ``"1e100000"`` are parsed exactly; the exponent is capped here so that a
@@ -97,8 +107,8 @@ def short_value(fr: Fraction) -> str:
     >>> short_value(Fraction(10) ** 400)
     '1.0e+400'
     """
-    with mpmath.workprec(53):
-        return str(mpmath.nstr(mpmath.mpf(fr.numerator) / fr.denominator, 5))
+    return str(libmp.to_str(libmp.from_rational(fr.numerator, fr.denominator, 53,
+                                                 libmp.round_nearest), 5))
 
 
 def _show(x: Any) -> str:
@@ -221,10 +231,11 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
         if not x.is_finite():
             raise ValueError(f"{name} must be finite, got {x!r}")
         return _decimal_to_fraction(x, name, x)
-    if isinstance(x, mpmath.mpf):
-        if not mpmath.isfinite(x):
+    if is_mpf(x):  # an mpf of any context (global, or a thread's private one)
+        t = x._mpf_
+        if not t[1] and t != libmp.fzero:  # inf, -inf, nan
             raise ValueError(f"{name} must be finite, got {x!r}")
-        return _mpf_tuple_to_fraction(x._mpf_, name, mpmath.nstr(x, 5))
+        return _mpf_tuple_to_fraction(t, name, libmp.to_str(t, 5))
     if _sympy_number(x):
         if _sympy_is(x, "is_Rational"):
             return Fraction(int(x.p), int(x.q))
@@ -244,7 +255,7 @@ def to_rational(x: Any, name: str = "p") -> Fraction | None:
         return Fraction(*x.as_integer_ratio())
     if isinstance(x, np.ndarray) and x.ndim == 0:
         return to_rational(x[()], name)
-    if isinstance(x, (numbers.Complex, mpmath.mpc)):
+    if isinstance(x, numbers.Complex) or hasattr(x, "_mpc_"):
         raise TypeError(f"{name} must be a real number, got {_show(x)}")
     raise TypeError(f"{name} must be a real number, got {_show(x)}")
 
@@ -287,16 +298,20 @@ def check_p(p: Any, name: str = "p") -> tuple[Fraction | None, Any]:
         if fr <= 0:
             raise ValueError(f"{name} must be > 0, got {p!r}")
         return fr, p
-    # the sign from the 15 digits that sympy's strict evalf guarantees (PrecisionExhausted when
-    # cancellation leaves none: an unevaluated pi - pi, which plain evalf shows as 0.e-163 > 0).
-    # Not p.is_positive: for unevaluated expressions its answer depends on the hash seed
-    # (Mul(0, sqrt(2), evaluate=False).is_positive is True under some seeds, sympy 1.14)
+    # the sign, proved on a rigorous Arb ball of the expression with rising precision (sympy's
+    # evalf runs special functions in mpmath's global, process-wide context, and plain evalf
+    # shows an unevaluated pi - pi as 0.e-163 > 0). Not p.is_positive: for unevaluated
+    # expressions its answer depends on the hash seed (Mul(0, sqrt(2), evaluate=False)
+    # .is_positive is True under some seeds, sympy 1.14)
     try:
-        val = p.evalf(strict=True)
-    except ArithmeticError:  # sympy's PrecisionExhausted
+        sign = real_sign(p, max_bits=IRRATIONAL_SIGN_BITS)
+    except UndecidedError:
         raise ValueError(f"{name} must be > 0, got {p!r} (its sign cannot be decided "
                          f"numerically: simplify it)") from None
-    if not val > 0:
+    except TypeError as exc:
+        raise TypeError(f"{name} must be a real number symhx can enclose rigorously, got "
+                        f"sympy object {p!r}: {exc}") from None
+    if sign <= 0:
         raise ValueError(f"{name} must be > 0, got {p!r}")
     return None, p
 

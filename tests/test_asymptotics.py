@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 
 import symhx
 from symhx import asymptotics as A
+from symhx._mpctx import export, local, mp
 from symhx.asymptotics import (
     DECAY,
     ORDERS,
@@ -251,9 +252,10 @@ def test_relaxation_against_loggamma(N, dps):
     for K in Ks:
         if K >= N - 1:
             continue
-        with mpmath.workdps(dps):
-            G, dG = rel.G(mpmath.mpf(K)), rel.dG(mpmath.mpf(K))
-            h, F = rel.h(mpmath.mpf(K) + 1), rel.F(mpmath.mpf(K))
+        with mp().workdps(dps):  # the relaxation computes in this thread's symhx context
+            G, dG = rel.G(local(K)), rel.dG(local(K))
+            h, F = rel.h(local(K) + 1), rel.F(local(K))
+            G, dG, h, F = export((G, dG, h, F))
         Gr, dGr = G_loggamma(N, K, 3 * dps), dG_digamma(N, K, 3 * dps)
         with mpmath.workdps(3 * dps + 2 * len(str(N)) + 20):
             kap = K + 1
@@ -277,8 +279,8 @@ def test_relaxation_beyond_the_reach_of_stirling():
     # (22000, 7000): N - K = 15000 (series ~1999 digits) decides, not N or N + K
     for N, K in ((20000, mpmath.mpf(7) / 3), (20000, mpmath.mpf(400)), (22000, mpmath.mpf(7000))):
         rel = A._Relaxation(N)
-        with mpmath.workdps(dps):
-            G, dG = rel.G(K), rel.dG(K)
+        with mp().workdps(dps):  # the relaxation computes in this thread's symhx context
+            G, dG = export((rel.G(local(K)), rel.dG(local(K))))
         Gr, dGr = G_loggamma(N, K, dps + 40), dG_digamma(N, K, dps + 40)
         with mpmath.workdps(dps + 60):
             tol = mpmath.mpf(10) ** (3 - dps)
@@ -287,8 +289,8 @@ def test_relaxation_beyond_the_reach_of_stirling():
 
 def test_lambert_v():
     for N in (21, 1000, 10**10, 10**200):
-        with mpmath.workdps(60):
-            v = A._lambert_v(N)
+        with mp().workdps(60):  # in this thread's symhx context
+            v = export(A._lambert_v(N))
         with mpmath.workdps(90):
             # v solves v - ln v = ln N - 2 (from -v e**-v = -e**2/N), with v > 1 (branch -1)
             assert v > 1

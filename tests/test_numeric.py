@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from symhx._mpctx import export, mp
 from symhx._numeric import G_direct, G_mp, digits_of, mp_value, stirling_ok, stirling_series
 from tests.reference.critical import (
     G_exact_ratio,
@@ -20,6 +21,13 @@ from tests.reference.critical import (
     stirling_remainder,
     stirling_terms,
 )
+
+
+def _at(dps: int, fn, *args, **kwargs):
+    """``fn(*args)`` in this thread's symhx context at ``dps`` digits (the helpers compute at
+    the caller's thread-context precision, never the global one, issue 28), exported."""
+    with mp().workdps(dps):
+        return export(fn(*args, **kwargs))
 
 
 def test_digits_of_matches_str():
@@ -39,9 +47,9 @@ def test_digits_of_matches_str():
 def test_G_mp_and_G_direct_against_exact_ratio(N, K, dps):
     ref = G_exact_ratio(N, K, 2 * dps + 20)
     for f in (G_mp, G_direct):
-        with mpmath.workdps(dps):
-            got = f(N, K)
-            assert mpmath.mp.dps == dps
+        before = mpmath.mp.prec
+        got = _at(dps, f, N, K)
+        assert mpmath.mp.prec == before  # the global precision is not touched
         with mpmath.workdps(2 * dps + 20):
             assert abs(got - ref) <= mpmath.mpf(10) ** (1 - dps) * abs(ref), (f.__name__, N, K)
 
@@ -52,8 +60,7 @@ def test_G_huge_N_small_K():
         for dps in (15, 50):
             ref = G_log1p_sum(N, K, 3 * dps)
             for f in (G_mp, G_direct):
-                with mpmath.workdps(dps):
-                    got = f(N, K)
+                got = _at(dps, f, N, K)
                 with mpmath.workdps(3 * dps):
                     assert abs(got - ref) <= mpmath.mpf(10) ** (1 - dps) * abs(ref), \
                         (f.__name__, N, K, dps)
@@ -61,17 +68,14 @@ def test_G_huge_N_small_K():
 
 def test_G_zero_K():
     for N in (1, 2, 10**4 + 5, 10**20):
-        with mpmath.workdps(30):
-            assert G_mp(N, 0) == 0
-            assert G_direct(N, 0) == 0 if N > 1 else True
+        assert _at(30, G_mp, N, 0) == 0
+        assert _at(30, G_direct, N, 0) == 0 if N > 1 else True
 
 
 @given(st.integers(10**5, 10**40), st.integers(0, 10**6))
 def test_G_rewrite_matches_definition(N, K):
     K = min(K, N - 1)
-    with mpmath.workdps(60):
-        a = G_mp(N, K)
-        b = G_direct(N, K)
+    a, b = _at(60, G_mp, N, K), _at(60, G_direct, N, K)
     if K == 0:
         assert a == 0
         return
@@ -86,8 +90,7 @@ def test_G_mp_at_high_precision_near_the_stirling_limit():
     # (an earlier version summed the capped series at N - K = 12498 to only ~1940 digits)
     for N, K in [(11000, 1), (12500, 2), (60000, 1), (3 * 10**5, 1), (3 * 10**5, 50)]:
         ref = G_exact_ratio(N, K, dps + 50)
-        with mpmath.workdps(dps):
-            got = G_mp(N, K)
+        got = _at(dps, G_mp, N, K)
         with mpmath.workdps(dps + 50):
             assert abs(got - ref) <= mpmath.mpf(10) ** (1 - dps) * abs(ref), (N, K)
 
@@ -114,8 +117,7 @@ def test_G_mp_at_3000_to_4000_digits_against_the_direct_form(dps, N, K):
         ref = G_exact_ratio(N, K, dps + 30)
     else:
         ref = G_loggamma(N, K, dps + 30)
-    with mpmath.workdps(dps):
-        got = G_mp(N, K)
+    got = _at(dps, G_mp, N, K)
     with mpmath.workdps(dps + 30):
         assert abs(got - ref) <= mpmath.mpf(10) ** -dps * abs(ref), (dps, N, K)
 
@@ -127,8 +129,7 @@ def test_stirling_series_against_loggamma(derivative):
     for x in (50, 300, 10**4 + 7):
         with mpmath.workdps(60):
             ref = stirling_remainder(x, derivative=derivative)
-        with mpmath.workdps(30):
-            got = stirling_series(mpmath.mpf(x), derivative=derivative)
+        got = _at(30, stirling_series, mpmath.mpf(x), derivative=derivative)
         with mpmath.workdps(60):
             assert abs(got - ref) <= mpmath.mpf(10) ** -29 * abs(ref), x
 
@@ -144,16 +145,17 @@ def test_stirling_series_honours_eps_and_the_term_cap():
         if abs(t) <= eps * abs(total):
             break
     with mpmath.workdps(40):
-        got = stirling_series(mpmath.mpf(3), mpmath.mpf(eps.numerator) / eps.denominator)
+        got = _at(40, stirling_series, mpmath.mpf(3),
+                  mpmath.mpf(eps.numerator) / eps.denominator)
         ref = mpmath.mpf(total.numerator) / total.denominator
         assert abs(got - ref) <= mpmath.mpf(10) ** -38 * abs(ref)
-        full = stirling_series(mpmath.mpf(3), mpmath.mpf(10) ** -12)
+        full = _at(40, stirling_series, mpmath.mpf(3), mpmath.mpf(10) ** -12)
         assert abs(full - ref) > mpmath.mpf(10) ** -8 * abs(ref)  # the early stop shows
     # x = 1: the asymptotic series diverges before reaching eps, so exactly 400 terms are summed
     terms = stirling_terms(Fraction(1), 401)
     s400 = sum(terms[:400], Fraction(0))
     with mpmath.workdps(30):
-        got = stirling_series(mpmath.mpf(1))
+        got = _at(30, stirling_series, mpmath.mpf(1))
         ref = mpmath.mpf(s400.numerator) / s400.denominator
         assert abs(got - ref) <= mpmath.mpf(10) ** -25 * abs(ref)
 
@@ -164,7 +166,7 @@ def test_stirling_ok_refuses_where_the_series_cannot_converge():
     with mpmath.workdps(2600):
         x = mpmath.mpf(10**4)
         ref = stirling_remainder(x)
-        err = abs(stirling_series(x) - ref) / abs(ref)
+        err = abs(_at(2600, stirling_series, x) - ref) / abs(ref)
         assert mpmath.mpf(10) ** -2000 < err < mpmath.mpf(10) ** -1500
     for dps in (2600, 5000):
         assert not stirling_ok(10**4, dps) and not stirling_ok(4 * dps, dps)
@@ -180,8 +182,7 @@ def test_stirling_ok_refuses_where_the_series_cannot_converge():
     assert all(stirling_ok(x, dps) for x in range(hi, hi + 50))
     with mpmath.workdps(dps + 40):
         ref = stirling_remainder(hi)
-    with mpmath.workdps(dps):
-        got = stirling_series(mpmath.mpf(hi))
+    got = _at(dps, stirling_series, mpmath.mpf(hi))
     with mpmath.workdps(dps + 40):
         assert abs(got - ref) <= mpmath.mpf(10) ** (1 - dps) * abs(ref)
 
@@ -192,10 +193,10 @@ def test_mp_value_sympy_and_exact():
     for dps in (15, 40, 100):
         with mpmath.workdps(dps + 20):
             ref = mpmath.sqrt(2) / 100 + mpmath.pi / 10**5
-        with mpmath.workdps(dps):
-            got = mp_value(sympy.sqrt(2) / 100 + sympy.pi / 10**5, None)
-            assert mpmath.mp.dps == dps
-            got_fr = mp_value("ignored", Fraction(1, 3))
+        before = mpmath.mp.prec
+        got = _at(dps, mp_value, sympy.sqrt(2) / 100 + sympy.pi / 10**5, None)
+        assert mpmath.mp.prec == before  # the global precision is not touched
+        got_fr = _at(dps, mp_value, "ignored", Fraction(1, 3))
         with mpmath.workdps(dps + 20):
             assert abs(got - ref) <= mpmath.mpf(10) ** (-dps) * ref
             assert abs(got_fr - mpmath.mpf(1) / 3) <= mpmath.mpf(10) ** (-dps) / 3

@@ -21,8 +21,10 @@ from fractions import Fraction
 from typing import Any
 
 import mpmath
+from mpmath import libmp
 
 from symhx import validation as V
+from symhx._mpctx import is_mpf, local, mp
 
 #: integers with more digits than this are shown as ``d.ddd...e+NN (D digits)`` in text output
 MAX_INT_DIGITS_SHOWN = 60
@@ -91,10 +93,10 @@ def jsonable(obj: Any) -> Any:
         if obj.denominator == 1:
             return jsonable(obj.numerator)
         return f"{int_str(obj.numerator)}/{int_str(obj.denominator)}"
-    if isinstance(obj, mpmath.mpf):
-        if not mpmath.isfinite(obj):
-            return None if mpmath.isnan(obj) else ("inf" if obj > 0 else "-inf")
-        return mpmath.nstr(obj, mpf_digits(obj), strip_zeros=False)
+    if is_mpf(obj):  # any mpmath context
+        if not _finite(obj):
+            return None if obj._mpf_ == libmp.fnan else ("inf" if obj > 0 else "-inf")
+        return str(mp().nstr(obj, mpf_digits(obj), strip_zeros=False))
     if isinstance(obj, float):
         if not math.isfinite(obj):
             return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
@@ -108,6 +110,12 @@ def jsonable(obj: Any) -> Any:
     if hasattr(obj, "item") and callable(obj.item):  # numpy scalars
         return jsonable(obj.item())
     return str(obj)
+
+
+def _finite(x: mpmath.mpf) -> bool:
+    """Whether an mpf (of any context) is finite (not inf, -inf or nan)."""
+    t = x._mpf_
+    return bool(t[1]) or t == libmp.fzero
 
 
 def mpf_digits(x: mpmath.mpf) -> int:
@@ -148,8 +156,9 @@ def int_show(n: int) -> str:
     digits = len(int_str(a))
     if a == 10 ** (digits - 1):
         return ("-" if n < 0 else "") + f"10**{digits - 1}"
-    with mpmath.workdps(20):
-        lead = mpmath.nstr(mpmath.mpf(n), 17, strip_zeros=False)
+    ctx = mp()
+    with ctx.workdps(20):
+        lead = ctx.nstr(ctx.mpf(n), 17, strip_zeros=False)
     return f"{lead} (exact integer, {digits} digits)"
 
 
@@ -170,14 +179,15 @@ def mpstr(x: Any, digits: int) -> str:
     if isinstance(x, Fraction):
         if x.denominator == 1:
             return int_show(x.numerator)
-        with mpmath.workdps(digits + 10):
-            dec = mpmath.nstr(mpmath.mpf(x.numerator) / x.denominator, digits)
+        ctx = mp()
+        with ctx.workdps(digits + 10):
+            dec = ctx.nstr(ctx.mpf(x.numerator) / x.denominator, digits)
         if x.numerator.bit_length() + x.denominator.bit_length() < 190:
             return f"{dec}  (exact {x.numerator}/{x.denominator})"
         return f"{dec}  (rounded from an exact rational)"
-    if isinstance(x, mpmath.mpf):
+    if is_mpf(x):
         digits = min(digits, mpf_digits(x))
-        return mpmath.nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12)
+        return str(mp().nstr(x, digits, strip_zeros=False, min_fixed=-5, max_fixed=12))
     if isinstance(x, float):
         return repr(x)
     return str(x)
@@ -195,15 +205,16 @@ def csv_num(x: Any) -> Any:
     if isinstance(x, int) and abs(x) < 10**17:
         return x
     if isinstance(x, (int, Fraction)):
-        with mpmath.workdps(30):
-            v = mpmath.mpf(x.numerator) / x.denominator if isinstance(x, Fraction) \
-                else mpmath.mpf(x)
+        ctx = mp()
+        with ctx.workdps(30):
+            v = ctx.mpf(x.numerator) / x.denominator if isinstance(x, Fraction) \
+                else ctx.mpf(x)
             if abs(v) < 1e300 and (v == 0 or abs(v) > 1e-300):
                 return f"{float(v):.17g}"
-            return mpmath.nstr(v, 17, strip_zeros=False)
-    if isinstance(x, mpmath.mpf):
-        if not mpmath.isfinite(x) or (x != 0 and not 1e-300 < abs(x) < 1e300):
-            return mpmath.nstr(x, 17, strip_zeros=False)
+            return str(ctx.nstr(v, 17, strip_zeros=False))
+    if is_mpf(x):
+        if not _finite(x) or (x != 0 and not 1e-300 < abs(local(x)) < 1e300):
+            return str(mp().nstr(x, 17, strip_zeros=False))
         return f"{float(x):.17g}"
     if isinstance(x, float):
         return f"{x:.17g}"

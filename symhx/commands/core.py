@@ -12,8 +12,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-import mpmath
-
+from symhx._mpctx import export, mp
 from symhx.commands._common import (
     csv_num,
     dps_arg,
@@ -150,8 +149,9 @@ def cmd_distribution(args: argparse.Namespace) -> int:
 
     p: Any = args.p
     if args.float:
-        with mpmath.workdps(args.dps + 10):
-            p = mpmath.mpf(p.numerator) / p.denominator
+        ctx = mp()
+        with ctx.workdps(args.dps + 10):
+            p = export(ctx.mpf(p.numerator) / p.denominator)
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
                            "mean": d.mean(), "variance": d.var(), "modes": list(d.modes()),

@@ -11,9 +11,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-import mpmath
 import numpy as np
 
+from symhx._mpctx import export, local, mp
 from symhx.commands._common import jsonable, mpstr
 
 ORDER = 40
@@ -122,9 +122,10 @@ def _rows(vals: list[Any], args: argparse.Namespace) -> list[dict[str, Any]]:
     for v in sig:
         p = F.impact_probability(v, **kw, dps=dps + 3)
         q = F.no_impact_probability(v, **kw, dps=dps + 3)
-        with mpmath.workdps(dps + 3):
-            lp = mpmath.log(p) if p <= 0.5 else mpmath.log1p(-q)
-            lq = mpmath.log(q) if q <= 0.5 else mpmath.log1p(-p)
+        ctx = mp()
+        with ctx.workdps(dps + 3):
+            lp = export(ctx.log(p) if p <= 0.5 else ctx.log1p(-local(q)))
+            lq = export(ctx.log(q) if q <= 0.5 else ctx.log1p(-local(p)))
         rows.append({"sigma": v, "p": p, "one_minus_p": q, "log_p": lp, "log_one_minus_p": lq})
     return rows
 
@@ -134,8 +135,7 @@ def _fmt(x: Any, dps: int | None) -> str:
         return repr(float(x))
     if isinstance(x, str):
         return x
-    with mpmath.workdps(dps + 5):
-        return mpstr(x, dps)
+    return mpstr(x, dps)  # printed from the value's own bits: no working precision involved
 
 
 def strict_json_value(x: Any, dps: int | None) -> Any:
@@ -197,7 +197,10 @@ def paper(out: Path, full: bool) -> list[str]:
                       "naive_1_minus_dblquad": F.naive_impact_probability(float(sv))}
     s_half = F.sigma_for_impact_probability("0.5", dps=30)
     s_1e10 = F.sigma_for_impact_probability("1e-10", dps=30)
-    s_q1e10 = F.sigma_for_impact_probability(mpmath.mpf(1) - mpmath.mpf("1e-10"), dps=30)
+    ctx = mp()
+    with ctx.workprec(53):  # 1 - 1e-10 rounded to 53 bits, as before
+        q1e10 = export(ctx.mpf(1) - ctx.mpf("1e-10"))
+    s_q1e10 = F.sigma_for_impact_probability(q1e10, dps=30)
     meta = {
         "parameters": {"sigma1": "sigma", "omega": 1, "Omega": "sqrt(2)", "d": 1},
         "sigma": s.tolist(), "p": p.tolist(), "one_minus_p": q.tolist(),
@@ -209,12 +212,11 @@ def paper(out: Path, full: bool) -> list[str]:
     from symhx.plots.paper import save_paper_figure
 
     save_paper_figure(9, out / "fig9_p_sigma.png")
-    with mpmath.workdps(30):
-        naive = checks["0.05"]["naive_1_minus_dblquad"]
-        return [
-            f"p(sigma = 0.12) = {mpstr(checks['0.12']['p'], 15)} (paper's parameters)",
-            f"p(sigma = 0.05) = {mpstr(checks['0.05']['p'], 15)}; paper's 1 - dblquad(eq. 27) "
-            f"gives {naive:.3e}",
-            f"p = 1e-10 at sigma = {mpstr(s_1e10, 15)}; p = 1/2 at sigma = {mpstr(s_half, 15)}; "
-            f"1 - p = 1e-10 at sigma = {mpstr(s_q1e10, 15)}",
-        ]
+    naive = checks["0.05"]["naive_1_minus_dblquad"]
+    return [
+        f"p(sigma = 0.12) = {mpstr(checks['0.12']['p'], 15)} (paper's parameters)",
+        f"p(sigma = 0.05) = {mpstr(checks['0.05']['p'], 15)}; paper's 1 - dblquad(eq. 27) "
+        f"gives {naive:.3e}",
+        f"p = 1e-10 at sigma = {mpstr(s_1e10, 15)}; p = 1/2 at sigma = {mpstr(s_half, 15)}; "
+        f"1 - p = 1e-10 at sigma = {mpstr(s_q1e10, 15)}",
+    ]

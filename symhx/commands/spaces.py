@@ -56,21 +56,21 @@ def register(sub: Any) -> None:
 
 
 def cmd_spaces(args: argparse.Namespace) -> int:
-    import mpmath
-
+    from symhx._mpctx import export, mp
     from symhx.spaces import class_probabilities, critical_point, distribution
 
     cp = critical_point(args.N, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "space": args.space, "critical": cp.as_dict()}
     if args.p is not None:
         p = args.p
-        with mpmath.workdps(args.dps + 10):
-            if args.float:
-                p = mpmath.mpf(args.p.numerator) / args.p.denominator
-            d = distribution(args.N, p, space=args.space, dps=args.dps)
-            out.update(p=args.p, mean=d.mean(), variance=d.var(), modes=list(d.modes()))
-            if args.classes:
-                out["classes"] = class_probabilities(args.N, p, space=args.space, dps=args.dps)
+        if args.float:
+            ctx = mp()
+            with ctx.workdps(args.dps + 10):
+                p = export(ctx.mpf(args.p.numerator) / args.p.denominator)
+        d = distribution(args.N, p, space=args.space, dps=args.dps)
+        out.update(p=args.p, mean=d.mean(), variance=d.var(), modes=list(d.modes()))
+        if args.classes:
+            out["classes"] = class_probabilities(args.N, p, space=args.space, dps=args.dps)
     if args.json:
         print(dump_json(out))
         return 0

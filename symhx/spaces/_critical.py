@@ -40,9 +40,9 @@ import math
 from fractions import Fraction
 from typing import Any
 
-import mpmath
 import numpy as np
 
+from symhx._mpctx import export, mp
 from symhx._numeric import G_mp, check_dps, check_N, digits_of
 from symhx.certify import (
     G_arb,
@@ -149,33 +149,37 @@ def root_estimates(space: Space | str, N: int) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- mpmath stage
+# (in the calling thread's context at its working precision: see symhx._mpctx)
 def _log_Q_mp(sp: Space, k: int, p: Any) -> Any:
+    ctx = mp()
     U = sp.U(k)
     if sp.weighting == "distinct":
-        return mpmath.log(sum(U))
-    total = mpmath.mpf(0)
-    pe = mpmath.mpf(1)
+        return ctx.log(sum(U))
+    total = ctx.mpf(0)
+    pe = ctx.mpf(1)
     for u in U:
         if u:
             total += pe * u
         pe *= p
-    return mpmath.log(total)
+    return ctx.log(total)
 
 
 def _h_mp(sp: Space, N: int, k: int, s: Any) -> Any:
-    p = mpmath.exp(s) / N
-    return ((k - 1) * s + G_mp(N, k - 1) - mpmath.log(k) + _log_Q_mp(sp, k, p)
+    ctx = mp()
+    p = ctx.exp(s) / N
+    return ((k - 1) * s + G_mp(N, k - 1) - ctx.log(k) + _log_Q_mp(sp, k, p)
             - _log_Q_mp(sp, 1, p))
 
 
 def _dh_mp(sp: Space, N: int, k: int, s: Any) -> Any:
+    ctx = mp()
     if sp.weighting == "distinct":
-        return mpmath.mpf(k - 1)
-    p = mpmath.exp(s) / N
+        return ctx.mpf(k - 1)
+    p = ctx.exp(s) / N
 
     def mean_excess(j: int) -> Any:
         U = sp.U(j)
-        num = den = mpmath.mpf(0)
+        num = den = ctx.mpf(0)
         for e, u in enumerate(U):
             t = p**e * u
             num += e * t
@@ -226,30 +230,33 @@ def _unexcluded(sp: Space, N: int, fr: Fraction, best: int) -> list[int]:
 
 
 def _root_mp(sp: Space, N: int, k: int, s0: float, wp: int) -> Any:
-    with mpmath.workdps(wp):
+    """``log(N c_k)`` to ``wp`` digits by Newton's method from ``s0`` (this thread's context)."""
+    ctx = mp()
+    with ctx.workdps(wp):
         if sp.weighting == "distinct":
-            c = (G_mp(N, k - 1) - mpmath.log(k) + _log_Q_mp(sp, k, 1) - _log_Q_mp(sp, 1, 1))
+            c = (G_mp(N, k - 1) - ctx.log(k) + _log_Q_mp(sp, k, 1) - _log_Q_mp(sp, 1, 1))
             return -c / (k - 1)
-        s = mpmath.mpf(s0)
+        s = ctx.mpf(s0)
         for _ in range(100):
             step = _h_mp(sp, N, k, s) / _dh_mp(sp, N, k, s)
             s -= step
-            if abs(step) < mpmath.mpf(10) ** (-wp + 3) * max(1, abs(s)):
+            if abs(step) < ctx.mpf(10) ** (-wp + 3) * max(1, abs(s)):
                 break
         return s
 
 
 def _try_rational(sp: Space, N: int, s: Any, ks: list[int], wp: int) -> Fraction | None:
     """``p = e**s / N`` as an exact rational at which every k in ks ties with 1, or None."""
-    with mpmath.workdps(wp):
-        p = mpmath.exp(s) / N
+    ctx = mp()
+    with ctx.workdps(wp):
+        p = ctx.exp(s) / N
         man, exp = p.man_exp
     approx = Fraction(man) * Fraction(2) ** exp
     cand = approx.limit_denominator(10 ** max(4, wp // 3))
     if cand <= 0:
         return None
-    with mpmath.workdps(wp):
-        if abs(mpmath.mpf(cand.numerator) / cand.denominator - p) > abs(p) * mpmath.mpf(10) ** (
+    with ctx.workdps(wp):
+        if abs(ctx.mpf(cand.numerator) / cand.denominator - p) > abs(p) * ctx.mpf(10) ** (
                 -wp + 8):
             return None
     try:
@@ -262,9 +269,10 @@ def _try_rational(sp: Space, N: int, s: Any, ks: list[int], wp: int) -> Fraction
 
 def _bracket(sp: Space, N: int, s: Any, dps: int, wp: int) -> tuple[Fraction, Fraction]:
     """Exact binary rationals ``p_lo < e**s/N < p_hi``, relative gap ``~ 10**-(dps+3)``."""
-    with mpmath.workdps(wp):
-        p = mpmath.exp(s) / N
-        eps = mpmath.mpf(10) ** (-(dps + 3))
+    ctx = mp()
+    with ctx.workdps(wp):
+        p = ctx.exp(s) / N
+        eps = ctx.mpf(10) ** (-(dps + 3))
         lo, hi = p * (1 - eps), p * (1 + eps)
     flo, fhi = as_fraction(lo), as_fraction(hi)
     assert flo is not None and fhi is not None
@@ -354,7 +362,8 @@ def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEF
     elif best * N.bit_length() < RATIONAL_TRY_BITS:
         p_exact = _try_rational(sp, N, root(best), [best], wp)
     # the mode just above p_c: the tied k whose h_k grows fastest (largest k if equal)
-    with mpmath.workdps(wp):
+    ctx = mp()
+    with ctx.workdps(wp):
         slopes = {k: _dh_mp(sp, N, k, root(best)) for k in argmins}
         k_after = max(argmins, key=lambda k: (slopes[k], k))
     with arb_prec(int(wp * 3.33) + 64 + N.bit_length()):
@@ -362,15 +371,14 @@ def critical_point(N: int, *, space: str | Space = DEFAULT_SPACE, dps: int = DEF
             p_lo = p_hi = p_exact
         pb = (mpf_bounds(to_arb(p_lo), dps)[0], mpf_bounds(to_arb(p_hi), dps)[1])
         qb = (mpf_bounds(to_arb(N * p_lo - 1), dps)[0], mpf_bounds(to_arb(N * p_hi - 1), dps)[1])
-    with mpmath.workdps(wp):
+    with ctx.workdps(wp):
         if p_exact is not None:
-            p = mpmath.mpf(p_exact.numerator) / p_exact.denominator
-            q = mpmath.mpf(N * p_exact.numerator - p_exact.denominator) / p_exact.denominator
+            pw = ctx.mpf(p_exact.numerator) / p_exact.denominator
+            qw = ctx.mpf(N * p_exact.numerator - p_exact.denominator) / p_exact.denominator
         else:
-            p = mpmath.exp(root(best)) / N
-            q = mpmath.expm1(root(best))
-    with mpmath.workdps(dps):
-        p, q = +p, +q
+            pw = ctx.exp(root(best)) / N
+            qw = ctx.expm1(root(best))
+    p, q = export(pw, dps), export(qw, dps)
     pb = (min(pb[0], p), max(pb[1], p))
     qb = (min(qb[0], q), max(qb[1], q))
     return CriticalPoint(

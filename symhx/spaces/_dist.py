@@ -17,6 +17,14 @@ Arithmetic (same contract as :mod:`symhx.distribution`):
   only a seed; :func:`symhx.certify.space_candidates` keeps every ``k`` that Arb balls cannot
   prove to weigh less than it, and those candidates are compared exactly (integers) or by
   interval arithmetic with an exact fall-back, so ties are found exactly.
+* for a sympy irrational ``p`` the same scan and comparisons run on a rigorous Arb ball of
+  ``p`` itself (:func:`symhx.certify.real_ball`), the precision doubled until every comparison
+  is proved; a true tie (no precision separates two weights) raises
+  :class:`~symhx.certify.UndecidedError`: pass ``p`` as an exact rational to have it decided.
+
+Threads: the mpmath path computes in the calling thread's context (:mod:`symhx._mpctx`); the
+cached weights and moments are stored exported (global mpf), so one frozen distribution may be
+used by many threads at once.
 """
 
 from __future__ import annotations
@@ -29,12 +37,26 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from symhx._mpctx import export, local, mp
 from symhx._numeric import (
     G_mp,
     digits_of,
     mp_value,
 )
-from symhx.certify import UndecidedError, bits_for, certified_sign, space_candidates, to_arb
+from symhx.certify import (
+    MAX_IRRATIONAL_BITS,
+    UndecidedError,
+    arb_prec,
+    bits_for,
+    certified_sign,
+    decide_with_rising_precision,
+    rational_bracket,
+    real_ball,
+    space_candidates,
+    space_candidates_ball,
+    space_q_ball,
+    to_arb,
+)
 from symhx.distribution import (
     Distribution,
     SimpleDistribution,
@@ -104,6 +126,19 @@ def _logp_float(fr: Fraction) -> float:
     return math.log(fr.numerator) - math.log(fr.denominator)
 
 
+def _logp_float_of(p: Any, fr: Fraction | None) -> float:
+    """float64 ``log p`` (a seed or a screen, never a decision): exact ``fr``, or a sympy
+    irrational from its rigorous Arb ball."""
+    if fr is not None:
+        return _logp_float(fr)
+    with arb_prec(128):
+        ball = real_ball(p)
+        lo_hi = rational_bracket(ball) if ball > 0 else None
+    if lo_hi is None:
+        raise ValueError(f"p={p} cannot be enclosed at 128 bits (is it positive and finite?)")
+    return _logp_float(lo_hi[0])
+
+
 def log_Q_float(space: Space, K: int, logp: float) -> np.ndarray:
     """float64 ``log Q*(k)``, ``k = 1..K``."""
     lu = log_U_table(space, K)
@@ -124,15 +159,14 @@ def log_W_float(space: Space, N: int, logp: float) -> np.ndarray:
 
 # --------------------------------------------------------------------------- exact comparisons
 def _rational(p: Any, fr: Fraction | None) -> Fraction:
-    """The exact value of ``p`` (``fr`` if known); a sympy irrational at 60 digits."""
+    """The exact value of ``p`` (``fr`` if known); a sympy irrational has none: ValueError
+    (callers that can work with an irrational use its Arb ball instead)."""
     if fr is None:
         fr, p = check_p(p)
-    if fr is not None:
-        return fr
-    with mpmath.workdps(60):
-        pm = mp_value(p, None)
-    man, exp = pm.man_exp
-    return Fraction(man) * Fraction(2) ** exp
+    if fr is None:
+        raise ValueError(f"p={p} is irrational: an exact weight needs a rational p (pass an "
+                         f"int, Fraction, decimal string, float or mpf)")
+    return fr
 
 
 def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
@@ -168,21 +202,72 @@ def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
 
 
 def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tuple[int, ...]:
-    """All maximisers of ``P(X = k)`` over ``space`` (exact for rational ``p``)."""
+    """All maximisers of ``P(X = k)`` over ``space``: exact for rational ``p``; for a sympy
+    irrational proved on Arb balls of ``p`` (:func:`_irrational_modes`)."""
     N = check_N(N, minimum=1)
-    frx = _rational(p, fr)
+    if fr is None:
+        fr, p = check_p(p)
     if N == 1:
         return (1,)
-    lw = log_W_float(space, N, _logp_float(frx))  # float64 seed: decides nothing
-    cand = space_candidates(space, N, frx, int(np.argmax(lw)) + 1)  # Arb-certified superset
+    if fr is None:
+        return _irrational_modes(space, N, p)
+    lw = log_W_float(space, N, _logp_float(fr))  # float64 seed: decides nothing
+    cand = space_candidates(space, N, fr, int(np.argmax(lw)) + 1)  # Arb-certified superset
     best = [cand[0]]
     for k in cand[1:]:
-        s = compare_weights(space, N, frx, best[0], k)
+        s = compare_weights(space, N, fr, best[0], k)
         if s > 0:
             best = [k]
         elif s == 0:
             best.append(k)
     return tuple(sorted(best))
+
+
+def _log_weight_ratio_ball(space: Space, N: int, pa: Any, j: int, k: int) -> Any:
+    """Ball of ``log W(k) - log W(j)`` for ``p`` in the ball ``pa`` (``j < k``):
+    ``(k-j) log p + lgamma(N-j+1) - lgamma(N-k+1) + log j - log k + log Q*(k) - log Q*(j)``."""
+    return ((k - j) * pa.log() + to_arb(N - j + 1).lgamma() - to_arb(N - k + 1).lgamma()
+            + to_arb(j).log() - to_arb(k).log()
+            + space_q_ball(space, k, pa).log() - space_q_ball(space, j, pa).log())
+
+
+def _irrational_modes(space: Space, N: int, p: Any) -> tuple[int, ...]:
+    """The modes at an irrational ``p``, proved on Arb balls of ``p`` itself: the candidate scan
+    of :func:`symhx.certify.space_candidates_ball` and the pairwise signs of
+    ``log W(k) - log W(j)`` are evaluated with ``p`` a ball, the precision doubled until one
+    candidate is proved heavier than every other. Several candidates that no precision up to
+    ``MAX_IRRATIONAL_BITS`` separates (a true tie) raise :class:`UndecidedError`."""
+    top = int(np.argmax(log_W_float(space, N, _logp_float_of(p, None)))) + 1  # a seed only
+    last: list[int] = []
+
+    def attempt(bits: int) -> tuple[int, ...] | None:
+        with arb_prec(bits):
+            pa = real_ball(p)
+            bracket = rational_bracket(pa) if pa > 0 else None
+            if bracket is None:
+                return None
+            cand = space_candidates_ball(space, N, pa, bracket[1], top)
+            signs: dict[tuple[int, int], Any] = {}
+
+            def heavier(o: int, k: int) -> bool:  # proved: W(o) > W(k)
+                j, kk = min(o, k), max(o, k)
+                if (j, kk) not in signs:  # the ball of log W(kk) - log W(j)
+                    signs[j, kk] = _log_weight_ratio_ball(space, N, pa, j, kk)
+                d = signs[j, kk]
+                return bool(d > 0) if o == kk else bool(d < 0)
+
+            alive = [k for k in cand if not any(heavier(o, k) for o in cand if o != k)]
+        last[:] = alive
+        return (alive[0],) if len(alive) == 1 else None
+
+    start = 96 + 2 * N.bit_length() + 64
+    return decide_with_rising_precision(
+        attempt, start_bits=start, max_bits=MAX_IRRATIONAL_BITS,
+        undecided=lambda bits: (
+            f"the modes of X at the irrational p={str(p)[:60]} (N={N}, {space.name}) are not "
+            f"decided at {bits} bits: W(k) for k in {tuple(last)} agree (a true tie, or p "
+            f"within 2**-{bits} of one); pass p as an exact rational (e.g. a Fraction or "
+            f"sympy Rational) to have the tie decided exactly"))
 
 
 # --------------------------------------------------------------------------- the distribution
@@ -227,12 +312,16 @@ class SpaceDistribution(Distribution):
         return fr**k * Fraction(math.perm(self.N, k), k) * self.sample_space.Qstar(k, fr)
 
     # ----------------------------------------------------------------- mpmath path
+    # Computed in the calling thread's context (symhx._mpctx); what is cached on the object or
+    # handed to the base class (_terms, _mp_moments, _mp_terms, results) is exported.
+    def _logp(self) -> float:
+        return _logp_float_of(self.p, self.fr)
+
     def _runs(self) -> list[tuple[int, int]]:
         N = self.N
         if N <= DIRECT_LIMIT:
             return [(1, N)]
-        fr = _rational(self.p, self.fr)
-        lw = log_W_float(self.sample_space, N, _logp_float(fr))
+        lw = log_W_float(self.sample_space, N, self._logp())
         cut = lw.max() - self._wdps * math.log(10) - 20
         idx = np.nonzero(lw >= cut)[0] + 1
         runs: list[tuple[int, int]] = []
@@ -257,25 +346,32 @@ class SpaceDistribution(Distribution):
         return total
 
     def _pe(self, pm: mpmath.mpf) -> list[mpmath.mpf]:
+        ctx = mp()
         D = self.sample_space.denominator
         if self.sample_space.weighting == "distinct":
-            return [mpmath.mpf(1) / D]
-        pe = [mpmath.mpf(1) / D]
+            return [ctx.mpf(1) / D]
+        pe = [ctx.mpf(1) / D]
         for _ in range(self.sample_space.max_excess):
             pe.append(pe[-1] * pm)
         return pe
 
     def _log_phi_mp(self, k: int, pm: mpmath.mpf) -> mpmath.mpf:
+        ctx = mp()
         N = self.N
-        return (k * mpmath.log(pm) + k * mpmath.log(N) + G_mp(N, k - 1) - mpmath.log(k))
+        return (k * ctx.log(pm) + k * ctx.log(N) + G_mp(N, k - 1) - ctx.log(k))
+
+    def _p_mp(self) -> mpmath.mpf:
+        """``p`` in this thread's context at the working precision (set by the caller)."""
+        return mp_value(self.p, self.fr)
 
     @cached_property
     def _terms(self) -> dict[int, mpmath.mpf]:
-        """``{k: W(k)}`` (mpf at dps + guard) for every significant k."""
+        """``{k: W(k)}`` (exported mpf at dps + guard) for every significant k."""
         N = self.N
         out: dict[int, mpmath.mpf] = {}
-        with mpmath.workdps(self._wdps):
-            pm = mp_value(self.p, self.fr)
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            pm = self._p_mp()
             pe = self._pe(pm)
             sp = self.sample_space
             runs = self._runs()
@@ -286,11 +382,11 @@ class SpaceDistribution(Distribution):
             small = range(1, min(kmax, sp.max_parts) + 1)
             extra = max(u.bit_length() for k in (*small, kmax) for u in sp.U(k))
             P = mpmath.libmp.dps_to_prec(self._wdps) + extra + 20
-            pe_int = [int(mpmath.floor(x * mpmath.mpf(2) ** P)) for x in pe]
-            scale = mpmath.mpf(2) ** -P
+            pe_int = [int(ctx.floor(x * ctx.mpf(2) ** P)) for x in pe]
+            scale = ctx.mpf(2) ** -P
             distinct = sp.weighting == "distinct"
             for lo, hi in runs:
-                t = N * pm if lo == 1 else mpmath.exp(self._log_phi_mp(lo, pm))
+                t = N * pm if lo == 1 else ctx.exp(self._log_phi_mp(lo, pm))
                 for k in range(lo, hi + 1):
                     U = sp.U(k)
                     if distinct:
@@ -299,64 +395,70 @@ class SpaceDistribution(Distribution):
                         q = 0
                         for a_, u in zip(pe_int, U, strict=True):
                             q += a_ * u
-                    out[k] = t * q * scale
+                    out[k] = export(t * q * scale)
                     t = t * pm * ((N - k) * k) / (k + 1)
         return out
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
-        terms = self._terms
-        with mpmath.workdps(self._wdps):
-            s0 = mpmath.fsum(terms.values())
-            mu = mpmath.fsum(k * w for k, w in terms.items()) / s0
-            var = mpmath.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
-            return s0, mu, var
+        """``(sum W, mean, variance)`` at dps + guard digits (exported)."""
+        terms = local(self._terms)  # this thread's values: operators round in its context
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            s0 = ctx.fsum(terms.values())
+            mu = ctx.fsum(k * w for k, w in terms.items()) / s0
+            var = ctx.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
+            return export((s0, mu, var))
 
     def _float_logw(self) -> np.ndarray:
-        return log_W_float(self.sample_space, self.N, _logp_float(_rational(self.p, self.fr)))
+        return log_W_float(self.sample_space, self.N, self._logp())
 
     def _mp_weight(self, k: int) -> mpmath.mpf:
-        """``W(k)`` at the working precision (set by the caller)."""
+        """``W(k)`` in this thread's context at the working precision (set by the caller)."""
         w = self._terms.get(k)
         if w is not None:
-            return w
-        pm = mp_value(self.p, self.fr)
-        return mpmath.exp(self._log_phi_mp(k, pm)) * self._q_mp(k, self._pe(pm))
+            return local(w)
+        pm = self._p_mp()
+        return mp().exp(self._log_phi_mp(k, pm)) * self._q_mp(k, self._pe(pm))
 
     def _mp_terms(self, lo: int, hi: int) -> list[tuple[int, mpmath.mpf]]:
-        s0 = self._mp_moments[0]
+        """``[(k, P(X = k))]`` at dps + guard digits (exported, for the base class)."""
         if self.N <= DIRECT_LIMIT:  # every W(k) is in _terms
             ks: Any = range(lo, hi + 1)
         else:  # float screen relative to the largest weight in [lo, hi]
             lw = self._float_lw[lo - 1:hi]
             cut = lw.max() - self._wdps * math.log(10) - 20
             ks = [lo + int(i) for i in np.nonzero(lw >= cut)[0]]
-        with self._wp():
-            return [(k, self._mp_weight(k) / s0) for k in ks]
+        ctx = mp()
+        s0 = local(self._mp_moments[0])
+        with ctx.workdps(self._wdps):
+            return [(k, export(self._mp_weight(k) / s0)) for k in ks]
 
     @cached_property
     def _float_lw(self) -> np.ndarray:
-        return log_W_float(self.sample_space, self.N, _logp_float(_rational(self.p, self.fr)))
+        return log_W_float(self.sample_space, self.N, self._logp())
 
     # ----------------------------------------------------------------- per-k values
     def _pmf1(self, k: int) -> Any:
         if self.exact:
             return self.weight_exact(k) / self._exact_moments[0]
-        s0 = self._mp_moments[0]
-        with self._wp():
-            return self._round(self._mp_weight(k) / s0)
+        ctx = mp()
+        s0 = local(self._mp_moments[0])
+        with ctx.workdps(self._wdps):
+            return export(self._mp_weight(k) / s0, self.dps)
 
     def _logpmf1(self, k: int) -> mpmath.mpf:
         if self.exact:
             return self._log_fraction(self._pmf1(k))
-        s0 = self._mp_moments[0]
-        with self._wp():
+        ctx = mp()
+        s0 = local(self._mp_moments[0])
+        with ctx.workdps(self._wdps):
             w = self._terms.get(k)
             if w is not None:
-                return self._round(mpmath.log(w) - mpmath.log(s0))
-            pm = mp_value(self.p, self.fr)
-            lw = self._log_phi_mp(k, pm) + mpmath.log(self._q_mp(k, self._pe(pm)))
-            return self._round(lw - mpmath.log(s0))
+                return export(ctx.log(w) - ctx.log(s0), self.dps)
+            pm = self._p_mp()
+            lw = self._log_phi_mp(k, pm) + ctx.log(self._q_mp(k, self._pe(pm)))
+            return export(lw - ctx.log(s0), self.dps)
 
     @property
     def normaliser(self) -> Any:
@@ -365,7 +467,7 @@ class SpaceDistribution(Distribution):
             return float(np.exp(self._ftab["lognorm"]))
         if self.exact:
             return self._exact_moments[0]
-        return self._round(self._mp_moments[0])
+        return export(self._mp_moments[0], self.dps)
 
     @property
     def log_normaliser(self) -> Any:
@@ -374,11 +476,13 @@ class SpaceDistribution(Distribution):
             return float(self._ftab["lognorm"])
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
-        with self._wp():
-            return self._round(mpmath.log(self._mp_moments[0]))
+        ctx = mp()
+        with ctx.workdps(self._wdps):
+            return export(ctx.log(self._mp_moments[0]), self.dps)
 
     def modes(self) -> tuple[int, ...]:
-        """All maximisers of ``P(X = k)`` (exact for rational ``p``)."""
+        """All maximisers of ``P(X = k)`` (exact for rational ``p``; proved on Arb balls for
+        an irrational ``p``)."""
         return space_modes(self.sample_space, self.N, self.p, self.fr)
 
     def table(self) -> list[tuple[int, Any]]:
@@ -389,11 +493,12 @@ class SpaceDistribution(Distribution):
             g = self._exact_moments[0]
             return [(k, self.weight_exact(k) / g) for k in range(1, self.N + 1)]
         terms = self._terms
-        s0 = self._mp_moments[0]
-        zero = mpmath.mpf(0)
-        with self._wp():
-            vals = [(k, terms[k] / s0 if k in terms else zero) for k in range(1, self.N + 1)]
-        return [(k, self._round(v)) for k, v in vals]
+        ctx = mp()
+        s0 = local(self._mp_moments[0])
+        with ctx.workdps(self._wdps):
+            vals = [(k, local(terms[k]) / s0 if k in terms else ctx.mpf(0))
+                    for k in range(1, self.N + 1)]
+        return [(k, export(v, self.dps)) for k, v in vals]
 
 
 def distribution(N: int, p: Any, *, space: str | Space = DEFAULT_SPACE,
@@ -479,11 +584,11 @@ class ClassDecomposition:
         for e, vals in groups.items():
             if all(isinstance(v, Fraction) for v in vals):
                 by[e] = sum(vals, Fraction(0))
-            else:  # mpf: add at dps + 10 digits, not at the global precision
-                with mpmath.workdps((dps or 15) + 10):
-                    tot = mpmath.fsum(vals)
-                with mpmath.workdps(dps or 15):
-                    by[e] = +tot
+            else:  # mpf: add at dps + 10 digits in this thread's context, round to dps
+                ctx = mp()
+                with ctx.workdps((dps or 15) + 10):
+                    tot = ctx.fsum(vals)
+                by[e] = export(tot, dps or 15)
         self.by_excess = by
 
     def __repr__(self) -> str:
@@ -520,7 +625,8 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
     if N > DIRECT_LIMIT:
         raise ValueError(f"class_decomposition lists every k; use N <= {DIRECT_LIMIT}")
     guard = 10 + 2 * digits_of(N)
-    with mpmath.workdps(dps + guard):
+    ctx = mp()
+    with ctx.workdps(dps + guard):
         pm = mp_value(dist.p, dist.fr)
         phis = []
         t = N * pm  # Phi(1); mpf has no overflow, so the recurrence is safe for any N
@@ -528,19 +634,18 @@ def class_decomposition(N: int, p: Any, *, space: str | Space = "eq41", dps: int
             phis.append(t)
             t = t * pm * ((N - k) * k) / (k + 1)
         for s in sp.shapes:
-            we = pm ** shape_excess(s) if sp.weighting == "length" else mpmath.mpf(1)
+            we = pm ** shape_excess(s) if sp.weighting == "length" else ctx.mpf(1)
             row = []
             for k in range(1, N + 1):
                 r = sp.ratio(s, k)
                 row.append(phis[k - 1] * we * r.numerator / r.denominator if r
-                           else mpmath.mpf(0))
+                           else ctx.mpf(0))
             joint[s] = row
-        s0 = mpmath.fsum(v for row in joint.values() for v in row)
+        s0 = ctx.fsum(v for row in joint.values() for v in row)
         joint = {s: [v / s0 for v in row] for s, row in joint.items()}
-        totals = {s: mpmath.fsum(row) for s, row in joint.items()}
-    with mpmath.workdps(dps):
-        joint = {s: [+v for v in row] for s, row in joint.items()}
-        totals = {s: +v for s, v in totals.items()}
+        totals = {s: ctx.fsum(row) for s, row in joint.items()}
+    joint = {s: [export(v, dps) for v in row] for s, row in joint.items()}
+    totals = {s: export(v, dps) for s, v in totals.items()}
     return ClassDecomposition(dist, sp.shapes, joint, totals)
 
 

@@ -6,10 +6,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import mpmath
 
+from symhx._mpctx import export, mp
 from symhx._numeric import mp_value
 from symhx.spaces._classes import MAX_EXCESS, WEIGHTINGS
 from symhx.spaces._critical import critical_point
@@ -47,6 +49,17 @@ class ConvergenceRow:
     def as_dict(self) -> dict[str, Any]:
         return {"space": self.space, "p_c": self.p_c, "k_after": self.k_after,
                 "means": dict(self.means)}
+
+
+def _mp_input(p: Any, fr: Fraction | None, dps: int) -> Any:
+    """An exact ``p`` rounded to ``dps + 10`` digits (an mpf sends the distribution down the
+    mpmath path); a sympy irrational as it is (the distribution evaluates it rigorously at its
+    own working precision)."""
+    if fr is None:
+        return p
+    ctx = mp()
+    with ctx.workdps(dps + 10):
+        return export(mp_value(p, fr))
 
 
 def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
@@ -91,8 +104,7 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     spaces = [f"excess<={m}{suffix}" for m in ms] + [f"{s}{suffix}" for s in extra]
     for sp in spaces:
         cp = critical_point(N, space=sp, dps=dps)
-        with mpmath.workdps(dps + 10):  # p to dps + 10 digits (any exact type or float)
-            means = {p: distribution(N, mp_value(p, fr), space=sp, dps=dps).mean()
-                     for p, fr in zip(ps, exact, strict=True)}
+        means = {p: distribution(N, _mp_input(p, fr, dps), space=sp, dps=dps).mean()
+                 for p, fr in zip(ps, exact, strict=True)}
         rows.append(ConvergenceRow(sp, cp.p, cp.k_after, means))
     return rows

@@ -12,19 +12,30 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator
+from fractions import Fraction
 from typing import Any
 
 import mpmath
 import numpy as np
 
-__all__ = ["assert_mp_close", "int_log_grid", "log_grid", "rel_err", "signed_log_grid"]
+__all__ = ["assert_mp_close", "int_log_grid", "log_grid", "rel_err", "signed_log_grid", "to_mp"]
+
+
+def to_mp(x: Any) -> mpmath.mpf:
+    """``x`` (int, Fraction, float, mpf of any context, decimal string) as a global mpf at the
+    current precision (a Fraction is divided at that precision, whatever its size)."""
+    if isinstance(x, Fraction):
+        return mpmath.mpf(x.numerator) / x.denominator
+    if hasattr(x, "_mpf_"):
+        return mpmath.mp.make_mpf(x._mpf_)
+    return mpmath.mpf(x)
 
 
 def rel_err(actual: Any, expected: Any, dps: int = 60) -> mpmath.mpf:
     """``|actual - expected| / |expected|`` at ``dps`` digits (the absolute error when
     ``expected`` is 0; 0 when both are the same infinity)."""
     with mpmath.workdps(dps):
-        a, e = mpmath.mpf(actual), mpmath.mpf(expected)
+        a, e = to_mp(actual), to_mp(expected)
         if mpmath.isinf(e) or mpmath.isinf(a):
             return mpmath.mpf(0) if a == e else mpmath.inf
         if mpmath.isnan(a) or mpmath.isnan(e):
@@ -46,7 +57,7 @@ def assert_mp_close(actual: Any, expected: Any, *, rtol: Any, atol: Any = 0, dps
     worst = None
     with mpmath.workdps(dps):
         for i, (a, e) in enumerate(zip(a_list, e_list, strict=True)):
-            am, em = mpmath.mpf(a), mpmath.mpf(e)
+            am, em = to_mp(a), to_mp(e)
             if am == em:
                 continue
             if not (mpmath.isfinite(am) and mpmath.isfinite(em)):
@@ -58,7 +69,7 @@ def assert_mp_close(actual: Any, expected: Any, *, rtol: Any, atol: Any = 0, dps
     if worst is not None:
         _, i, a, e, err = worst
         raise AssertionError(
-            f"{what}[{i}]: {mpmath.nstr(mpmath.mpf(a), 20)} vs {mpmath.nstr(mpmath.mpf(e), 20)}"
+            f"{what}[{i}]: {mpmath.nstr(to_mp(a), 20)} vs {mpmath.nstr(to_mp(e), 20)}"
             f" (abs err {mpmath.nstr(err, 3)}, rtol={rtol}, atol={atol})")
 
 

@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import symhx.spaces._critical as crit
+from symhx._mpctx import local, mp
 from symhx.spaces import critical_point, parse_space, root_estimates
 from symhx.validation import mpf_to_fraction
 from tests.reference.spaces import (
@@ -77,7 +78,8 @@ def test_log_Q_h_and_dh_against_polynomials():
         sp = parse_space(base, w)
         N = 12
         p1 = weight_poly(N, base, 1, w)
-        with mpmath.workdps(50):
+        # the helpers compute in this thread's symhx context (symhx._mpctx): set both
+        with mpmath.workdps(50), mp().workdps(50):
             for k in (1, 2, 3, 5, 12):
                 pk = weight_poly(N, base, k, w)
                 for s in (mpmath.mpf(-1), mpmath.mpf("0.3"), mpmath.mpf(2)):
@@ -87,14 +89,14 @@ def test_log_Q_h_and_dh_against_polynomials():
                         pp = mpmath.exp(t) / N
                         return mpmath.log(evaluate(pk, pp)) - mpmath.log(evaluate(p1, pp))
 
-                    assert mpmath.almosteq(crit._h_mp(sp, N, k, s), h(s), 1e-45)
+                    assert mpmath.almosteq(crit._h_mp(sp, N, k, local(s)), h(s), 1e-45)
                     dref = mpmath.diff(h, s)
-                    assert mpmath.almosteq(crit._dh_mp(sp, N, k, s), dref, 1e-35)
+                    assert mpmath.almosteq(crit._dh_mp(sp, N, k, local(s)), dref, 1e-35)
                     # log Q*: W(k) / (p**k N!/(k (N-k)!)) up to the constant denominator D
                     phi = p**k * mpmath.mpf(math.perm(N, k)) / k
                     q = evaluate(pk, p) / phi
                     ref = mpmath.log(q * sp.denominator)
-                    assert mpmath.almosteq(crit._log_Q_mp(sp, k, p), ref, 1e-45)
+                    assert mpmath.almosteq(crit._log_Q_mp(sp, k, local(p)), ref, 1e-45)
                     fr = mpf_to_fraction(p)
                     with mpmath.workdps(80):
                         exact = mpmath.log(evaluate(pk, fr)) - mpmath.log(evaluate(p1, fr))

@@ -1,0 +1,126 @@
+"""X with per-site probabilities in several classes (issue 30): exact Fractions against the
+brute-force class convolution, mpmath against exact at twice the digits, float64 against mpmath,
+certified modes with exact ties."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+import pytest
+
+from symhx.site_distribution import SitesDistribution, site_modes
+from symhx.site_weights import BALL_TABLE_N_LIMIT, EXACT_TABLE_BITS_LIMIT
+from symhx.sites import SiteClasses
+from symhx.spaces import parse_space
+from tests.harness.errors import assert_refuses
+from tests.reference.mp import assert_mp_close
+from tests.reference.sites import brute_weights, expand, mode_weights
+
+CASES = [((2, 99), (Fraction(1, 100), Fraction(1, 50))),
+         ((3, 5, 4), (Fraction(1, 2), Fraction(1, 9), Fraction(3))),
+         ((1, 40), (Fraction(7), Fraction(1, 30)))]
+
+
+def _mp(x):
+    """An exact Fraction as an mpf at 80 digits (the references are compared at 30)."""
+    with mpmath.workdps(80):
+        return mpmath.mpf(x.numerator) / x.denominator
+
+
+def _ref_pmf(sizes, probs):
+    w = mode_weights(sizes, probs)
+    g = sum(w)
+    return [x / g for x in w]
+
+
+@pytest.mark.parametrize("sizes, probs", CASES)
+def test_exact_distribution_equals_the_class_convolution(sizes, probs):
+    N = sum(sizes)
+    d = SitesDistribution(N, SiteClasses(sizes, probs))
+    ref = _ref_pmf(sizes, probs)
+    assert d.exact and [d.pmf(k) for k in range(1, N + 1)] == ref
+    mean = sum(k * p for k, p in enumerate(ref, 1))
+    assert d.mean() == mean
+    assert d.var() == sum((k - mean) ** 2 * p for k, p in enumerate(ref, 1))
+    cum = np.cumsum(np.array(ref, dtype=object))
+    for k in (0, 1, N // 3, N - 1, N):
+        assert d.cdf(k) == (cum[k - 1] if k >= 1 else 0)
+        assert d.cdf(k) + d.sf(k) == 1
+    assert d.median() == next(k for k, c in enumerate(cum, 1) if c >= Fraction(1, 2))
+    top = max(ref)
+    assert d.modes() == tuple(k for k, p in enumerate(ref, 1) if p == top)
+    assert d.normaliser == sum(mode_weights(sizes, probs))
+
+
+@pytest.mark.parametrize("sizes, probs", CASES)
+def test_mpmath_path_matches_exact_values_to_the_requested_digits(sizes, probs):
+    """Floats are binary rationals: the exact distribution of their values is the reference."""
+    N = sum(sizes)
+    floats = tuple(float(p) for p in probs)
+    binary = tuple(Fraction(f) for f in floats)
+    d = SitesDistribution(N, SiteClasses(sizes, floats), dps=30)
+    ex = SitesDistribution(N, SiteClasses(sizes, binary))
+    assert not d.exact and ex.exact
+    ks = [1, 2, N // 2, N - 1, N]
+    assert_mp_close([d.pmf(k) for k in ks], [_mp(ex.pmf(k)) for k in ks], rtol=1e-29)
+    assert_mp_close([d.cdf(k) for k in ks[:-1]], [_mp(ex.cdf(k)) for k in ks[:-1]], rtol=1e-29)
+    assert_mp_close([d.sf(k) for k in ks[:-1]], [_mp(ex.sf(k)) for k in ks[:-1]], rtol=1e-29)
+    assert_mp_close(d.mean(), _mp(ex.mean()), rtol=1e-29)
+    assert_mp_close(d.var(), _mp(ex.var()), rtol=1e-29)
+    with mpmath.workdps(60):
+        logs = [mpmath.log(mpmath.mpf(ex.pmf(k).numerator) / ex.pmf(k).denominator) for k in ks]
+        ent = -mpmath.fsum(mpmath.mpf(p.numerator) / p.denominator
+                           * mpmath.log(mpmath.mpf(p.numerator) / p.denominator)
+                           for p in (ex.pmf(k) for k in range(1, N + 1)))
+    assert_mp_close([d.logpmf(k) for k in ks], logs, rtol=1e-29)
+    assert_mp_close(d.entropy(), ent, rtol=1e-28)
+    assert d.modes() == ex.modes() and d.median() == ex.median()
+
+
+def test_float64_path_matches_mpmath():
+    sizes, probs = (2, 99), (0.01, 0.02)
+    d = SitesDistribution(101, SiteClasses(sizes, probs), dps=None)
+    m = SitesDistribution(101, SiteClasses(sizes, probs), dps=30)
+    ks = np.arange(1, 102)
+    assert_mp_close(d.pmf(ks), [m.pmf(int(k)) for k in ks], rtol=1e-12)
+    assert_mp_close(d.logsf(ks[:-1]), [m.logsf(int(k)) for k in ks[:-1]], rtol=1e-12)
+    assert_mp_close(d.mean(), m.mean(), rtol=1e-13)
+    assert d.modes() == m.modes()
+    draws = d.rvs(1000, random_state=3)
+    assert draws.min() >= 1 and draws.max() <= 101
+
+
+def test_higher_order_space_with_classes_matches_brute_force():
+    sizes, probs = (2, 2), (Fraction(1, 3), Fraction(1, 2))
+    sp = parse_space("eq41")
+    d = SitesDistribution(4, SiteClasses(sizes, probs), sp)
+    w = brute_weights(expand(sizes, probs), "eq41")  # complete for k <= 4 = 7 - 3
+    g = sum(w.values())
+    assert [d.pmf(k) for k in range(1, 5)] == [w[k] / g for k in range(1, 5)]
+    assert d.space == "eq41"
+
+
+def test_exact_ties_are_found_for_exact_and_binary_inputs():
+    # four sites (1, 1, 2, 2): W = 6, 13, 24, 24
+    assert site_modes(4, SiteClasses((2, 2), (1, 2))) == (3, 4)
+    assert site_modes(4, SiteClasses((2, 2), (1.0, 2.0))) == (3, 4)  # balls never separate
+    assert site_modes(4, SiteClasses((2, 2), (1.0, 2.0000000000000004))) == (4,)
+    assert SitesDistribution(4, SiteClasses((2, 2), ("1", "2"))).mode() == 3
+
+
+def test_refusals_name_the_limit():
+    big = SiteClasses((3000, 3000), ("1/3", "1/7"))
+    assert_refuses(SitesDistribution, 6000, big, arg="N", value="N=6000",
+                   allowed="EXACT_TABLE_BITS_LIMIT")
+    huge = SiteClasses((BALL_TABLE_N_LIMIT, 1), (0.5, 0.25))
+    assert_refuses(SitesDistribution, BALL_TABLE_N_LIMIT + 1, huge, arg="N",
+                   value=f"N={BALL_TABLE_N_LIMIT + 1}", allowed="BALL_TABLE_N_LIMIT")
+    assert_refuses(site_modes, BALL_TABLE_N_LIMIT + 1, huge, arg="N",
+                   value=f"N={BALL_TABLE_N_LIMIT + 1}", allowed="BALL_TABLE_N_LIMIT")
+    assert_refuses(SitesDistribution, 5, SiteClasses((2, 2), (1, 2)), arg="N", value="N = 5",
+                   allowed="4 sites")
+    assert_refuses(SitesDistribution, 4, [0.5] * 4, exc=TypeError, arg="classes",
+                   value="[0.5, 0.5", allowed="SiteClasses")
+    assert EXACT_TABLE_BITS_LIMIT > 0
