@@ -152,6 +152,29 @@ def test_stored_comparison_is_current():
     assert len(data["models"]["scaled"]["boot"]["scale"]) == data["replicates"] >= 100
 
 
+@pytest.mark.slow
+def test_stored_bootstrap_is_recomputed_replicate_by_replicate():
+    """The stored replicates are the seeded bootstrap's (its first two rerun bit for bit), and
+    the stored summary (the chapter's uncertainties) is computed from the stored replicates."""
+    data = json.loads(resources.files("symhx.data").joinpath("site_calibration.json").read_text())
+    again = compare_site_models(stored_sites(), min_kept=data["min_kept"], replicates=2,
+                                seed=data["seed"]).as_dict()
+    for m in MODELS:
+        for key, values in again["models"][m]["boot"].items():
+            assert values == data["models"][m]["boot"][key][:2], (m, key)
+    assert again["simulation"]["boot"]["threshold"] == \
+        data["simulation"]["boot"]["threshold"][:2]
+    for m in MODELS:
+        boot, summary = data["models"][m]["boot"], data["summary"][m]
+        for key in ("rms_mean", "rms_ks", "scale"):
+            sd = math.sqrt(sum((x - sum(boot[key]) / len(boot[key])) ** 2 for x in boot[key])
+                           / (len(boot[key]) - 1))
+            assert summary[f"{key}_sd"] == pytest.approx(sd, rel=1e-9, abs=1e-15), (m, key)
+        assert summary["rms_mean"] == data["models"][m]["rms_mean"]
+        th = sorted(boot["threshold"])
+        assert th[0] <= summary["threshold_lo"] <= summary["threshold_hi"] <= th[-1]
+
+
 def test_refusals_name_the_argument():
     res = synthetic()
     assert_refuses(simulated_x, 1, exc=TypeError, arg="result", value="int")
