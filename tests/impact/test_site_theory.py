@@ -12,8 +12,6 @@ from importlib import resources
 
 import numpy as np
 import pytest
-from symhx.site_distribution import site_modes
-from symhx.sites import SiteClasses
 
 import symhx
 from symhx.impact.site_theory import (
@@ -25,6 +23,8 @@ from symhx.impact.site_theory import (
     simulated_x,
 )
 from symhx.impact.sites import SiteHitResult, SiteHitTable
+from symhx.site_distribution import site_modes
+from symhx.sites import SiteClasses
 from tests.harness.errors import assert_refuses
 from tests.reference.sites import mode_weights
 
