@@ -41,7 +41,7 @@ Precision: float64 (``dps=None``, vectorised over the forcing arguments ``sigma`
 ``omega``, ``Omega`` as :func:`symhx.impact_probability`) or mpmath correct to ``dps`` digits;
 the geometry (``gap``, ``d``, ``pitch``, ``diameter``, ``wall_gap``) is scalar and exact (decimal
 strings, Fractions, floats at their binary value). A threshold with a factor ``sqrt(2)`` is
-computed with :data:`~symhx.forcing.arguments.IRRATIONAL_EXTRA_DIGITS` more digits than asked
+computed with ``symhx.forcing.arguments.IRRATIONAL_EXTRA_DIGITS`` more digits than asked
 (float64: rounded once from 113 bits), in the calling thread's own mpmath context; the
 probability itself is :func:`symhx.impact_probability`'s, as thread-safe as that route.
 

@@ -17,7 +17,7 @@ which sites saw at least one impact (kinds ``impact`` and ``stick``, as the ense
   rates with standard errors from the runs' own variance and covariance, their ratio, and the
   bootstrap (runs resampled from the joint histogram, :meth:`SiteHitTable.resample`).
   :func:`site_hit_tables` simulates them; run ``k`` of ``sigma`` draws the row of
-  :func:`symhx.impact.ensemble.run_seed`, the same row as :func:`symhx.impact.ensemble.ensemble`
+  ``symhx.impact.ensemble.run_seed``, the same row as :func:`symhx.impact.ensemble.ensemble`
   with the same seed, so the per-site totals and the histogram of ``X`` of a table equal those
   of the ensemble (tested; the stored file reproduces the stored ensemble's columns exactly).
 
@@ -351,7 +351,7 @@ class SiteHitTable:
 def hit_table_chunk(sigma: float, runs: Sequence[int], n: int, t_transient: float,
                     t_window: float, seed: int, restitution: float, omega: float, d: float,
                     Omega: tuple) -> dict[str, Any]:
-    """Worker: the runs ``runs`` of one ``sigma`` (rows of :func:`run_seed`, float64 engine), as
+    """Worker: the runs ``runs`` of one ``sigma`` (rows of ``run_seed``, float64 engine), as
     ``{"counts": hit vectors of the finished runs, "failures": [(run, reason)]}``; a run whose
     draw or simulation fails is recorded, never raised (as the ensemble does).
 
