@@ -66,6 +66,12 @@ _EXPORTS: dict[str, str] = {
     "discriminant_root": "critical",
     "mode_path": "critical",
     "ModePath": "critical",
+    # per-site probabilities (issue 30)
+    "SiteClasses": "sites",
+    "SitesDistribution": "site_distribution",
+    "DirectionCriticalPoint": "critical_sites",
+    "CriticalCurve": "critical_sites",
+    "critical_curve": "critical_sites",
     # asymptotics (mpmath only; the sympy derivations live in symhx.symbolic)
     "asymptotic_critical_point": "asymptotics",
     "AsymptoticCriticalPoint": "asymptotics",

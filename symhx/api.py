@@ -17,6 +17,15 @@ Conventions (see :mod:`symhx.validation`):
 * Exact ``p`` with an int ``dps`` gives ``Fraction`` results wherever the value is rational.
 * ``k``, ``q`` and ``p`` may be arrays (or lists): the result broadcasts like scipy.stats, with
   dtype float64 for ``dps=None`` and object (``Fraction`` / ``mpf``) otherwise.
+* Site probabilities (issue 30): wherever ``p`` is taken, a :class:`symhx.SiteClasses` gives
+  each class of impact sites its own probability (a circuit weighs the product of its sites'
+  probabilities; :mod:`symhx.site_weights`).  :func:`distribution_of` and
+  ``critical_point(weights=...)`` also take a sequence of ``N`` per-site probabilities; in the
+  broadcasting functions (:func:`pmf`, :func:`mean`, :func:`modes`, ...) a list is an array of
+  scalar ``p``, so per-site values go in as ``SiteClasses.from_sites(values)`` (and a list of
+  ``SiteClasses`` broadcasts).  Classes of one common value are the scalar ``p`` they hold, bit
+  for bit (today's code path); two or more go through
+  :class:`symhx.site_distribution.SitesDistribution`.
 
 >>> import numpy as np
 >>> pmf(10, 0.3, np.arange(1, 4), dps=None).round(4)
@@ -25,6 +34,9 @@ array([0.0298, 0.0402, 0.0644])
 ((50, 51), (51,))
 >>> mean(3, "1/2")
 Fraction(3, 2)
+>>> from symhx.sites import SiteClasses
+>>> modes(101, SiteClasses((2, 99), ("0.01", "0.02")))   # walls at 0.01, pipe pairs 0.02
+(50,)
 """
 
 from __future__ import annotations
@@ -38,13 +50,18 @@ import numpy as np
 
 from symhx.critical import CriticalPoint
 from symhx.critical import critical_point as simple_critical_point
+from symhx.critical_sites import DirectionCriticalPoint, direction_critical_point
 from symhx.distribution import Distribution, SimpleDistribution, simple_modes
+from symhx.site_distribution import SitesDistribution, site_modes
+from symhx.sites import SiteClasses, as_site_classes, is_site_input
 from symhx.spaces import Space, SpaceDistribution, parse_space, space_modes
 from symhx.spaces import critical_point as space_critical_point
 from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE, check_dps, check_N, check_p
 
 __all__ = [
     "CriticalPoint",
+    "DirectionCriticalPoint",
+    "SiteClasses",
     "cdf",
     "critical_point",
     "distribution_of",
@@ -78,7 +95,22 @@ def _space(space: SpaceLike, weighting: str | None = None) -> Space:
     return parse_space(space, weighting)
 
 
+def _scalar_or_classes(N: int, p: Any) -> tuple[Any, SiteClasses | None]:
+    """``(p, None)`` for a scalar ``p`` or site classes of one common value (the scalar they
+    hold, the original object, so the result is today's bit for bit); ``(None, classes)`` for
+    two or more classes of distinct value."""
+    if not isinstance(p, SiteClasses):
+        return p, None
+    sc = as_site_classes(p, N, "p").merged()
+    if len(sc) == 1:
+        return sc.probabilities[0], None
+    return None, sc
+
+
 def _build(N: int, p: Any, sp: Space, dps: int | None) -> Distribution:
+    p, sc = _scalar_or_classes(N, p)
+    if sc is not None:
+        return SitesDistribution(N, sc, sp, dps=dps)
     if sp.base == "simple":
         return SimpleDistribution(N, p, dps=dps)
     return SpaceDistribution(N, p, sp, dps=dps)
@@ -93,8 +125,15 @@ def distribution_of(N: Any, p: Any, *, space: SpaceLike = DEFAULT_SPACE,
     ----------
     N : int
         Number of vertices (possible impacts), ``N = n + 1`` for ``n`` pipes; ``N >= 1``.
-    p : int, Fraction, sympy Rational, decimal string, float or mpf
-        Impact probability, ``p > 0`` (``p > 1`` is accepted but unphysical).
+    p : int, Fraction, sympy Rational, decimal string, float, mpf, SiteClasses or sequence
+        Impact probability, ``p > 0`` (``p > 1`` is accepted but unphysical); or per-site
+        probabilities: a :class:`symhx.SiteClasses` of classes summing to ``N`` sites, or a
+        sequence (list, tuple, 1-d array) of ``N`` per-site probabilities.  Several classes
+        give a :class:`symhx.site_distribution.SitesDistribution` (exact for exact class
+        probabilities, mpmath at ``dps`` otherwise, float64 for ``dps=None``; work limits
+        :data:`symhx.site_weights.EXACT_TABLE_BITS_LIMIT`,
+        :data:`symhx.site_weights.BALL_TABLE_N_LIMIT`,
+        :data:`symhx.site_weights.SITE_PATTERN_LIMIT`, checked before any work).
     space : str or Space
         ``"simple"`` (default), ``"eq41"``, ``"eq41-printed"``, ``"excess<=m"``, optionally with
         ``";distinct"`` (see :func:`symhx.spaces.parse_space`).
@@ -109,13 +148,25 @@ def distribution_of(N: Any, p: Any, *, space: SpaceLike = DEFAULT_SPACE,
         With scipy's frozen methods ``pmf, logpmf, cdf, logcdf, sf, logsf, ppf, isf, mean,
         var, std, median, mode, modes, support, interval, rvs, entropy``.
 
+    Raises
+    ------
+    ValueError
+        A bad ``N``, ``p``, ``space`` or ``dps``; site classes not summing to ``N``; work
+        beyond a documented limit.
+    TypeError
+        A wrong kind of object.
+
     >>> d = distribution_of(3, "1/2")
     >>> [d.pmf(k) for k in (1, 2, 3)], d.mean(), d.cdf(2) + d.sf(2)
     ([Fraction(3, 5), Fraction(3, 10), Fraction(1, 10)], Fraction(3, 2), Fraction(1, 1))
+    >>> distribution_of(3, ["1/2", "1/3", "1/3"]).pmf(1)     # per-site probabilities
+    Fraction(21, 31)
     """
     sp = _space(space, weighting)
     N = check_N(N, minimum=1)
     dps = check_dps(dps, allow_none=True)
+    if is_site_input(p):
+        p = as_site_classes(p, N, "p")
     return _build(N, p, sp, dps)
 
 
@@ -330,6 +381,9 @@ def normaliser(N: int, p: Any, *, space: SpaceLike = DEFAULT_SPACE,
 
 # --------------------------------------------------------------------------- modes
 def _modes1(N: int, p: Any, sp: Space) -> tuple[int, ...]:
+    p, sc = _scalar_or_classes(N, p)
+    if sc is not None:
+        return site_modes(N, sc, sp)
     fr, p = check_p(p)
     if sp.base == "simple":
         return simple_modes(N, fr, p)
@@ -339,10 +393,15 @@ def _modes1(N: int, p: Any, sp: Space) -> tuple[int, ...]:
 def modes(N: int, p: Any, *, space: SpaceLike = DEFAULT_SPACE) -> Any:
     """All maximisers of ``P(X = k)``, increasing; certified exact for every rational ``p``
     (floats at their binary value), any ``N``.  An array of ``p`` gives an object array of
-    tuples.
+    tuples.  ``p`` may be a :class:`symhx.SiteClasses` (exact integer comparisons for exact
+    class probabilities, else Arb balls at doubling precision with the exact table on a near
+    tie; :func:`symhx.site_distribution.site_modes`).
 
     >>> modes(5, "1/2"), modes(100, "1/50", space="eq41")
     ((1, 2, 3), (53,))
+    >>> from symhx.sites import SiteClasses
+    >>> modes(4, SiteClasses((2, 2), (1, 2)))            # W = 6, 13, 24, 24: a tie
+    (3, 4)
     """
     sp = _space(space)
     N = check_N(N, minimum=1)
@@ -374,19 +433,60 @@ _INT64_MAX = 2**63 - 1
 
 
 # --------------------------------------------------------------------------- critical point
-def critical_point(N: Any, *, space: SpaceLike = DEFAULT_SPACE,
+def critical_point(N: Any, *, weights: Any = None, space: SpaceLike = DEFAULT_SPACE,
                    dps: int | None = DEFAULT_DPS) -> CriticalPoint:
     """The critical probability ``p_c`` at which the mode of X jumps away from 1 (eqs. 11-16),
     over ``space``; ``dps=None`` returns float64 ``p``, ``q``, ``p_d`` (computed at 20 digits).
 
+    With ``weights`` (a :class:`symhx.SiteClasses` or a sequence of ``N`` per-site weights):
+    the critical point along the direction ``p_v = t w_v`` of site probabilities, a
+    :class:`symhx.critical_sites.DirectionCriticalPoint` whose ``p`` is
+    ``t_c = min_{k>=2} (e_1(w)/((k-1)! e_k(w)))**(1/(k-1))`` (simple circuits only; see
+    :func:`symhx.critical_sites.direction_critical_point` for the methods and limits).  One
+    class of weight ``w`` gives today's ``p_c / w``.
+
+    Parameters
+    ----------
+    N : int
+        Number of vertices, ``N >= 2``.
+    weights : SiteClasses or sequence, optional
+        The direction of the site probabilities (only ratios matter).
+    space : str or Space
+        The sample space (``"simple"`` only with ``weights``).
+    dps : int or None
+        Digits of ``p``, ``q``, ``p_d``; ``None`` for float64 (computed at 20 digits).
+
+    Returns
+    -------
+    CriticalPoint or DirectionCriticalPoint
+
+    Raises
+    ------
+    ValueError
+        A bad ``N``, ``space``, ``dps`` or ``weights``; ``weights`` with a higher-order space.
+
     >>> cp = critical_point(101, dps=20)
     >>> cp.k_before, cp.k_after
     (1, 20)
+    >>> from symhx.sites import SiteClasses
+    >>> cp = critical_point(101, weights=SiteClasses((2, 99), (3, 1)), dps=20)
+    >>> cp.k_after, cp.method            # walls 3x as likely as pipe pairs: jumps to 19
+    (19, 'table')
     """
     sp = _space(space)
     N = check_N(N)
     d = check_dps(dps, allow_none=True)
     work = 20 if d is None else d
+    if weights is not None:
+        if sp.base != "simple":
+            raise ValueError(f"weights (a direction of site probabilities) are supported over "
+                             f"the simple space only, got space={sp.name!r}; pass "
+                             f"space='simple'")
+        dcp = direction_critical_point(N, weights, dps=work)
+        if d is None:
+            dcp = dataclasses.replace(dcp, p=float(dcp.p), q=float(dcp.q),
+                                      p_d=None if dcp.p_d is None else float(dcp.p_d))
+        return dcp
     if sp.base == "simple":
         cp = simple_critical_point(N, dps=work)
     else:

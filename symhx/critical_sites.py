@@ -84,7 +84,7 @@ from symhx.site_weights import (
     exact_weights,
     short_sum_split,
 )
-from symhx.sites import SiteClasses, as_site_classes
+from symhx.sites import SiteClasses, as_site_classes, show_int
 from symhx.validation import DEFAULT_DPS, check_dps, check_int, check_N, check_p
 
 __all__ = [
@@ -689,7 +689,7 @@ def direction_critical_point(N: Any, weights: Any, *, dps: int = DEFAULT_DPS
             return cp
     if N > BALL_TABLE_N_LIMIT:
         raise ValueError(
-            f"the critical point along {sc!r} at N={N}: several large classes (more than "
+            f"the critical point along {sc!r} at N={show_int(N)}: several large classes (more than "
             f"symhx.site_weights.MAX_SMALL_SITES = {MAX_SMALL_SITES} sites outside the largest "
             f"class), or small classes that are not a small perturbation of the large one, "
             f"are decided by a table of every k, limited to N <= "
@@ -830,7 +830,7 @@ def critical_curve(N: Any, sizes: Sequence[Any], *, directions: Any = CURVE_DIRE
     n1 = check_int(sizes[0], "sizes[0]", minimum=1)
     n2 = check_int(sizes[1], "sizes[1]", minimum=1)
     if n1 + n2 != N:
-        raise ValueError(f"sizes must add up to N = {N}, got sizes=({n1}, {n2})")
+        raise ValueError(f"sizes must add up to N = {show_int(N)}, got sizes=({n1}, {n2})")
     if isinstance(directions, bool):
         raise TypeError(f"directions must be an int or a sequence of pairs, got {directions!r}")
     if isinstance(directions, int):

@@ -46,10 +46,11 @@ from symhx.site_weights import (
     EXACT_TABLE_BITS_LIMIT,
     SIMPLE,
     ball_weights,
+    check_pattern_work,
     exact_table_bits,
     exact_weights,
 )
-from symhx.sites import SiteClasses
+from symhx.sites import SiteClasses, show_int
 from symhx.validation import DEFAULT_DPS, check_dps, check_N
 
 __all__ = ["MODES_MAX_BITS", "SitesDistribution", "site_modes"]
@@ -69,9 +70,9 @@ def _arb_to_mpf(x: arb, prec: int) -> Any:
 def _check_N_fits(N: int, what: str) -> None:
     if N > BALL_TABLE_N_LIMIT:
         raise ValueError(
-            f"{what} with several site classes tabulates every k = 1..N; N={N} is above the "
-            f"documented work limit symhx.site_weights.BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}"
-            f" (one class, a scalar p, has no such limit)")
+            f"{what} with several site classes tabulates every k = 1..N; N={show_int(N)} is "
+            f"above the documented work limit symhx.site_weights.BALL_TABLE_N_LIMIT = "
+            f"{BALL_TABLE_N_LIMIT} (one class, a scalar p, has no such limit)")
 
 
 def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, ...]:
@@ -86,7 +87,7 @@ def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, 
     """
     N = check_N(N, minimum=1)
     if classes.N != N:
-        raise ValueError(f"the site classes hold {classes.N} sites, but N = {N}")
+        raise ValueError(f"the site classes hold {classes.N} sites, but N = {show_int(N)}")
     if classes.exact:
         nums, _ = exact_weights(classes, space)
         top = max(nums)
@@ -108,9 +109,9 @@ def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, 
         bits *= 2
     if exact_table_bits(classes) > EXACT_TABLE_BITS_LIMIT:
         raise UndecidedError(
-            f"the largest weights of X agree to {MODES_MAX_BITS} bits (N={N}, {classes!r}) and "
-            f"the exact table would exceed symhx.site_weights.EXACT_TABLE_BITS_LIMIT: an exact "
-            f"tie is likely")
+            f"the largest weights of X agree to {MODES_MAX_BITS} bits (N={show_int(N)}, "
+            f"{classes!r}) and the exact table would exceed "
+            f"symhx.site_weights.EXACT_TABLE_BITS_LIMIT: an exact tie is likely")
     exact = SiteClasses(classes.sizes, classes.values, classes.names)  # exact binary values
     nums, _ = exact_weights(exact, space)
     top = max(nums)
@@ -141,6 +142,7 @@ class SitesDistribution(Distribution):
         self.sample_space = space
         self.space = space.name
         self._guard = 10 + 2 * digits_of(self.N)
+        check_pattern_work(space, len(classes))
         if self.exact:
             bits = exact_table_bits(classes)
             if bits > EXACT_TABLE_BITS_LIMIT:
@@ -218,7 +220,11 @@ class SitesDistribution(Distribution):
     def _float_logw(self) -> np.ndarray:
         balls = ball_weights(self.classes, self.sample_space, prec=60)
         with arb_prec(80):
-            return np.array([float(x.log().mid()) for x in balls])
+            # logs relative to the largest weight, subtracted before rounding to float64: an
+            # absolute log of size L would carry L * 2**-53 of error into every probability
+            logs = [x.log() for x in balls]
+            top = max(logs, key=lambda y: y.mid()).mid()
+            return np.array([float((y - top).mid()) for y in logs])
 
     # ----------------------------------------------------------------- per-k values
     def _pmf1(self, k: int) -> Any:

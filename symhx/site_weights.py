@@ -67,7 +67,7 @@ from typing import Any
 from flint import arb, fmpz, fmpz_poly
 
 from symhx.certify import arb_prec, to_arb
-from symhx.sites import SiteClasses
+from symhx.sites import SiteClasses, show_int
 
 __all__ = [
     "BALL_TABLE_N_LIMIT",
@@ -78,6 +78,7 @@ __all__ = [
     "PatternSpace",
     "ball_weights",
     "binomial_product_balls",
+    "check_pattern_work",
     "elementary_ball",
     "elementary_exact",
     "exact_table_bits",
@@ -205,6 +206,21 @@ def pattern_work(space: Any, c: int) -> int:
                for s in space.shapes)
 
 
+def check_pattern_work(space: Any, c: int) -> None:
+    """Refuse ``space`` with ``c`` site classes when :func:`pattern_work` exceeds
+    :data:`SITE_PATTERN_LIMIT` (before any enumeration).
+
+    >>> check_pattern_work(SIMPLE, 5)
+    """
+    work = pattern_work(space, c)
+    if work > SITE_PATTERN_LIMIT:
+        raise ValueError(
+            f"space {space.name!r} with {c} site classes: its classes and their distributions "
+            f"among the site classes make {work} pairs, more than the documented work limit "
+            f"symhx.site_weights.SITE_PATTERN_LIMIT = {SITE_PATTERN_LIMIT} (a smaller excess "
+            f"or fewer site classes fit)")
+
+
 def pattern_terms(space: Any, c: int) -> dict[int, dict[tuple[tuple[int, ...], tuple[int, ...]],
                                                         Fraction]]:
     """For ``k > max_parts``: ``{e: {(r, w): coefficient}}`` with ``W(k) = sum_e (k+e-1)!
@@ -217,13 +233,7 @@ def pattern_terms(space: Any, c: int) -> dict[int, dict[tuple[tuple[int, ...], t
     >>> pattern_terms(SIMPLE, 2)
     {0: {((0, 0), (0, 0)): Fraction(1, 1)}}
     """
-    work = pattern_work(space, c)
-    if work > SITE_PATTERN_LIMIT:
-        raise ValueError(
-            f"space {space.name!r} with {c} site classes: its classes and their distributions "
-            f"among the site classes make {work} pairs, more than the documented work limit "
-            f"symhx.site_weights.SITE_PATTERN_LIMIT = {SITE_PATTERN_LIMIT} (a smaller excess "
-            f"or fewer site classes fit)")
+    check_pattern_work(space, c)
     return _pattern_terms_cached(space.name, tuple(space.shapes), space.weighting, c)
 
 
@@ -661,8 +671,8 @@ def ball_weights(sc: SiteClasses, space: Any = SIMPLE, prec: int = 128) -> list[
     N = sc.N
     if N > BALL_TABLE_N_LIMIT:
         raise ValueError(
-            f"weights with site classes tabulate every k; N={N} is above the documented work "
-            f"limit symhx.site_weights.BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}")
+            f"weights with site classes tabulate every k; N={show_int(N)} is above the "
+            f"documented work limit symhx.site_weights.BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}")
     classes = _class_list(sc)
     Rs, npolys = _short_polys(space, classes)
     deg = max(len(p) for p in npolys.values())

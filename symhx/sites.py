@@ -36,16 +36,20 @@ import numpy as np
 
 from symhx.validation import check_int, check_p, is_exact_type, short_value
 
-__all__ = ["SiteClasses", "as_site_classes", "is_site_input"]
+__all__ = ["MAX_SITE_SEQUENCE", "SiteClasses", "as_site_classes", "is_site_input", "show_int"]
 
 #: a per-site probability sequence longer than this is refused (it is grouped into classes one
 #: entry at a time; give :class:`SiteClasses` directly for larger N)
 MAX_SITE_SEQUENCE = 10_000_000
 
 
-def _show_int(n: int) -> str:
+def show_int(n: int) -> str:
     """A readable int for reprs and messages (``10**100`` for exact powers of ten, no str() of
-    huge ints)."""
+    huge ints).
+
+    >>> show_int(101), show_int(10**100), show_int(10**100 - 2)
+    ('101', '10**100', '~1.0e+100')
+    """
     if n < 10**30:
         return str(n)
     e = int((n.bit_length() - 1) * 0.30102999566398120)
@@ -205,7 +209,7 @@ class SiteClasses:
         return iter(zip(self.sizes, self.probabilities, strict=True))
 
     def __repr__(self) -> str:
-        sizes = ", ".join(_show_int(n) for n in self.sizes)
+        sizes = ", ".join(show_int(n) for n in self.sizes)
         sizes = f"({sizes}{',' if len(self.sizes) == 1 else ''})"
         probs = ", ".join(self._show_p(p) for p in self.probabilities)
         probs = f"({probs}{',' if len(self.probabilities) == 1 else ''})"
@@ -355,15 +359,15 @@ def as_site_classes(x: Any, N: int, name: str = "p") -> SiteClasses:
     """
     if isinstance(x, SiteClasses):
         if x.N != N:
-            raise ValueError(f"{name} has sizes summing to N = {_show_int(x.N)}, but "
-                             f"N = {_show_int(N)}: the class sizes must add up to N")
+            raise ValueError(f"{name} has sizes summing to N = {show_int(x.N)}, but "
+                             f"N = {show_int(N)}: the class sizes must add up to N")
         return x
     if not is_site_input(x):
         raise TypeError(f"{name} must be a symhx.SiteClasses or a sequence of N per-site "
                         f"probabilities, got {type(x).__name__} {x!r}"[:300])
     n = len(x)
     if n != N:
-        raise ValueError(f"{name} must hold one probability per site (N = {_show_int(N)}), got "
+        raise ValueError(f"{name} must hold one probability per site (N = {show_int(N)}), got "
                          f"a sequence of {n}; use symhx.SiteClasses(sizes, probabilities) for "
                          f"classes")
     return SiteClasses.from_sites(x, name)

@@ -24,7 +24,7 @@ import mpmath
 from mpmath import libmp
 
 from symhx import validation as V
-from symhx._mpctx import is_mpf, local, mp
+from symhx._mpctx import export, is_mpf, local, mp
 
 #: integers with more digits than this are shown as ``d.ddd...e+NN (D digits)`` in text output
 MAX_INT_DIGITS_SHOWN = 60
@@ -68,6 +68,51 @@ def rational_arg(name: str, positive: bool = True) -> Callable[[str], Fraction]:
         return fr
 
     return _arg_type(conv, name)
+
+
+def sites_arg(text: str) -> Any:
+    """argparse ``type=`` for ``--sites``: classes of impact sites ``size:probability``, comma
+    separated, optionally named (``wall=2:0.01,pipe=99:0.02``), probabilities exact as ``p``
+    (:meth:`symhx.sites.SiteClasses.parse`)."""
+    from symhx.sites import SiteClasses
+
+    try:
+        return SiteClasses.parse(text, "--sites")
+    except (ValueError, TypeError) as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+#: the ``--sites`` option's help (``symhx distribution``, ``spaces``, ``critical``)
+SITES_HELP = ("per-class impact probabilities instead of p: size:probability pairs separated "
+              "by commas, optionally named, e.g. wall=2:0.01,pipe=99:0.02 (sizes add up to N; "
+              "probabilities exact as p)")
+
+
+def sites_for(sc: Any, N: int, dps: int | None = None) -> Any:
+    """``--sites`` checked against ``N`` (the sizes must add up to it); with ``dps``, every
+    probability as an mpf of ``dps + 10`` digits (``--float``)."""
+    from symhx.sites import SiteClasses, as_site_classes
+
+    sc = as_site_classes(sc, N, "--sites")
+    if dps is None:
+        return sc
+    ctx = mp()
+    with ctx.workdps(dps + 10):
+        probs = [export(ctx.mpf(v.numerator) / v.denominator) for v in sc.values]
+    return SiteClasses(sc.sizes, probs, sc.names)
+
+
+def sites_show(sc: Any) -> str:
+    """``--sites`` as it reads on the command line (``wall=2:0.01,pipe=99:0.02``)."""
+    names = sc.names or ("",) * len(sc.sizes)
+    return ",".join(f"{name + '=' if name else ''}{int_str(n)}:{p}"
+                    for name, n, p in zip(names, sc.sizes, sc.probabilities, strict=True))
+
+
+def sites_json(sc: Any) -> dict[str, Any]:
+    """``--sites`` for JSON output: sizes, exact probabilities, names (or ``None``)."""
+    return {"sizes": list(sc.sizes), "probabilities": list(sc.values),
+            "names": list(sc.names) if sc.names else None}
 
 
 def dps_arg(text: str) -> int:

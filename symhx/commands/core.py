@@ -14,6 +14,7 @@ from typing import Any
 
 from symhx._mpctx import export, mp
 from symhx.commands._common import (
+    SITES_HELP,
     csv_num,
     dps_arg,
     dump_json,
@@ -21,6 +22,10 @@ from symhx.commands._common import (
     int_show,
     mpstr,
     rational_arg,
+    sites_arg,
+    sites_for,
+    sites_json,
+    sites_show,
 )
 from symhx.validation import DEFAULT_DPS, DEFAULT_SPACE
 
@@ -70,6 +75,9 @@ def register(sub: Any) -> None:
                        "from 1, and the discriminant root p_d (eq. 16). Both are also shown "
                        "as N p - 1, which separates them when N is huge.")
     c.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
+    c.add_argument("--sites", type=sites_arg, default=None,
+                   help="the critical point t_c along the direction p_v = t w_v of per-class "
+                   "weights: size:weight pairs, e.g. wall=2:1/2,pipe=99:1 (sizes add up to N)")
     add_dps(c)
     add_json(c)
     c.set_defaults(func=cmd_critical)
@@ -78,7 +86,9 @@ def register(sub: Any) -> None:
                        description="The distribution of X, the number of distinct impacts "
                        "(eq. 7), exactly (rational p) or with mpmath (--float).")
     d.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
-    d.add_argument("p", type=rational_arg("p"), help=P_HELP)
+    d.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
+                   help=P_HELP + "; or --sites")
+    d.add_argument("--sites", type=sites_arg, default=None, help=SITES_HELP)
     add_dps(d, help_text="significant digits shown (and of the mpmath values with --float)")
     d.add_argument("--space", default=DEFAULT_SPACE,
                    help="sample space: simple, eq41, eq41-printed or excess<=m")
@@ -126,6 +136,8 @@ def pipes_show(N: int) -> str:
 def cmd_critical(args: argparse.Namespace) -> int:
     from symhx.critical import critical_point, discriminant_root_q
 
+    if args.sites is not None:
+        return _critical_sites(args)
     cp = critical_point(args.N, dps=args.dps)
     q_d = discriminant_root_q(args.N, dps=args.dps)
     if args.json:
@@ -144,26 +156,59 @@ def cmd_critical(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_distribution(args: argparse.Namespace) -> int:
-    from symhx.api import distribution_of
+def _critical_sites(args: argparse.Namespace) -> int:
+    """``symhx critical N --sites ...``: the critical point along the direction of the classes."""
+    from symhx.api import critical_point
 
+    cp = critical_point(args.N, weights=sites_for(args.sites, args.N), dps=args.dps)
+    if args.json:
+        print(dump_json(cp.as_dict()))
+        return 0
+    print(f"N = {int_show(cp.N)} vertices ({pipes_show(cp.N)} pipes), direction --sites "
+          f"{sites_show(args.sites)}: p_v = t w_v")
+    print(str(cp))
+    return 0
+
+
+def p_or_sites(args: argparse.Namespace) -> tuple[Any, Any]:
+    """``(p, sites)`` of a command taking ``p`` or ``--sites`` (exactly one of them); with
+    ``--float`` as mpf of ``--dps`` + 10 digits."""
+    if args.sites is not None and args.p is not None:
+        raise ValueError(f"give either p or --sites, not both (got p = {args.p} and --sites "
+                         f"{sites_show(args.sites)})")
+    if args.sites is not None:
+        sites = sites_for(args.sites, args.N)
+        return (sites_for(sites, args.N, args.dps) if args.float else sites), sites
+    if args.p is None:
+        raise ValueError("p is missing: give an impact probability p (e.g. 0.02) or --sites "
+                         "size:probability pairs (e.g. 2:0.01,99:0.02)")
     p: Any = args.p
     if args.float:
         ctx = mp()
         with ctx.workdps(args.dps + 10):
             p = export(ctx.mpf(p.numerator) / p.denominator)
+    return p, None
+
+
+def cmd_distribution(args: argparse.Namespace) -> int:
+    from symhx.api import distribution_of
+
+    p, sites = p_or_sites(args)
     d = distribution_of(args.N, p, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
                            "mean": d.mean(), "variance": d.var(), "modes": list(d.modes()),
                            "mode": d.mode(), "log_normaliser": d.log_normaliser}
+    if sites is not None:
+        out["sites"] = sites_json(sites)
     if args.table:
         out["pmf"] = {k: d.pmf(k) for k in range(1, d.N + 1)}
     if args.json:
         print(dump_json(out))
         return 0
     how = "exact rational arithmetic" if d.exact else f"mpmath, {args.dps} significant digits"
-    print(f"distribution of X for N = {int_show(args.N)}, p = {mpstr(args.p, args.dps)} "
-          f"({args.space} circuits; {how})")
+    given = f"sites {sites_show(sites)}" if sites is not None \
+        else f"p = {mpstr(args.p, args.dps)}"
+    print(f"distribution of X for N = {int_show(args.N)}, {given} ({args.space} circuits; {how})")
     for key in ("mean", "variance", "mode", "modes", "log_normaliser"):
         val = out[key]
         shown = ", ".join(int_show(v) for v in val) if isinstance(val, list) \

@@ -8,8 +8,26 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from symhx.commands._common import dump_json, int_arg, int_show, mpstr, rational_arg
-from symhx.commands.core import DPS_HELP, N_HELP, P_HELP, add_dps, add_json, write_csv
+from symhx.commands._common import (
+    SITES_HELP,
+    dump_json,
+    int_arg,
+    int_show,
+    mpstr,
+    rational_arg,
+    sites_arg,
+    sites_json,
+    sites_show,
+)
+from symhx.commands.core import (
+    DPS_HELP,
+    N_HELP,
+    P_HELP,
+    add_dps,
+    add_json,
+    p_or_sites,
+    write_csv,
+)
 from symhx.spaces import MAX_EXCESS
 from symhx.spaces.study import STUDY_N_LIMIT
 
@@ -32,6 +50,9 @@ def register(sub: Any) -> None:
                    help=N_HELP + f"; at most {MAX_SPACES_N:.0e} (work limit)")
     s.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
                    help=P_HELP + "; omit for the jump only")
+    s.add_argument("--sites", type=sites_arg, default=None,
+                   help=SITES_HELP + "; E[X], Var[X] and the modes with per-class "
+                   "probabilities (the jump along a direction is 'symhx critical --sites')")
     s.add_argument("--space", default="eq41",
                    help="simple | eq41 | eq41-printed | excess<=m, optionally with ;distinct")
     add_dps(s)
@@ -55,10 +76,33 @@ def register(sub: Any) -> None:
     c.set_defaults(func=cmd_convergence)
 
 
+def _spaces_sites(args: argparse.Namespace) -> int:
+    """``symhx spaces N --sites ...``: E[X], Var[X] and the modes with per-class probabilities."""
+    from symhx.api import distribution_of
+
+    if args.classes:
+        raise ValueError("--classes (the probability of each class of the space) is not "
+                         "available with --sites; drop one of them")
+    p, sites = p_or_sites(args)
+    d = distribution_of(args.N, p, space=args.space, dps=args.dps)
+    out: dict[str, Any] = {"N": args.N, "space": args.space, "sites": sites_json(sites),
+                           "mean": d.mean(), "variance": d.var(), "modes": list(d.modes())}
+    if args.json:
+        print(dump_json(out))
+        return 0
+    print(f"space {args.space}, N = {int_show(args.N)}, sites {sites_show(sites)}:")
+    print(f"  E[X]   = {mpstr(out['mean'], args.dps)}")
+    print(f"  Var[X] = {mpstr(out['variance'], args.dps)}")
+    print(f"  modes  = {', '.join(int_show(m) for m in out['modes'])}")
+    return 0
+
+
 def cmd_spaces(args: argparse.Namespace) -> int:
     from symhx._mpctx import export, mp
     from symhx.spaces import class_probabilities, critical_point, distribution
 
+    if args.sites is not None:
+        return _spaces_sites(args)
     cp = critical_point(args.N, space=args.space, dps=args.dps)
     out: dict[str, Any] = {"N": args.N, "space": args.space, "critical": cp.as_dict()}
     if args.p is not None:

@@ -158,6 +158,10 @@ REJECT: dict[str, set[str]] = {
     "visits": set(HOSTILE),
     "shape": set(HOSTILE) - {"[]", "np.array([])"},  # () is the class of simple circuits
     "ints": set(HOSTILE) - {"[]", "np.array([])"},
+    # per-site probabilities / weights: a SiteClasses or a sequence (None: the scalar path)
+    "sites": set(HOSTILE) - {"None"},
+    # optional class names: a sequence of distinct non-empty str, or None
+    "names?": set(HOSTILE) - {"None"},
     "row": set(HOSTILE),
     "bool": set(HOSTILE) - {"True", "False", "np.True_"},
 }
@@ -221,6 +225,15 @@ def _entries() -> list[Entry]:
           {"N": "N", "ms": "ints", "ps": "array+", "dps": "dps", "weighting": "choice"}),
         E("critical_point", s.critical_point, {"N": 20, "dps": 20, "space": "simple"},
           {"N": "N", "dps": "dps?", "space": "choice"}),
+        E("critical_point(weights)", s.critical_point,
+          {"N": 20, "weights": s.SiteClasses((2, 18), ("1/2", 1)), "dps": 20},
+          {"N": "N", "weights": "sites", "dps": "dps?"}),
+        E("critical_curve", s.critical_curve,
+          {"N": 20, "sizes": (2, 18), "directions": 2, "names": None, "dps": 15},
+          {"N": "N", "sizes": "ints", "directions": "N", "names": "names?", "dps": "dps"}),
+        E("SiteClasses", s.SiteClasses,
+          {"sizes": (2, 18), "probabilities": ("0.1", 0.2), "names": None},
+          {"sizes": "ints", "probabilities": "sites", "names": "names?"}),
         E("discriminant_root", s.discriminant_root, {"N": 20, "dps": 20},
           {"N": "N", "dps": "dps"}),
         E("distribution_of", s.distribution_of, {"N": 20, "p": "0.1", "space": "simple", "dps": 20},
@@ -325,6 +338,10 @@ API = _entries()
 NOT_CALLABLE = {
     "AsymptoticCriticalPoint": "result class, built by asymptotic_critical_point",
     "CriticalPoint": "result class, built by critical_point",
+    "CriticalCurve": "result class, built by critical_curve",
+    "DirectionCriticalPoint": "result class, built by critical_point(N, weights=...)",
+    "SitesDistribution": "result class, built by distribution_of with site classes (fuzzed "
+                         "through the site interactions)",
     "Distribution": "result class, built by distribution_of",
     "EnsembleResult": "result class, built by ensemble",
     "History": "result class, built by simulate",
@@ -934,6 +951,57 @@ def _huge_N_above_pc(N: int, p: Any, dps: int | None) -> list[tuple[str, Callabl
             ("ppf", quantile("ppf"))]
 
 
+def _sites_tiny_class(N: int, tiny: Any, dps: int | None) -> list[tuple[str, Callable[[], Any]]]:
+    """Two sites of a negligible probability next to N - 2 sites of p = 0.02 (issue 30): X is
+    that of N - 2 sites of p within a relative ~N * tiny, so every method must agree with the
+    scalar distribution of N - 2 sites (or every method refuse)."""
+    sc = symhx.SiteClasses((2, N - 2), (tiny, 0.02))
+
+    def mean() -> Any:
+        m = symhx.mean(N, sc, dps=dps)
+        # float64: summing N probabilities (the scalar path itself is 4e-13 off at N = 2000)
+        tol = _tol(dps) if dps is not None else 1e-11
+        _close(m, symhx.mean(N - 2, 0.02, dps=40), tol, 0, "mean against N - 2 sites")
+        return m
+
+    def modes() -> Any:
+        ms = symhx.modes(N, sc)
+        if ms != symhx.modes(N - 2, 0.02):
+            raise InvariantBroken(f"modes {ms} != {symhx.modes(N - 2, 0.02)} of N - 2 sites")
+        return ms
+
+    def cdf_sf() -> Any:
+        c, f = symhx.cdf(N, sc, N // 2, dps=dps), symhx.sf(N, sc, N // 2, dps=dps)
+        _close(_mpf(c) + _mpf(f), 1, 0, _tol(dps), "cdf(k) + sf(k)")
+        _close(c, symhx.cdf(N - 2, 0.02, N // 2, dps=40), _tol(dps), _tol(dps), "cdf")
+        return c
+
+    def logpmf() -> Any:
+        lq = symhx.logpmf(N, sc, 1, dps=dps)
+        _close(lq, symhx.logpmf(N - 2, 0.02, 1, dps=40), _tol(dps), 0, "logpmf(1)")
+        return lq
+
+    return [("mean", mean), ("modes", modes), ("cdf/sf", cdf_sf), ("logpmf", logpmf)]
+
+
+def _sites_direction(N: int, w: Any) -> Callable[[], Any]:
+    """The critical point along (w, 1) for sizes (2, N - 2) (issue 30): a refusal (documented
+    limit), or t_c inside its Arb bounds; a negligible w gives the scalar p_c of N - 2 sites."""
+    def thunk() -> Any:
+        cp = symhx.critical_point(N, weights=symhx.SiteClasses((2, N - 2), (w, 1)), dps=20)
+        lo, hi = cp.p_bounds
+        if not (lo <= cp.p <= hi and cp.k_after >= 2 and cp.k_after in cp.argmins):
+            raise InvariantBroken(f"t_c {cp.p} outside {cp.p_bounds} or k_after {cp.k_after} "
+                                  f"not among {cp.argmins}")
+        if _mpf(w) < 1e-200:
+            ref = symhx.critical_point(N - 2, dps=20)
+            _close(cp.p, ref.p, 1e-18, 0, "t_c against p_c of N - 2 sites")
+            if cp.k_after != ref.k_after:
+                raise InvariantBroken(f"k_after {cp.k_after} != {ref.k_after} of N - 2 sites")
+        return cp
+    return thunk
+
+
 def _irrational_near_tie(sign: int, e: int) -> Callable[[], Any]:
     """N = 101 at p = 1/50 +- sqrt(2)/10**e: Phi(50) = Phi(51) exactly at 1/50, so the modes are
     those of any rational on the same side of the tie (brute force, exact Fractions)."""
@@ -1019,6 +1087,20 @@ def _interactions() -> list[Any]:
             for dps in (20, None):
                 cases.append(P(_huge_N_above_pc(N, p, dps),
                                id=f"distribution_of(N={label}, p={plabel})-dps={dps}"))
+    for N in (101, 2000):  # site classes: a negligible class next to a normal one (issue 30)
+        for tiny in (1e-300, 5e-324, "1e-5000"):
+            for dps in (20, None):
+                cases.append(P(_sites_tiny_class(N, tiny, dps),
+                               id=f"SiteClasses((2, {N}-2), ({tiny}, 0.02))-dps={dps}"))
+    for N, label in ((10**4, "1e4"), (10**100, "1e100"), (10**1000, "1e1000")):
+        for w in (1e-300, "1e-5000", "1/2", 2, 1e300):  # huge N with one small class
+            cases.append(one(_sites_direction(N, w), f"critical_point(N={label}, weights=(2: {w}, "
+                                                     f"N-2: 1))"))
+    cases.append(one(_thunk(symhx.mean, 10**100, symhx.SiteClasses((2, 10**100 - 2),
+                                                                  (0.5, 0.02))),
+                     "mean(1e100, SiteClasses((2, N-2), (0.5, 0.02)))"))
+    cases.append(one(_thunk(symhx.critical_curve, 10**100, (2, 10**100 - 2), directions=5),
+                     "critical_curve(1e100, (2, N-2))"))
     for sign in (1, -1):
         for e in (30, 70, 100):
             cases.append(one(_irrational_near_tie(sign, e),

@@ -217,7 +217,47 @@ def _impact_cases() -> list[Case]:
     return [(f"impact {dps}", lambda dps=dps: simulate(row, 10.0, dps=dps)) for dps in (12, 25)]
 
 
+def _site_cases() -> list[Case]:
+    # per-site probabilities (issue 30): symhx.sites, site_weights, site_distribution,
+    # critical_sites and their dispatch in symhx.api
+    from symhx.sites import SiteClasses
+
+    out: list[Case] = []
+    row = SiteClasses((2, 99), (0.011, 0.02))
+    for dps in (6, 30):
+        out.append((f"sites critical table {dps}", lambda dps=dps: symhx.critical_point(
+            101, weights=SiteClasses((2, 99), ("1/2", 1)), dps=dps)))
+        out.append((f"sites critical perturbative {dps}", lambda dps=dps: symhx.critical_point(
+            10**30, weights=SiteClasses((2, 10**30 - 2), (0.7, 1)), dps=dps)))
+        out.append((f"sites critical one class {dps}", lambda dps=dps: symhx.critical_point(
+            10**6, weights=SiteClasses((10**6,), (3,)), dps=dps)))
+        out.append((f"sites curve {dps}", lambda dps=dps: symhx.critical_curve(
+            60, (4, 56), directions=2, dps=dps).points))
+        out.append((f"sites per-k {dps}", lambda dps=dps: (
+            symhx.pmf(101, row, [1, 30, 101], dps=dps), symhx.logpmf(101, row, 50, dps=dps),
+            symhx.normaliser(101, row, dps=dps),
+            symhx.pmf(40, SiteClasses((4, 36), (0.02, 0.03)), 7, space="eq41", dps=dps))))
+    out.append(("sites modes", lambda: (
+        symhx.modes(101, row), symhx.modes(101, SiteClasses((2, 99), ("0.01", "0.02"))),
+        symhx.modes(40, SiteClasses((4, 36), (0.02, 0.03)), space="eq41"))))
+    out.append(("sites float64", lambda: symhx.pmf(101, row, [1, 50], dps=None)))
+    return out
+
+
+def _site_moment_cases() -> list[Case]:
+    # mean / sf of the class distribution go through the base class in symhx/distribution.py
+    from symhx.sites import SiteClasses
+
+    row = SiteClasses((2, 99), (0.011, 0.02))
+    return [(f"sites moments {dps}", lambda dps=dps: (
+        symhx.mean(101, row, dps=dps), symhx.var(101, row, dps=dps),
+        symhx.sf(101, row, 40, dps=dps)))
+            for dps in (6, 30)]
+
+
 GROUPS: dict[str, Callable[[], list[Case]]] = {
+    "sites": _site_cases,
+    "site-moments": _site_moment_cases,
     "critical": _critical_cases,
     "asymptotics": _asymptotic_cases,
     "spaces": _space_cases,
@@ -227,7 +267,8 @@ GROUPS: dict[str, Callable[[], list[Case]]] = {
     "forcing": _forcing_cases,
     "impact": _impact_cases,
 }
-XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH, "forcing": FORCING_BRANCH,
+XFAIL = {"distribution": DIST_BRANCH, "space-moments": DIST_BRANCH,
+         "site-moments": DIST_BRANCH, "forcing": FORCING_BRANCH,
          "impact": IMPACT_BRANCH}
 
 
