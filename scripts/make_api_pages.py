@@ -55,6 +55,7 @@ TOP_GROUPS = (
     ("Impact probability from the forcing", ("forcing",)),
     ("Impact simulation", ("impact",)),
     ("Higher-order sample spaces", ("spaces",)),
+    ("Per-site probabilities", ("sites", "site_distribution", "critical_sites")),
 )
 
 

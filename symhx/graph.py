@@ -11,7 +11,7 @@ the next one may be any impact, including the same one again.
 The sites come in *classes* that differ physically (section 4 of the paper: "perhaps pipe-wall
 impacts are less likely than pipe-pipe impacts"): :func:`row_sites` and :func:`lattice_sites`
 give their sizes and names as a :class:`SiteLayout`, in the order that
-``symhx.sites.SiteClasses`` takes them, and :mod:`symhx.forcing.sites` gives each class its
+:class:`symhx.SiteClasses` takes them, and :mod:`symhx.forcing.sites` gives each class its
 impact probability.
 
 >>> vertices_row(100)
@@ -76,7 +76,7 @@ class SiteLayout:
     A *site* is a possible impact (a vertex of the graph); sites of one class share their gap
     and the bodies that close it, hence (:mod:`symhx.forcing.sites`) their impact probability.
     Classes of size 0 are left out (a row of one pipe has no pipe-pipe site), so every layout
-    can be handed to ``symhx.sites.SiteClasses``: ``SiteClasses(layout.sizes, probabilities,
+    can be handed to :class:`symhx.SiteClasses`: ``SiteClasses(layout.sizes, probabilities,
     names=layout.names)``.
 
     Attributes

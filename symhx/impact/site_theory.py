@@ -21,7 +21,7 @@ between the two distributions. Their uncertainty: a bootstrap of the runs (each 
 histogram resampled, :meth:`~symhx.impact.sites.SiteHitTable.resample`; the measured ratios move
 with it and ``lambda`` is fitted again in every replicate), seeded. The threshold a model
 predicts is the ``sigma`` at which the mode of ``X`` leaves 1 along the model's path through the
-plane of the two probabilities (``symhx.critical_sites.direction_critical_point``, certified
+plane of the two probabilities (:func:`symhx.critical_point` with ``weights=``, certified
 at each point; the path crosses it once); the simulated one is the first ``sigma`` of the grid
 from which on the simulated mode of ``X`` stays above 1.
 
