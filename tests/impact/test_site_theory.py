@@ -154,16 +154,18 @@ def test_stored_comparison_is_current():
 
 @pytest.mark.slow
 def test_stored_bootstrap_is_recomputed_replicate_by_replicate():
-    """The stored replicates are the seeded bootstrap's (its first two rerun bit for bit), and
-    the stored summary (the chapter's uncertainties) is computed from the stored replicates."""
+    """The stored replicates are the seeded bootstrap's (its first two rerun: the same resampled
+    runs and fits, to 1e-9; the float64 class distribution's last bits may move with its code),
+    and the stored summary (the chapter's uncertainties) is computed from the stored replicates."""
     data = json.loads(resources.files("symhx.data").joinpath("site_calibration.json").read_text())
     again = compare_site_models(stored_sites(), min_kept=data["min_kept"], replicates=2,
                                 seed=data["seed"]).as_dict()
     for m in MODELS:
         for key, values in again["models"][m]["boot"].items():
-            assert values == data["models"][m]["boot"][key][:2], (m, key)
+            assert values == pytest.approx(data["models"][m]["boot"][key][:2], rel=1e-9), \
+                (m, key)
     assert again["simulation"]["boot"]["threshold"] == \
-        data["simulation"]["boot"]["threshold"][:2]
+        data["simulation"]["boot"]["threshold"][:2]        # grid values: exact
     for m in MODELS:
         boot, summary = data["models"][m]["boot"], data["summary"][m]
         for key in ("rms_mean", "rms_ks", "scale"):
