@@ -47,6 +47,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from symhx._mpctx import export
+from symhx._mpctx import mp as thread_mp
 from symhx._numeric import (
     G_mp,
     digits_of,
@@ -671,7 +673,7 @@ class SimpleDistribution(Distribution):
         """log Phi(k) at the working precision (caller sets it)."""
         # log Phi(k) = k log p + log N + lgamma(N) - lgamma(N-k+1) - log k, written without
         # the O(N log N) lgamma terms: lgamma(N) - lgamma(N-k+1) = G(N, k-1) + (k-1) log N
-        return (k * self._logp + k * self._logN + G_mp(self.N, k - 1) - mpmath.log(k))
+        return (k * self._logp + k * self._logN + _at_global_prec(G_mp, self.N, k - 1) - mpmath.log(k))
 
     @cached_property
     def _ctx(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
@@ -857,7 +859,7 @@ def _mp_of(p: Any, fr: Fraction | None) -> mpmath.mpf:
     ``prec + 64`` bits of each part first (relative error ``2**-(prec+60)``): converting the
     huge ints to mpf directly takes seconds."""
     if fr is None:
-        return mp_value(p, None)
+        return _at_global_prec(mp_value, p, None)
     keep = mpmath.mp.prec + 64
     a, b = fr.numerator, fr.denominator
     sa, sb = max(0, a.bit_length() - keep), max(0, b.bit_length() - keep)
@@ -869,7 +871,15 @@ def _logp_float(p: Any, fr: Fraction | None) -> float:
     if fr is not None:
         return math.log(fr.numerator) - math.log(fr.denominator)
     with mpmath.workdps(30):
-        return float(mpmath.log(mp_value(p, None)))
+        return float(mpmath.log(_at_global_prec(mp_value, p, None)))
+
+
+def _at_global_prec(fn: Callable[..., Any], *args: Any) -> Any:
+    """``fn(*args)`` of a thread-context helper (symhx._numeric) run at the precision this
+    module's mpmath path has set with ``mpmath.workdps``, returned as a global ``mpf``."""
+    ctx = thread_mp()
+    with ctx.workprec(mpmath.mp.prec):
+        return export(fn(*args))
 
 
 # --------------------------------------------------------------------------- structure of Phi
