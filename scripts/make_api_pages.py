@@ -33,11 +33,11 @@ MODULES = (
     "symhx.circuits",
     "symhx.distribution",
     "symhx.critical",
-    "symhx.asymptotics",
     "symhx.sites",
     "symhx.site_weights",
     "symhx.site_distribution",
     "symhx.critical_sites",
+    "symhx.asymptotics",
     "symhx.forcing",
     "symhx.forcing.sites",
     "symhx.impact",
@@ -55,11 +55,11 @@ TOP_GROUPS = (
     ("Graph and circuit counts", ("graph", "circuits")),
     ("Distributions of X", ("distribution", "api")),
     ("Critical point and mode path", ("critical",)),
+    ("Per-site probabilities", ("sites", "site_distribution", "critical_sites")),
     ("Large-N asymptotics", ("asymptotics",)),
     ("Impact probability from the forcing", ("forcing",)),
     ("Impact simulation", ("impact",)),
     ("Higher-order sample spaces", ("spaces",)),
-    ("Per-site probabilities", ("sites", "site_distribution", "critical_sites")),
 )
 
 

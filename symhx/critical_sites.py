@@ -145,7 +145,7 @@ class DirectionCriticalPoint(CriticalPoint):
 
     def __str__(self) -> str:
         lo, hi = self.p_bounds
-        lines = [f"critical point along a direction, N = {self.N} ({self.dps} digits)",
+        lines = [f"critical point along a direction, N = {show_int(self.N)} ({self.dps} digits)",
                  f"  weights     = {self.weights!r}",
                  f"  t_c         = {self._show(self.p)}"
                  + (f"  (= {self.p_exact})" if self.p_exact is not None else ""),

@@ -282,18 +282,23 @@ class SiteClasses:
         return cls([c for c, _ in order.values()], [p for _, p in order.values()])
 
     @classmethod
-    def parse(cls, text: str, name: str = "--sites") -> SiteClasses:
+    def parse(cls, text: str, name: str = "--sites", N: int | None = None) -> SiteClasses:
         """Classes from the command-line form ``"2:0.01,99:0.02"`` (``size:probability``, comma
         separated; ``"wall=2:0.01,pipe=99:0.02"`` names them).  Probabilities are read as
-        exact decimal strings, as ``p`` is on the command line.
+        exact decimal strings, as ``p`` is on the command line.  Given ``N``, one size may be
+        ``rest``: ``N`` minus the other sizes (``2:0.01,rest:0.02`` is a row at any ``N``).
 
         >>> SiteClasses.parse("wall=2:0.01,pipe=99:1/50")
         SiteClasses(sizes=(2, 99), probabilities=('0.01', '1/50'), names=('wall', 'pipe'))
+        >>> SiteClasses.parse("2:1/2,rest:1", N=10**100).sizes[1] == 10**100 - 2
+        True
         """
         if not isinstance(text, str):
             raise TypeError(f"{name} must be a str such as '2:0.01,99:0.02', got "
                             f"{type(text).__name__} {text!r}")
-        sizes, probs, names = [], [], []
+        sizes: list[int | None] = []
+        probs: list[str] = []
+        names: list[str] = []
         items = [x.strip() for x in text.split(",")]
         for i, item in enumerate(items):
             label, eq, rest = item.rpartition("=") if "=" in item else ("", "", item)
@@ -302,12 +307,24 @@ class SiteClasses:
                 raise ValueError(f"{name} must be size:probability pairs separated by commas, "
                                  f"optionally named (name=size:probability), such as "
                                  f"'2:0.01,99:0.02'; item {i} is {item!r}")
-            sizes.append(check_int(size.strip(), f"{name} item {i} size", minimum=1))
+            if size.strip() == "rest":
+                sizes.append(None)
+            else:
+                sizes.append(check_int(size.strip(), f"{name} item {i} size", minimum=1))
             check_p(prob.strip(), f"{name} item {i} probability")
             probs.append(prob.strip())
             names.append(label.strip())
         if any(names) and not all(names):
             raise ValueError(f"{name} must name every class or none, got {text!r}")
+        if None in sizes:
+            if sizes.count(None) > 1 or N is None:
+                raise ValueError(f"{name} may hold one size 'rest' (N minus the other sizes) "
+                                 f"where N is known, got {text!r}")
+            left = N - sum(n for n in sizes if n is not None)
+            if left < 1:
+                raise ValueError(f"{name}: the size 'rest' would be {show_int(left)} (N = "
+                                 f"{show_int(N)} minus the other sizes); it must be >= 1")
+            sizes = [left if n is None else n for n in sizes]
         return cls(sizes, probs, names if all(names) else None)
 
     def merged(self) -> SiteClasses:

@@ -162,3 +162,14 @@ def test_command_line_form_parses_exactly():
 ])
 def test_command_line_form_refusals(text, value, allowed):
     assert_refuses(SiteClasses.parse, text, arg="--sites", value=value, allowed=allowed)
+
+
+def test_parse_reads_a_rest_size_against_N():
+    sc = SiteClasses.parse("wall=2:0.01,pipe=rest:1/50", N=101)
+    assert sc == SiteClasses((2, 99), ("0.01", "1/50"), names=("wall", "pipe"))
+    assert_refuses(SiteClasses.parse, "2:0.01,rest:0.02", arg="--sites", value="rest",
+                   allowed="where N is known")
+    assert_refuses(SiteClasses.parse, "2:0.01,rest:0.02,rest:1", N=10, arg="--sites",
+                   allowed="one size 'rest'")
+    assert_refuses(SiteClasses.parse, "9:0.01,rest:0.02", N=9, arg="--sites", value="0",
+                   allowed=">= 1")

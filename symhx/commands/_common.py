@@ -70,29 +70,26 @@ def rational_arg(name: str, positive: bool = True) -> Callable[[str], Fraction]:
     return _arg_type(conv, name)
 
 
-def sites_arg(text: str) -> Any:
-    """argparse ``type=`` for ``--sites``: classes of impact sites ``size:probability``, comma
-    separated, optionally named (``wall=2:0.01,pipe=99:0.02``), probabilities exact as ``p``
-    (:meth:`symhx.sites.SiteClasses.parse`)."""
-    from symhx.sites import SiteClasses
-
-    try:
-        return SiteClasses.parse(text, "--sites")
-    except (ValueError, TypeError) as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+def sites_arg(text: str) -> str:
+    """argparse ``type=`` for ``--sites``: the text, read against ``N`` by :func:`sites_for`
+    (a size may be ``rest``, N minus the others, so it is parsed once N is known)."""
+    return text
 
 
 #: the ``--sites`` option's help (``symhx distribution``, ``spaces``, ``critical``)
 SITES_HELP = ("per-class impact probabilities instead of p: size:probability pairs separated "
               "by commas, optionally named, e.g. wall=2:0.01,pipe=99:0.02 (sizes add up to N; "
-              "probabilities exact as p)")
+              "one size may be 'rest', N minus the others: 2:0.01,rest:0.02; probabilities "
+              "exact as p)")
 
 
 def sites_for(sc: Any, N: int, dps: int | None = None) -> Any:
-    """``--sites`` checked against ``N`` (the sizes must add up to it); with ``dps``, every
-    probability as an mpf of ``dps + 10`` digits (``--float``)."""
+    """``--sites`` (its text, or classes) read against ``N`` (the sizes must add up to it); with
+    ``dps``, every probability as an mpf of ``dps + 10`` digits (``--float``)."""
     from symhx.sites import SiteClasses, as_site_classes
 
+    if isinstance(sc, str):
+        sc = SiteClasses.parse(sc, "--sites", N=N)
     sc = as_site_classes(sc, N, "--sites")
     if dps is None:
         return sc
@@ -104,8 +101,10 @@ def sites_for(sc: Any, N: int, dps: int | None = None) -> Any:
 
 def sites_show(sc: Any) -> str:
     """``--sites`` as it reads on the command line (``wall=2:0.01,pipe=99:0.02``)."""
+    from symhx.sites import show_int
+
     names = sc.names or ("",) * len(sc.sizes)
-    return ",".join(f"{name + '=' if name else ''}{int_str(n)}:{p}"
+    return ",".join(f"{name + '=' if name else ''}{show_int(n)}:{p}"
                     for name, n, p in zip(names, sc.sizes, sc.probabilities, strict=True))
 
 

@@ -77,7 +77,8 @@ def register(sub: Any) -> None:
     c.add_argument("N", type=int_arg("N", minimum=2), help=N_HELP)
     c.add_argument("--sites", type=sites_arg, default=None,
                    help="the critical point t_c along the direction p_v = t w_v of per-class "
-                   "weights: size:weight pairs, e.g. wall=2:1/2,pipe=99:1 (sizes add up to N)")
+                   "weights: size:weight pairs, e.g. wall=2:1/2,pipe=99:1 (sizes add up to N; "
+                   "one size may be 'rest': wall=2:1/2,pipe=rest:1)")
     add_dps(c)
     add_json(c)
     c.set_defaults(func=cmd_critical)
@@ -160,12 +161,13 @@ def _critical_sites(args: argparse.Namespace) -> int:
     """``symhx critical N --sites ...``: the critical point along the direction of the classes."""
     from symhx.api import critical_point
 
-    cp = critical_point(args.N, weights=sites_for(args.sites, args.N), dps=args.dps)
+    sites = sites_for(args.sites, args.N)
+    cp = critical_point(args.N, weights=sites, dps=args.dps)
     if args.json:
         print(dump_json(cp.as_dict()))
         return 0
     print(f"N = {int_show(cp.N)} vertices ({pipes_show(cp.N)} pipes), direction --sites "
-          f"{sites_show(args.sites)}: p_v = t w_v")
+          f"{sites_show(sites)}: p_v = t w_v")
     print(str(cp))
     return 0
 
@@ -175,7 +177,7 @@ def p_or_sites(args: argparse.Namespace) -> tuple[Any, Any]:
     ``--float`` as mpf of ``--dps`` + 10 digits."""
     if args.sites is not None and args.p is not None:
         raise ValueError(f"give either p or --sites, not both (got p = {args.p} and --sites "
-                         f"{sites_show(args.sites)})")
+                         f"{args.sites})")
     if args.sites is not None:
         sites = sites_for(args.sites, args.N)
         return (sites_for(sites, args.N, args.dps) if args.float else sites), sites

@@ -92,3 +92,17 @@ def test_sites_work_limits_are_the_api_limits(capsys):
         rc, out, err = run(capsys, *argv)
         assert rc == 2 and out == "" and len(err.strip().splitlines()) == 1, argv
         assert f"BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}" in err
+
+
+def test_a_rest_size_fills_up_to_N(capsys):
+    N = 10**100
+    rc, out, _ = run(capsys, "critical", "1e100", "--sites", "wall=2:1/2,pipe=rest:1", "--json")
+    assert rc == 0
+    cp = symhx.critical_point(N, weights=SiteClasses((2, N - 2), ("1/2", 1)))
+    assert json.loads(out)["k_after"] == str(cp.k_after)
+    _, a, _ = run(capsys, "distribution", "101", "--sites", "2:0.01,rest:0.02", "--json")
+    _, b, _ = run(capsys, "distribution", "101", "--sites", "2:0.01,99:0.02", "--json")
+    assert a == b
+    for sites in ("2:0.01,rest:0.02,rest:1", "100:0.01,2:0.02,rest:1"):
+        rc, out, err = run(capsys, "distribution", "101", "--sites", sites)
+        assert rc == 2 and out == "" and "--sites" in err and "rest" in err
