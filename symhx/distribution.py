@@ -19,7 +19,7 @@ Arithmetic
 * **mpmath** otherwise (floats and mpf are taken at their exact binary value; sympy irrationals
   at ``dps + digits(N) + 30`` digits): :mod:`symhx.simple_sums` sums the terms *without walking
   them*, for any ``N <= MP_SUM_N_LIMIT = 10**1000`` and any ``p > 0``: short runs of significant
-  terms term by term, long ones (width ~ sqrt(N) above the jump, ~1/|N p - 1| below it) by
+  terms term by term, long ones (width ~ sqrt(N) above the jump, ~1/``|N p - 1|`` below it) by
   Euler-Maclaurin with Gauss-Legendre panels, every error term bounded below ``10**-(dps+guard)``
   of a proved lower bound of the sum (see that module for the bounds).  Everything is relative to
   the largest term, so nothing overflows and ``N p - 1 = 1e-49`` costs no extra digits.  One
@@ -1221,7 +1221,7 @@ def _irrational_modes(N: int, p: Any) -> tuple[int, ...]:
 def simple_modes(N: int, fr: Fraction | None, p: Any) -> tuple[int, ...]:
     """All maximisers of ``Phi_{N,p}(k)`` (eq. 8), certified: ``fr`` is ``p``'s exact value;
     ``None`` for a sympy irrational ``p``, decided for ``p`` itself on rigorous Arb balls with
-    rising precision (:func:`_irrational_modes`; a true tie raises
+    rising precision (a true tie raises
     :class:`~symhx.certify.UndecidedError`).
 
     >>> simple_modes(101, Fraction(1, 50), None)

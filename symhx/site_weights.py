@@ -22,19 +22,19 @@ summing ``prod_v p_v**(m_v)`` over the assignments gives the monomial symmetric 
 ``;distinct``).  For a class ``s`` of the space (the parts ``> 1``, ``r_s`` of them, excess
 ``e_s``) and ``k > r_s``, ``necklaces = (k + e_s - 1)!/S_s`` (``S_s = prod s_i!``), and the parts
 of ``s`` are distributed among the site classes: ``sigma = (sigma_1, ..., sigma_c)``, class ``i``
-receiving ``r_i`` repeated parts of total ``d_i``, so
+receiving ``r_i`` repeated parts of total ``d_i``, so::
 
-``W(k) = sum_s (k + e_s - 1)!/S_s sum_sigma prod_i [falling(n_i, r_i) q_i**(d_i) / C(sigma_i)]
-          e_{k - r_s}(sites with r_i removed from class i)``,
+    W(k) = sum_s (k + e_s - 1)!/S_s sum_sigma prod_i [falling(n_i, r_i) q_i**(d_i) / C(sigma_i)]
+              e_{k - r_s}(sites with r_i removed from class i),
 
-``C(sigma_i) = prod_j (number of parts j in sigma_i)!``.  At ``k = r_s`` (no site visited once)
+with ``C(sigma_i) = prod_j (number of parts j in sigma_i)!``.  At ``k = r_s`` (no site visited once)
 the necklace count is taken from the space itself (Burnside, or the paper's printed value for
 ``eq41-printed``).  With ``R`` the largest ``r_s`` of the space and ``R_i = min(n_i, R)``, all of
 this is ``W(k) = sum_e (k + e - 1)! [z**k] B(z) N_e(z)`` for ``k > R``, with the *base*
 ``B = prod_i (1 + q_i z)**(n_i - R_i)`` and short polynomials ``N_e`` of degree ``<= c R``.
 
-Arithmetic
-----------
+Arithmetic of the weight tables
+-------------------------------
 * **exact** (rational ``q_i``): integer polynomials (python-flint ``fmpz_poly``), weights as
   ints over one common denominator; the table holds about ``N**2 (bits of q + log2 N) / 2``
   bits and is refused beyond :data:`EXACT_TABLE_BITS_LIMIT`.

@@ -219,7 +219,7 @@ def compare_weights(space: Space, N: int, fr: Fraction, j: int, k: int) -> int:
 
 def space_modes(space: Space, N: int, p: Any, fr: Fraction | None = None) -> tuple[int, ...]:
     """All maximisers of ``P(X = k)`` over ``space``: exact for rational ``p``; for a sympy
-    irrational proved on Arb balls of ``p`` (:func:`_irrational_modes`)."""
+    irrational proved on Arb balls of ``p``."""
     N = check_N(N, minimum=1)
     if fr is None:
         fr, p = check_p(p)
