@@ -98,6 +98,7 @@ from symhx.validation import (
     check_size,
     is_exact_type,
     mpf_to_fraction,
+    safe_repr,
     show_exact,
     to_rational,
 )
@@ -682,8 +683,8 @@ class Distribution:
         return int(idx) if size is None else idx.astype(np.int64)
 
     def __repr__(self) -> str:
-        return (f"{type(self).__name__}(N={self.N}, p={self.p!r}, space={self.space!r}, "
-                f"dps={self.dps}, exact={self.exact})")
+        return (f"{type(self).__name__}(N={safe_repr(self.N)}, p={safe_repr(self.p)}, "
+                f"space={self.space!r}, dps={self.dps}, exact={self.exact})")
 
 
 # --------------------------------------------------------------------------- exact sums

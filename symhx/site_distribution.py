@@ -51,7 +51,7 @@ from symhx.site_weights import (
     exact_weights,
 )
 from symhx.sites import SiteClasses, show_int
-from symhx.validation import DEFAULT_DPS, InputError, check_dps, check_N
+from symhx.validation import DEFAULT_DPS, InputError, check_dps, check_N, safe_repr
 
 __all__ = ["MODES_MAX_BITS", "SitesDistribution", "site_modes"]
 
@@ -279,5 +279,5 @@ class SitesDistribution(Distribution):
         return [(k, self._pmf1(k)) for k in range(1, self.N + 1)]
 
     def __repr__(self) -> str:
-        return (f"SitesDistribution(N={self.N}, p={self.classes!r}, space={self.space!r}, "
-                f"dps={self.dps}, exact={self.exact})")
+        return (f"SitesDistribution(N={safe_repr(self.N)}, p={self.classes!r}, "
+                f"space={self.space!r}, dps={self.dps}, exact={self.exact})")

@@ -372,7 +372,7 @@ def as_site_classes(x: Any, N: int, name: str = "p") -> SiteClasses:
     >>> as_site_classes(SiteClasses((2,), (1,)), 3)
     Traceback (most recent call last):
         ...
-    ValueError: p has sizes summing to N = 2, but N = 3: the class sizes must add up to N
+    symhx.validation.InputError: p has sizes summing to N = 2, but N = 3: ...
     """
     if isinstance(x, SiteClasses):
         if x.N != N:

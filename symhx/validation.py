@@ -82,6 +82,7 @@ __all__ = [
     "check_size",
     "is_exact_type",
     "mpf_to_fraction",
+    "safe_repr",
     "short_value",
     "show_exact",
     "to_rational",
@@ -202,6 +203,20 @@ def show_exact(x: int | Fraction) -> str:
     if fr.numerator.bit_length() + fr.denominator.bit_length() <= 128:
         return str(x)
     return short_value(fr)
+
+
+def safe_repr(x: Any) -> str:
+    """``repr(x)`` in full, except an int or Fraction beyond Python's 4300-digit ``str`` limit,
+    which is shown as :func:`brief_repr` does (an object's ``repr`` must never raise).
+
+    >>> safe_repr(10**20), safe_repr(10**5000)
+    ('100000000000000000000', '1.0e+5000')
+    """
+    if isinstance(x, (int, Fraction)) and not isinstance(x, bool):
+        fr = Fraction(x)
+        if max(fr.numerator.bit_length(), fr.denominator.bit_length()) > 14_000:
+            return short_value(fr)
+    return repr(x)
 
 
 def brief_repr(x: Any) -> str:

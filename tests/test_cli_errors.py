@@ -32,7 +32,7 @@ def _break_critical_point(monkeypatch, exc: BaseException) -> None:
 @pytest.mark.parametrize("argv, named", [
     (["circuits", "3000"], "N <= 2000"),                       # raised by the command
     (["spaces", "20", "--space", "excess<=x"], "excess<=x"),   # raised by symhx.spaces
-    (["distribution", "10**7", "1/3"], "EXACT_N_LIMIT"),        # raised by symhx.distribution
+    (["distribution", "10**1001", "1/3"], "MP_SUM_N_LIMIT"),     # raised by symhx.distribution
 ])
 def test_input_error_from_below_the_cli_is_a_usage_error(argv, named, capsys):
     assert main(argv) == 2

@@ -29,8 +29,8 @@ def test_show_exact_and_brief_repr_are_short_for_huge_values_and_exact_for_small
     (lambda: symhx.critical_point(-HUGE), "N", "-1.0e+5000"),
     (lambda: symhx.critical_point(10, dps=HUGE), "dps", "1.0e+5000"),
     (lambda: symhx.pmf(101, -Fraction(1, HUGE), 3), "p", "-1.0e-5000"),
-    (lambda: symhx.pmf(101, "1e-5000", 3), "p", "1.0e-5000"),
-    (lambda: symhx.distribution_of(HUGE, Fraction(1, 2)), "N", "1.0e+5000"),
+    (lambda: symhx.pmf(HUGE, "1e-5000", 3), "N", "1.0e+5000"),
+    (lambda: symhx.distribution_of(HUGE, Fraction(1, 2)).mean(), "N", "1.0e+5000"),
     (lambda: symhx.distribution_of(HUGE, 0.5, dps=None).mean(), "N", "1.0e+5000"),
     (lambda: symhx.log_phi(HUGE, HUGE + 1), "k", None),
     (lambda: symhx.impact_probability(Fraction(1, HUGE)), "sigma", "1.0e-5000"),
@@ -38,6 +38,12 @@ def test_show_exact_and_brief_repr_are_short_for_huge_values_and_exact_for_small
 def test_refusals_of_huge_values_show_them_briefly(call, arg, value):
     msg = assert_refuses(call, arg=arg, value=value)
     assert len(msg) < 600
+
+
+def test_a_distribution_of_a_huge_N_or_p_has_a_short_repr():
+    d = symhx.distribution_of(HUGE, Fraction(1, HUGE))
+    assert repr(d).startswith("SimpleDistribution(N=1.0e+5000, p=1.0e-5000,")
+    assert "N=100000000000000000000," in repr(symhx.distribution_of(10**20, 0.5))
 
 
 def test_check_size_accepts_shapes_and_caps_the_number_of_draws():

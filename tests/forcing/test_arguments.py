@@ -213,10 +213,12 @@ def test_elementwise():
         return 0
 
     # the element's own message, then where it happened
-    msg = assert_refuses(elementwise, fp, fail_at_two, arg="boom", value="at index 2")
+    msg = assert_refuses(elementwise, fp, fail_at_two, exc=ValueError, arg="boom",
+                         value="at index 2")
     assert msg.startswith("boom")
     fp2 = ForcingParams.validated([[0.5, 2]], dps=10)
-    msg = assert_refuses(elementwise, fp2, fail_at_two, arg="boom", value="at index (0, 1)")
+    msg = assert_refuses(elementwise, fp2, fail_at_two, exc=ValueError, arg="boom",
+                         value="at index (0, 1)")
     assert msg.startswith("boom")
 
 
