@@ -22,8 +22,8 @@ Hostile values come one at a time (every argument against every value), several 
 (issue 28): two extreme but allowed arguments at once, such as a negligible Rayleigh scale next to
 a normal one, a huge ``N`` with ``p`` above ``p_c``, an irrational ``p`` near a tie of the modes
 or a huge ``N`` with a tiny ``dps``, whose answers must also satisfy the identities of their
-quantity (``cdf + sf = 1``, the modes of an exact reference, the digits asked for).  An
-interaction that fails on a bug filed in issue 28 is ``xfail(strict=False)`` with its number.
+quantity (``cdf + sf = 1``, the modes of an exact reference, the digits asked for).  Every
+case must pass: none is marked as a known failure.
 """
 
 from __future__ import annotations
@@ -782,8 +782,7 @@ def _judge_cli(res: dict[str, Any], must_reject: bool) -> str | None:
 # with p above p_c, an irrational p near a tie of the modes, a huge N with a tiny dps.  Each case
 # runs in the forked child under the time limit like the calls above; a returned value must also
 # satisfy the identities of its quantity (cdf + sf = 1, E[X] in [1, N], the modes of an exact
-# reference, the digits asked for, ...), checked in the child.  Cases that fail on a bug of
-# issue 28 are xfail(strict=False) with its number; every other failure is a new bug.
+# reference, the digits asked for, ...), checked in the child.  Any failure is a bug.
 class InvariantBroken(Exception):
     """A returned value contradicts an identity it must satisfy (neither a refusal nor a crash)."""
 
@@ -1055,10 +1054,6 @@ def _thunk(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Callable[[], An
     return lambda: fn(*args, **kwargs)
 
 
-def _known(number: str, what: str) -> Any:
-    return pytest.mark.xfail(strict=False, reason=f"issue 28 #{number}: {what}")
-
-
 def _interactions() -> list[Any]:
     """pytest params, each a list of (label, thunk): one forked call per thunk."""
     def one(thunk: Callable[[], Any], id: str, marks: Any = ()) -> Any:
@@ -1106,9 +1101,7 @@ def _interactions() -> list[Any]:
     for sign in (1, -1):
         for e in (30, 70, 100):
             cases.append(one(_irrational_near_tie(sign, e),
-                             f"modes(101, 1/50{'+-'[sign < 0]}sqrt(2)/10**{e})",
-                             [_known("3", "irrational p near a tie")] if sign > 0 and e > 30
-                             else []))
+                             f"modes(101, 1/50{'+-'[sign < 0]}sqrt(2)/10**{e})"))
     for what in ("critical_point", "discriminant_root", "mean", "log_phi",
                  "asymptotic_critical_point"):
         for N, label in ((10**3, "1e3"), (10**30, "1e30"), (10**1000, "1e1000")):
