@@ -144,6 +144,8 @@ def test_real_ball_refuses_non_finite_reals_with_a_value_error_naming_them(expr)
 
 @pytest.mark.parametrize("expr, name", [
     (S.Si(1), "Si"), (S.sqrt(2) + S.Si(1), "Si"), (S.besselj(1, 2), "besselj"),
+    # an integer-valued symbol in an exponent is no number: refused by name, never int(n)
+    (S.Pow(2, S.Symbol("n", integer=True), **NE), "Symbol"),
 ], ids=str)
 def test_real_ball_refusal_names_the_function_and_the_part(expr, name):
     part = next(a for a in sympy.preorder_traversal(expr)
