@@ -229,3 +229,30 @@ def test_partitions_brute():
 def test_normalise_visits():
     assert normalise_visits([1, 3, 2, 1]) == (3, 2, 1, 1)
     assert normalise_visits((5,)) == (5,)
+
+
+# ------------------------------------------------- rounding, messages of the work limits
+@pytest.mark.parametrize("dps", [5, 20, 50])
+@pytest.mark.parametrize(("N", "k"), [(7, 3), (10**6, 999), (10**100, 2), (10**1000, 10**3)])
+def test_log_phi_is_rounded_to_dps_and_correct_to_dps_digits(N, k, dps):
+    v = C.log_phi(N, k, dps=dps)
+    with mpmath.workdps(dps):
+        assert v == +v          # rounded once to dps digits, no guard digits handed out
+    with mpmath.workdps(2 * dps + 40 + len(str(N))):   # independent: loggamma, twice the digits
+        ref = mpmath.loggamma(N + 1) - mpmath.loggamma(N - k + 1) - mpmath.log(k)
+        assert abs(v - ref) <= abs(ref) * mpmath.mpf(10) ** (1 - dps)
+
+
+def test_count_refusals_name_the_constant_to_raise():
+    for call in (lambda: C.phi(10**30, 10**30),
+                 lambda: C.circuit_count(2**C.MAX_COUNT_BITS, [1, 1])):
+        with pytest.raises(ValueError) as info:
+            call()
+        assert "(symhx.circuits.MAX_COUNT_BITS)" in str(info.value)
+
+
+def test_short_length_shows_the_power_of_ten_below_L():
+    for e in [*range(15, 60), 299, 300, 1000, 4299, 4300, 4301, 10_000]:
+        for L in (10**e, 10**e + 1, 10**(e + 1) - 1, 2 * 10**e):   # floor(log10 L) = e
+            assert C._short_length(L) == f"~10**{e}", e
+    assert C._short_length(10**15 - 1) == 10**15 - 1
