@@ -24,15 +24,7 @@ def _mp(p: Fraction) -> mpmath.mpf:
 def direct_sums(N: int, p: Fraction, dps: int) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
     with mpmath.workdps(dps + 2 * len(str(N)) + 10):
         pm = _mp(p)
-        f = N * pm  # Phi(1)
-        s0 = s1 = s2 = mpmath.mpf(0)
-        for k in range(1, N + 1):
-            s0 += f
-            s1 += k * f
-            s2 += k * k * f
-            f = f * pm * (N - k) * k / (k + 1)
-        mean = s1 / s0
-        return s0, mean, s2 / s0 - mean * mean
+        return _term_by_term(N, pm, N * pm, N)  # from Phi(1) itself
 
 
 def poisson_side_sums(N: int, p: Fraction, dps: int, jmax: int
@@ -56,13 +48,18 @@ def poisson_side_sums(N: int, p: Fraction, dps: int, jmax: int
 def head_sums(N: int, p: Fraction, dps: int, K: int) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
     """The first K terms from k = 1 (relative to Phi(1)), for N p well below 1."""
     with mpmath.workdps(dps + 20):
-        pm = _mp(p)
-        f = mpmath.mpf(1)
-        s0 = s1 = s2 = mpmath.mpf(0)
-        for k in range(1, K + 1):
-            s0 += f
-            s1 += k * f
-            s2 += k * k * f
-            f = f * pm * (N - k) * k / (k + 1)
-        mean = s1 / s0
-        return s0, mean, s2 / s0 - mean * mean
+        return _term_by_term(N, _mp(p), mpmath.mpf(1), K)
+
+
+def _term_by_term(N: int, pm: mpmath.mpf, f: mpmath.mpf, K: int
+                  ) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
+    """``(S0, mean, var)`` of the terms k = 1..K walked one by one from ``f`` (the k = 1 term)
+    with the ratio Phi(k+1)/Phi(k) = p (N - k) k/(k + 1), at the caller's precision."""
+    s0 = s1 = s2 = mpmath.mpf(0)
+    for k in range(1, K + 1):
+        s0 += f
+        s1 += k * f
+        s2 += k * k * f
+        f = f * pm * (N - k) * k / (k + 1)
+    mean = s1 / s0
+    return s0, mean, s2 / s0 - mean * mean
