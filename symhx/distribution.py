@@ -24,14 +24,15 @@ Arithmetic
   of a proved lower bound of the sum (see that module for the bounds).  Everything is relative to
   the largest term, so nothing overflows and ``N p - 1 = 1e-49`` costs no extra digits.  One
   pass gives the normaliser, mean, variance and entropy; ``cdf``/``sf`` sum their own range
-  (relative accuracy in the tails, measured down to ``cdf ~ 10**-21718`` at N = 10**100;
-  a known limit: far deeper, ``cdf ~ 10**(-10**20)`` there at dps = 30, the value is off by a
-  factor of a few while ``logcdf``/``logsf`` keep their digits, because the guard digits do
-  not grow with ``|log cdf|``; ``logcdf``/``logsf`` near 0 are ``log1p`` of the other tail).
-  Quantiles: a Newton search on ``k`` (one partial sum per step); the integer is then
-  checked against the sums' error bound and the decision repeated with more digits when ``q`` is
-  within it (``q`` is resolved to the ``dps`` digits of the cdf: the smallest ``k`` with
-  ``cdf(k) >= q (1 - 10**(1 - dps))``); ``N <= MP_QUANTILE_N_LIMIT = 10**30``.
+  with the digits its size needs (``log Phi`` is needed to absolute accuracy: a range whose terms
+  are ``exp(-1e20)`` below the largest term gets 20 more digits, so ``cdf ~ 10**(-10**20)`` at
+  N = 10**100 keeps its ``dps`` digits; ``logcdf``/``logsf`` near 0 are ``log1p`` of the other
+  tail).  Quantiles: a bracket narrowed by Newton steps on ``sqrt(1 - log C)`` (``C`` the cdf or
+  sf, whichever is smaller; linear in k in Gaussian and geometric tails alike), far tails
+  decided from bounds without summing; the integer is proved against the sums' error bound, with
+  more digits while ``q`` is within it (``q`` is resolved to the ``dps`` digits of the cdf: the
+  smallest ``k`` with ``cdf(k) >= q (1 - 10**(1 - dps))``); ``N <= MP_QUANTILE_N_LIMIT =
+  10**300`` (the proof needs ~``dps + digits(N)/2`` digits above the jump).
 * **float64** for ``dps=None``: numpy arrays over the whole support for ``N <= FLOAT_N_LIMIT``
   (a memory limit of the table); above it the same engine at 17 digits, rounded to float64
   (vectorised over ``k`` and ``p`` by the API; ``rvs`` still needs the table).
@@ -40,12 +41,12 @@ Arithmetic
   comparison with ``Phi(1)`` is certified by interval arithmetic (exact integers on a near tie).
   The mode never needs the normaliser.
 
-Costs (2-core machine, loaded, dps = 50; ``benchmarks/bench_large_n.py``): the first statistic
-of an (N, p, dps) costs one full pass, 0.45-1.0 s at N = 10**100 (about 1100-2500
-``critical_point`` calls: the issue's target of ~30 is not met) and 5.4-6.3 s at 10**1000
-(135-155 calls); frozen distributions of the same (N, p, dps) share that pass, so ``var``,
-``entropy`` and the normaliser after ``mean`` are free and a ``cdf`` then costs one partial
-sum (0.18-0.21 s at 10**100 and at 10**1000); quantiles a few partial sums more.
+Costs (2-core machine shared with other work, dps = 50; ``benchmarks/bench_large_n.py``): the
+first statistic of an (N, p, dps) costs one full pass, 25-90 ms at N = 10**100 (70-250
+``critical_point`` calls; most of it is planning the panels, the integrand runs in Arb) and
+0.2-0.3 s at 10**1000 (25-40 calls); frozen distributions of the same (N, p, dps) share that
+pass, so ``var``, ``entropy`` and the normaliser after ``mean`` are free and a ``cdf`` costs one
+partial sum; a median at dps = 30 takes 0.3-0.4 s at 10**100.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
@@ -133,16 +134,17 @@ EXACT_WORK_LIMIT = 500_000
 #: partial sum per bisection step): ``median(10**4, "0.1")`` (1.8e5) takes 0.9 s.
 EXACT_QUANTILE_WORK_LIMIT = 200_000
 #: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs,
-#: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (exact integers of
-#: ``log2 N`` bits, panels of the hump), about 0.1-0.5 s per statistic at N = 10**100 and a few
-#: seconds at 10**1000, whatever p; ``mode`` and ``modes`` take any N.
+#: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (Arb balls of
+#: ``log2 N`` bits at every quadrature node), 25-90 ms per pass at N = 10**100 and 0.2-0.3 s at
+#: 10**1000 (dps = 50), whatever p; ``mode`` and ``modes`` take any N.
 MP_SUM_N_LIMIT = 10**1000
 #: largest N for the quantiles of the mpmath path (``ppf``, ``isf``, ``median``, ``interval``): a
-#: Newton search on k with one partial sum per step, then the integer decision checked against
-#: the sums' error bound (repeated with more digits when it is within it).  Measured at dps = 50:
-#: a median at N = 10**20 takes 1.2 s, at 10**100 about 40 s (the partial sums near the hump at
-#: 10**100 dominate), so the documented cap is 10**30.
-MP_QUANTILE_N_LIMIT = 10**30
+#: Newton search on k (far tails decided from bounds, without summing), then the integer
+#: decision proved against the sums' error bound.  Above the jump the cdf moves by only
+#: ``~1/sqrt(N)`` per unit of k, so proving ``cdf(k-1) < q <= cdf(k)`` takes about
+#: ``dps + digits(N)/2`` digits: at dps = 30 a median takes 0.3-0.4 s at N = 10**100, 1.2-1.7 s
+#: at 10**300 and ~50 s at 10**1000 (sums at ~530 digits), so the cap is 10**300.
+MP_QUANTILE_N_LIMIT = 10**300
 
 #: ``table()`` (one row ``(k, P(X = k))`` per k, also ``symhx distribution --table``) on the
 #: mpmath path is refused above this N: each row is a pmf at dps digits (10**4 rows at dps = 50
@@ -786,19 +788,28 @@ class SimpleDistribution(Distribution):
         return moments
 
     def _mp_sum(self, lo: int, hi: int) -> Any:
-        """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too)."""
+        """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too: a
+        range far in a tail is summed with the digits its magnitude needs)."""
         self._mp_moments  # noqa: B018 - the normaliser
+        lo, hi = max(lo, 1), min(hi, self.N)
         eng = self._engine()
+        if self._range_engine(lo, hi) is not eng:
+            return self._range_sum(lo, hi)[0]
         ctx = mp()
         with ctx.workdps(eng.W):
-            s = eng.sums(max(lo, 1), min(hi, self.N), (0,))[0]
+            s = eng.sums(lo, hi, (0,))[0]
             return export(s / local(self._mp_extra[0]))
 
     def _logpmf_raw(self, k: int) -> Any:
-        """log P(X = k) with the engine's guard digits (not rounded)."""
+        """log P(X = k) with the engine's guard digits (not rounded): ``log Phi(k)`` to
+        absolute accuracy, with more digits when ``|log Phi(k)/Phi(c)|`` is large."""
         self._mp_moments  # noqa: B018
         eng = self._engine()
         ctx = mp()
+        big = self._range_engine(k, k)
+        if big is not eng:
+            with ctx.workdps(big.W):
+                return export(big.D(k) - ctx.log(_engine_total(big)))
         with ctx.workdps(eng.W):
             return export(eng.D(k) - local(self._mp_extra[1]))
 
@@ -930,91 +941,146 @@ class SimpleDistribution(Distribution):
         return work <= EXACT_QUANTILE_WORK_LIMIT
 
     def _quantile_mp(self, qq: Fraction, upper: bool) -> int:
-        """The smallest ``k`` with ``cdf(k) >= qq`` (``upper``: ``sf(k) <= qq``), decided on the
-        engine's sums: a Newton iteration on ``k`` (the cdf's slope is the pmf) inside a bracket
-        that only shrinks, then the decision ``C(k-1) < qq <= C(k)`` checked against the sums'
-        error bound; a margin inside the bound repeats the search with 20 more digits (up to
-        ``dps + digits(N) + 40``), so rounding never decides the integer."""
+        """The smallest ``k`` with ``cdf(k) >= qq`` (``upper``: ``sf(k) <= qq``).
+
+        A bracket ``[lo, hi]`` (the answer in ``(lo, hi]``) that only shrinks, narrowed by
+        Newton steps on ``log C(k)`` (``C`` the cdf or sf; its log-slope is ``pmf/C``), by a
+        bisection (geometric while ``hi > 4 lo``) when a step leaves the bracket or stalls.  A
+        ``k`` far in a tail is decided from bounds, without summing: the largest term ``f_max``
+        of the range (a few evaluations of ``log Phi``) gives ``f_max <= C <= len f_max``.  Near
+        the answer ``C(k)`` is summed by :mod:`symhx.simple_sums` with the digits its
+        magnitude needs (:meth:`_range_engine`), and the final decision ``C(k-1)`` vs ``C(k)``
+        is checked against the sums' relative error bound; a margin inside it repeats the
+        decision with 20 more digits (up to ``dps + digits(N) + 40``), so rounding never
+        decides the integer.  About 5-15 partial sums per quantile."""
         self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
+        N = self.N
+        ctx = mp()
         dps = self.dps or 17
-        top = dps + digits_of(self.N) + 40
-        k, certain = self._quantile_at(qq, upper, dps)
-        while not certain and dps < top:
-            dps = min(top, dps + 20 + dps // 2)
-            k, certain = self._quantile_refine(qq, upper, dps, k)
-        return k
+        # the condition at k, on either side: L(k) = P(X <= k) >= tL  <=>  U(k) = 1 - L(k) <= tU
+        tL, tU = (1 - qq, qq) if upper else (qq, 1 - qq)
+        logt = {side: _flog(ctx, t) for side, t in (("L", tL), ("U", tU))}
+        state = {"dps": dps}
 
-    def _quantile_refine(self, qq: Fraction, upper: bool, dps: int, k: int
-                         ) -> tuple[int, bool]:
-        """The decision near ``k`` at ``dps`` digits: step ``k`` by one until ``C(k-1)`` and
-        ``C(k)`` straddle ``qq`` (the answer moves by a few at most), then report whether both
-        are outside the error bound."""
-        eng = self._engine(dps)
+        def far_step(side: str, lc: Any, ledge: Any) -> Any:
+            """A Newton step on ``g = sqrt(1 - log V)`` (``V`` = L or U), linear in ``k`` in a
+            Gaussian tail (``log V ~ -(k - mu)**2 / (2 var)``) and in a geometric one alike;
+            ``d log V/dk = +-pmf/V`` (``lc``, ``ledge``: ``log V`` and ``log pmf`` at the edge,
+            mpf with the bits their size needs: far out they are ~N and only their difference
+            is small)."""
+            if not ctx.isfinite(lc) or not math.isfinite(logt[side]):
+                return None
+            lc = min(lc, 0)
+            ls = ledge - lc
+            with ctx.workprec(max(64, ctx.mag(lc) + 64)):
+                g, gs = ctx.sqrt(1 - lc), ctx.sqrt(1 - ctx.mpf(logt[side]))
+                diff = g - gs
+            with ctx.workprec(64):
+                slope = ctx.exp(ls)
+                if not slope:
+                    return None
+                return 2 * g * diff / (slope if side == "L" else -slope)
+
+        def ok_of(k: int) -> tuple[bool, Any, bool]:
+            """(``k`` satisfies the condition, a Newton step or None, the decision is certain)
+            from the smaller side, at ``state["dps"]`` digits."""
+            if k < 1:
+                return (tL <= 0, None, True)
+            if k >= N:
+                return (True, None, True)
+            eng = self._engine(state["dps"])
+            with ctx.workdps(eng.W):
+                ls0 = ctx.log(_engine_total(eng))
+            ranges = {"L": (1, k), "U": (k + 1, N)}
+            lmax = {sd: eng.log_max(*r) for sd, r in ranges.items()}  # relative to Phi(c)
+            side = "L" if lmax["L"] < lmax["U"] else "U"
+            lo_, hi_ = ranges[side]
+            edge = hi_ if side == "L" else lo_
+            with ctx.workprec(64 + eng.abs_bits(edge, edge)):
+                ledge = eng.D(edge) - ls0
+                lm = lmax[side] - ls0  # log(largest term / sum)
+                ub = lm + math.log(hi_ - lo_ + 1)
+            if ub < logt[side] - 1 or lm > logt[side] + 1:  # decided by the bounds
+                small = ub < logt[side] - 1
+                okv = small if side == "U" else not small
+                return (okv, far_step(side, ub if small else lm, ledge), True)
+            val, W = self._range_sum(lo_, hi_, state["dps"])
+            with ctx.workdps(W):
+                val = local(val)
+                t = tL if side == "L" else tU
+                target = ctx.mpf(t.numerator) / t.denominator
+                okv = bool(val >= target) if side == "L" else bool(val <= target)
+                certain = abs(val - target) > abs(target) * ctx.mpf(10) ** (4 - W)
+                if val <= 0:
+                    return (okv, None, certain)
+                lc = ctx.log(val)
+                if abs(lc - logt[side]) < 0.5:  # linear Newton step at the working precision
+                    fk = ctx.exp(eng.D(edge) - ls0)
+                    step = (target - val) / fk if side == "L" else (val - target) / fk
+                    return (okv, step, certain)
+            with ctx.workprec(64 + eng.abs_bits(edge, edge)):
+                return (okv, far_step(side, lc, ledge), certain)
+
+        lo, hi = 0, N  # not ok(lo), ok(hi): the answer is in (lo, hi]
+        k = self._quantile_guess(qq, upper)
+        top = dps + digits_of(N) + 40
+        skip = 0
+        mark = _bracket_size(lo, hi)  # the size when the current run of Newton steps began
+        newton_steps = 0
+        for _ in range(8 * N.bit_length() + 64):
+            if hi - lo <= 1:
+                break
+            k = min(max(k, lo + 1), hi - 1)
+            okv, step, certain = ok_of(k)
+            if not certain:  # within rounding of the target: more digits, same k
+                if state["dps"] >= top:
+                    return k if okv else k + 1
+                state["dps"] = min(top, state["dps"] + 20 + state["dps"] // 2)
+                continue
+            if okv:
+                hi = k
+            else:
+                lo = k
+            if hi - lo <= 1:
+                break
+            nk = None
+            size = _bracket_size(lo, hi)
+            if newton_steps >= 3 and size > mark / 2:  # Newton is not converging (a second
+                skip, newton_steps = 1, 0  # bump, a flat stretch): bisect
+            if step is not None and not skip and abs(step) < hi - lo:
+                nk = k + int(ctx.nint(step))
+                if nk == k:
+                    nk = k - 1 if okv else k + 1
+            if nk is None or not lo < nk < hi:  # bisect; after a failed Newton step, twice
+                skip = 0 if skip else 1
+                nk = math.isqrt(max(lo, 1) * hi) if hi > 4 * max(lo, 1) else (lo + hi) // 2
+                newton_steps, mark = 0, size
+            else:
+                skip = 0
+                newton_steps += 1
+            k = nk
+        return hi
+
+    def _range_engine(self, lo: int, hi: int, dps: int | None = None) -> SimpleSums:
+        """The summation engine for a sum over ``[lo, hi]``: ``dps`` plus the digits of the
+        largest ``|log Phi(k)/Phi(c)|`` of the range (absolute accuracy of ``log Phi`` is what
+        a sum's relative accuracy needs; far in a tail at huge N it is ~N), so a cdf of
+        ``10**(-10**20)`` keeps its ``dps`` digits."""
+        d = self.dps if dps is None else dps
+        assert d is not None
+        eng = self._engine(d)
+        lm = abs(eng.log_max(lo, hi))
+        extra = 0 if lm < 10 else int(math.log10(lm)) + 2
+        return eng if extra == 0 else self._engine(d + extra)
+
+    def _range_sum(self, lo: int, hi: int, dps: int | None = None) -> tuple[Any, int]:
+        """``P(lo <= X <= hi)`` (global mpf) at ``dps`` (default: the distribution's) digits
+        relative to itself, and the working digits of the engine that summed it."""
+        eng = self._range_engine(lo, hi, dps)
         ctx = mp()
-        N = self.N
         with ctx.workdps(eng.W):
-            s0 = eng.sums(1, N, (0,))[0]
-            target = ctx.mpf(qq.numerator) / qq.denominator * s0
-            tol = s0 * ctx.mpf(10) ** (-(eng.W - 4))
-
-            def C(j: int) -> Any:
-                if upper:
-                    return eng.sums(j + 1, N, (0,))[0] if j < N else ctx.mpf(0)
-                return eng.sums(1, j, (0,))[0] if j >= 1 else ctx.mpf(0)
-
-            def ok(val: Any) -> bool:
-                return bool(val <= target) if upper else bool(val >= target)
-
-            for _ in range(64):
-                here, below = C(k), C(k - 1)
-                if ok(here) and not ok(below):
-                    break
-                k = k + 1 if not ok(here) else k - 1
-            return k, abs(here - target) > tol and abs(below - target) > tol
-
-    def _quantile_at(self, qq: Fraction, upper: bool, dps: int) -> tuple[int, bool]:
-        eng = self._engine(dps)
-        ctx = mp()
-        N = self.N
-        with ctx.workdps(eng.W):
-            s0 = eng.sums(1, N, (0,))[0]
-            target = ctx.mpf(qq.numerator) / qq.denominator * s0
-            tol = s0 * ctx.mpf(10) ** (-(eng.W - 4))
-
-            def C(k: int) -> Any:  # mass counted toward the decision at k
-                if upper:
-                    return eng.sums(k + 1, N, (0,))[0] if k < N else ctx.mpf(0)
-                return eng.sums(1, k, (0,))[0] if k >= 1 else ctx.mpf(0)
-
-            def ok(val: Any) -> bool:  # k satisfies the quantile condition
-                return val <= target if upper else val >= target
-
-            lo, hi = 0, N  # not ok(lo) ... ok(hi)
-            k = self._quantile_guess(qq, upper)
-            for _ in range(300):
-                if hi - lo <= 1:
-                    break
-                k = min(max(k, lo + 1), hi - 1)
-                val = C(k)
-                if ok(val):
-                    hi = k
-                else:
-                    lo = k
-                if hi - lo <= 1:
-                    break
-                fk = ctx.exp(eng.D(k + 1 if upper else k))
-                step = (target - val) / fk
-                if upper:
-                    step = -step
-                nk = k + int(ctx.nint(step)) if abs(step) < hi - lo else None
-                if nk == k:  # within one of the answer: test the neighbour on the other side
-                    nk = k - 1 if k == hi else k + 1
-                if nk is None or not lo < nk < hi:
-                    nk = math.isqrt(max(lo, 1) * hi) if hi > 4 * max(lo, 1) else (lo + hi) // 2
-                k = nk
-            k = hi
-            near = [abs(C(j) - target) for j in (k - 1, k) if 0 <= j <= N]
-            return k, all(v > tol for v in near)
+            s = eng.sums(lo, hi, (0,))[0]
+            return export(s / _engine_total(eng)), eng.W
 
     def _quantile_guess(self, qq: Fraction, upper: bool) -> int:
         """A start for the Newton iteration: the normal approximation around the mean."""
@@ -1022,14 +1088,16 @@ class SimpleDistribution(Distribution):
 
         ctx = mp()
         mu, var = self._mp_moments[1], self._mp_moments[2]
+        top = self.mode()
+        if top > 1:  # the hump's top is exact; the mean is only dps digits of ~N
+            mu = top
         q = min(max(float(qq), 1e-300), 1 - 1e-16)
         z = NormalDist().inv_cdf(q)
         if upper:
             z = -z
-        with ctx.workdps(30):
+        with ctx.workdps(digits_of(self.N) + 20):
             g = local(mu) + z * ctx.sqrt(max(local(var), 0))
             return int(min(max(ctx.nint(g), 1), self.N))
-
 
 #: frozen distributions of the same (N, p, dps) share the summation engine and its one full
 #: pass (``symhx.mean(N, p)`` then ``symhx.var(N, p)`` or ``symhx.cdf(N, p, k)`` sum the
@@ -1068,6 +1136,31 @@ def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any
         log_s0 = ctx.log(s0)
         extra = export((s0, log_s0, log_s0 - s3 / s0))
         return export((eng.log_phi_ref() + log_s0, eng.c + r1, s2 / s0 - r1 * r1)), extra
+
+
+def _bracket_size(lo: int, hi: int) -> float:
+    """The size of a search bracket as bisection sees it: ``log2(hi/lo)`` while it is geometric
+    (``hi > 4 lo``), else the number of integers in it (both halve per bisection step)."""
+    if hi > 4 * max(lo, 1):
+        return float(hi.bit_length() - max(lo, 1).bit_length() + 2)
+    return float(hi - lo)
+
+
+def _flog(ctx: Any, t: Fraction) -> float:
+    """``log t`` of a Fraction in ``[0, 1]`` as a float (``-inf`` at 0)."""
+    if t <= 0:
+        return -math.inf
+    with ctx.workprec(64):
+        return float(ctx.log(ctx.mpf(t.numerator)) - ctx.log(ctx.mpf(t.denominator)))
+
+
+def _engine_total(eng: SimpleSums) -> Any:
+    """``sum_{k=1}^{N} Phi(k)/Phi(c)`` of an engine, at its working precision (cached on the
+    engine: engines are per thread)."""
+    total = eng.__dict__.get("_total")
+    if total is None:
+        total = eng.__dict__["_total"] = eng.sums(1, eng.N, (0,))[0]
+    return total
 
 
 def _exact_value(x: Any) -> Fraction:

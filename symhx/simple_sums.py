@@ -36,7 +36,16 @@ Algorithm (one pass, for ``sum_{k=A}^{B} f(k) w(k)`` with ``w`` in ``1, k - c, (
    bounded by Cauchy's estimate on discs of radius ``r`` (``r = x/2`` near 0, about ``sqrt(2)
    sigma`` in the hump): ``|R_M| <= sum_panels 2 zeta(2M) (2M)!/(2 pi r)**(2M) max|F| (B - A)``;
    ``M`` is the smallest that makes it negligible.
-4. Every error term (dropped tails, quadrature, remainder) is held below ``10**-(dps+guard)`` of a
+4. *Arithmetic.*  The integrand at the quadrature nodes and ``log g`` in the panel bounds are
+   evaluated in Arb ball arithmetic (``lgamma``/``digamma`` of python-flint, C speed) at the
+   working precision plus the bits of ``N log N`` (the parts of ``log Phi`` that cancel); the
+   integral's ball radius is checked against ``2**-prec`` of the sum of the ``|terms|`` and the
+   panels are redone with 64 more bits if it is not met.  ``log Phi`` is accurate in *absolute*
+   terms to one unit of the working precision times its size, so a range whose terms are
+   ``exp(-1e20)`` below the reference needs 20 more digits: :meth:`SimpleSums.log_max` gives
+   that size and the caller (:class:`symhx.distribution.SimpleDistribution`) picks an engine
+   with the extra digits; level cuts and bounds add :meth:`SimpleSums.abs_bits` bits.
+5. Every error term (dropped tails, quadrature, remainder) is held below ``10**-(dps+guard)`` of a
    proved lower bound of the sum (``2 delta min(f(x* - delta), f(x* + delta))`` around its
    largest term ``x*``), so the result is correct to ``dps`` digits with ``guard`` digits to spare
    for rounding.
@@ -58,12 +67,13 @@ from typing import Any
 from mpmath.libmp import from_int
 
 from symhx._mpctx import mp
+from symhx.certify import arb_prec, to_arb
 from symhx.summation import (
     GL_SIZES,
     em_correction,
     em_remainder_factor,
     exp_series,
-    gauss_legendre,
+    gauss_legendre_raw,
     gl_error_factor,
     series_mul,
 )
@@ -76,6 +86,7 @@ STIRLING_MIN = 10**4
 _LN10 = math.log(10)
 #: weights: 0 -> 1, 1 -> (k - c), 2 -> (k - c)**2, 3 -> D(k) = log(Phi(k)/Phi(c))
 _ALL = (0, 1, 2, 3)
+_STIRLING: dict[int, tuple[Any, ...]] = {}
 _RHOS = (1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
 
@@ -94,6 +105,19 @@ def _log_ratio(ctx: Any, num: int, den: int) -> Any:
     if 2 * abs(num - den) < den:
         return ctx.log1p(_to_mpf(ctx, num - den, den))
     return ctx.log(_to_mpf(ctx, num, den))
+
+
+def _log64(ctx: Any, x: Any) -> Any:
+    """``log x`` to 64 bits (bounds only: a log at the bounds' precision of thousands of bits
+    costs an AGM)."""
+    with ctx.workprec(64):
+        return ctx.log(x)
+
+
+def _exp64(ctx: Any, x: Any) -> Any:
+    """``exp x`` to 64 bits (bounds only)."""
+    with ctx.workprec(64):
+        return ctx.exp(x)
 
 
 def _exact(ctx: Any, n: int) -> Any:
@@ -198,9 +222,13 @@ class SimpleSums:
         cache: dict[int, list[Any]] = self.__dict__.setdefault("_coef", {})
         got = cache.get(key)
         if got is None:
-            r_max = 30 + ctx.dps // 3
-            got = [ctx.bernoulli(2 * r) / (2 * r * (2 * r - 1)) for r in range(1, r_max)]
-            cache[key] = got
+            raw = _STIRLING.get(key)  # raw mpf tuples, shared by every thread and engine
+            if raw is None:
+                r_max = 30 + ctx.dps // 3
+                raw = _STIRLING[key] = tuple(
+                    (ctx.bernoulli(2 * r) / (2 * r * (2 * r - 1)))._mpf_
+                    for r in range(1, r_max))
+            got = cache[key] = [ctx.make_mpf(t) for t in raw]
         return got
 
     def _lg(self, y: Any) -> Any:
@@ -376,6 +404,28 @@ class SimpleSums:
         return c * lpn + lf - self._logc
 
     # ------------------------------------------------------------------ structure
+    def abs_bits(self, A: int, B: int) -> int:
+        """Bits to add to a precision so that ``D`` on ``[A, B]`` is accurate to one unit of it
+        in *absolute* terms: ``D``'s largest parts (``d log(p u)`` and the lgamma difference,
+        which cancel to ``D``) are at most ``|d| (|log p| + 2 log(N+1) + 2)``, ``d = x - c``;
+        far from the reference (a tail range at huge N) ``|D|`` reaches ``~N``, so the level
+        cuts and bounds there need ``log2 N`` bits beyond their nominal 64-128."""
+        d = max(abs(A - self.c), abs(B - self.c), 1)
+        lp = abs(self.b.bit_length() - self.a.bit_length()) + 2 * self.N.bit_length() + 4
+        return d.bit_length() + lp.bit_length() + 8
+
+    def log_max(self, A: int, B: int) -> Any:
+        """``max D`` over ``[A, B]`` (``log`` of the largest term relative to ``Phi(c)``), to
+        64 bits *absolute* (an mpf of the thread's context with as many bits as that needs):
+        the magnitude that decides the digits a sum over the range needs."""
+        ctx = mp()
+        top = self.top if (self.top is not None and self.top > 1) else None
+        cands = {A, B}
+        if top is not None and A <= top <= B:
+            cands.add(top)
+        with ctx.workprec(64 + self.abs_bits(A, B)):
+            return max(self.D(k) for k in cands)
+
     def _fb(self, k: int) -> int:
         """``b (Phi(k+1)/Phi(k) - 1) (k+1)``-sign: ``Phi(k+1) >= Phi(k)`` iff ``>= 0``."""
         a, b = self.a, self.b
@@ -460,7 +510,7 @@ class SimpleSums:
         if key in cache:
             return cache[key]
         ctx = mp()
-        with ctx.workprec(128):
+        with ctx.workprec(128 + self.abs_bits(A, B)):
             top = self.top if (self.top is not None and self.top > 1) else None
             m = self.valley() if top else N
             # monotone stretches of Phi: [1, m] down, [m, top] up, [top, N] down
@@ -516,9 +566,30 @@ class SimpleSums:
         return 1 / ctx.sqrt(-2 * c2) if c2 < 0 else ctx.mpf(1)
 
     # ------------------------------------------------------------------ bounds
+    def _ball_consts(self) -> tuple[int, Any, Any, Any, Any]:
+        """``(bits, log p, c, N + 1, lgamma(N + 1 - c))`` as Arb balls for the bounds: ``bits``
+        keeps ``log g`` (whose parts reach ``N log N`` and cancel) absolutely accurate to
+        ``2**-40``."""
+        got = self.__dict__.get("_bconsts")
+        if got is None:
+            from flint import arb, fmpz
+
+            lp_bits = abs(self.b.bit_length() - self.a.bit_length()).bit_length()
+            bits = 64 + self.N.bit_length() + self.N.bit_length().bit_length() + lp_bits + 16
+            with arb_prec(bits):
+                lp = arb(fmpz(self.a)).log() - arb(fmpz(self.b)).log()
+                ca, n1 = arb(fmpz(self.c)), arb(fmpz(self.N + 1))
+                got = self.__dict__["_bconsts"] = (bits, lp, ca, n1, (n1 - ca).lgamma())
+        return got
+
     def _dg_off(self, d: Any) -> Any:
+        """``log(g(x)/g(c))`` at the offset ``d = x - c`` for bounds (Arb, ~40 bits absolute)."""
         ctx = mp()
-        return self.Dg(d, ctx.fsub(self._um, d, exact=True))
+        bits, lp, ca, n1, lgc = self._ball_consts()
+        with arb_prec(bits):
+            da = to_arb(d)
+            man, exp = (da * lp + lgc - (n1 - ca - da).lgamma()).mid().man_exp()
+        return ctx.ldexp(ctx.mpf(int(man)), int(exp))
 
     def _max_dg(self, dlo: Any, dhi: Any) -> Any:
         """``max log(g/g(c))`` for offsets ``x - c`` in ``[dlo, dhi]`` (``g`` log-concave, peak
@@ -543,7 +614,7 @@ class SimpleSums:
             R = max(abs(dlo), abs(dhi)) + y
             base_lo = xlo
         else:
-            R = ctx.exp(mid + a * ell)
+            R = _exp64(ctx, mid + a * ell)
             xlo, xhi = -R, R
             dlo, dhi = xlo - self._cm, xhi - self._cm
             y = R
@@ -555,7 +626,7 @@ class SimpleSums:
         psi1 = 1 / vlo + 1 / (vlo * vlo)
         vert = y * y * psi1 / 2
         if kind == "x":
-            lf = lg + vert - ctx.log(base_lo / self._cm)
+            lf = lg + vert - _log64(ctx, base_lo / self._cm)
         else:
             lf = lg + vert + self._logc
         out = []
@@ -563,25 +634,28 @@ class SimpleSums:
             if j == 0:
                 out.append(lf)
             elif j == 1:
-                out.append(lf + ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
+                out.append(lf + _log64(ctx, R + 1 + (self._cm if kind == "s" else 0)))
             elif j == 2:
-                out.append(lf + 2 * ctx.log(R + 1 + (self._cm if kind == "s" else 0)))
+                out.append(lf + 2 * _log64(ctx, R + 1 + (self._cm if kind == "s" else 0)))
             else:  # |D| <= |Dg| + |log(z/c)|; |Dg(x+iy)| <= max|Dg| + y max|Dg'| + y**2 psi'/2
                 dgs = [abs(self._dg_off(dlo)), abs(self._dg_off(dhi)), abs(lg)]
                 slopes = [abs(self._dgd(dlo)), abs(self._dgd(dhi))]
                 bd = max(dgs) + y * max(slopes) + vert
                 if kind == "x":
-                    bd += abs(ctx.log(xhi / self._cm)) + abs(ctx.log(xlo / self._cm)) + 2
+                    bd += abs(_log64(ctx, xhi / self._cm)) + abs(_log64(ctx, xlo / self._cm))
+                    bd += 2
                 else:
                     bd += abs(mid) + (a + b) * ell + abs(self._logc) + 4
-                out.append(lf + ctx.log(bd + 1))
+                out.append(lf + _log64(ctx, bd + 1))
         return out
 
     def _dgd(self, d: Any) -> Any:
         """``(log g)'(x) = log p + psi(N + 1 - x)`` at the offset ``d = x - c`` (bounds only)."""
         ctx = mp()
-        v = self._um - d
-        return self._L1 + ctx.digamma(v) - self._logu_hi
+        bits, lp, ca, n1, _ = self._ball_consts()
+        with arb_prec(bits):
+            man, exp = (lp + (n1 - ca - to_arb(d)).digamma()).mid().man_exp()
+        return ctx.ldexp(ctx.mpf(int(man)), int(exp))
 
     def _plan_panel(self, kind: str, lo: Any, hi: Any, log_target: list[Any],
                     kinds: tuple[int, ...]) -> int | None:
@@ -592,7 +666,7 @@ class SimpleSums:
         ell = (hi - lo) / 2
         mid = (hi + lo) / 2
         best = None
-        lell = float(ctx.log(ell))
+        lell = float(_log64(ctx, ell))
         for rho in _RHOS:
             a = (rho + 1 / rho) / 2
             b = (rho - 1 / rho) / 2
@@ -604,8 +678,10 @@ class SimpleSums:
                 if best is not None and n >= best:
                     break
                 fac = gl_error_factor(n, lr) + lell
-                if all(fac + float(bv) <= float(t) for bv, t in zip(bounds, log_target,
-                                                                       strict=True)):
+                # the difference first: far in a tail both logs are ~ -1e20 (a float of
+                # either alone has lost every unit that matters)
+                if all(fac + float(bv - t) <= 0 for bv, t in zip(bounds, log_target,
+                                                                 strict=True)):
                     best = n
                     break
         return best
@@ -715,6 +791,63 @@ class SimpleSums:
         tail = self._em(K0, B, kinds)
         return [h + t for h, t in zip(head, tail, strict=True)]
 
+    def _integral(self, panels: list[tuple[str, Any, Any, int]], kinds: tuple[int, ...]
+                  ) -> list[Any]:
+        """``int f w_j`` over the planned Gauss-Legendre panels, the integrand at every node in
+        Arb ball arithmetic (``log Phi`` through ``lgamma``): C speed, and a rigorous radius.
+        The precision is the working one plus the bits of the largest part of ``log Phi``
+        (``~ N log N``, which cancels); if a total's radius is still above ``2**-prec`` of it
+        (a cancellation the estimate missed), the panels are redone with 64 more bits.
+        Returns numbers of the calling thread's context (ball midpoints)."""
+        from flint import arb, fmpz
+
+        ctx = mp()
+        wbits = ctx.prec
+        raw = {n: gauss_legendre_raw(n, wbits) for _, _, _, n in panels}
+        N, c = self.N, self.c
+        lp_bits = abs(self.b.bit_length() - self.a.bit_length()).bit_length()
+        P = wbits + N.bit_length() + N.bit_length().bit_length() + lp_bits + 24
+        for _ in range(4):
+            with arb_prec(P):
+                lp = arb(fmpz(self.a)).log() - arb(fmpz(self.b)).log()
+                ca = arb(fmpz(c))
+                n1 = arb(fmpz(N + 1))
+                const = (n1 - ca).lgamma() + ca.log()
+                totals = [arb(0) for _ in kinds]
+                sizes = [arb(0) for _ in kinds]  # sums of |f w_j|: what the error is held to
+                for kind, plo, phi_, n in panels:
+                    lo_a, hi_a = to_arb(plo), to_arb(phi_)
+                    ell = (hi_a - lo_a) / 2
+                    mid = (hi_a + lo_a) / 2
+                    for (xm, xe), (wm, we) in raw[n]:
+                        t = mid + ell * arb((fmpz(xm), xe))
+                        wt = ell * arb((fmpz(wm), we))
+                        if kind == "x":
+                            d = t
+                            x = ca + d
+                        else:
+                            x = t.exp()
+                            d = x - ca
+                            wt = wt * x
+                        Dv = d * lp + const - (n1 - x).lgamma() - x.log()
+                        fv = Dv.exp() * wt
+                        for i, j in enumerate(kinds):
+                            term = fv if j == 0 else fv * d if j == 1 else \
+                                fv * d * d if j == 2 else fv * Dv
+                            totals[i] += term
+                            sizes[i] += abs(term.mid())
+                tol = arb(2) ** (8 - wbits)
+                ok = all(tv.rad() <= sz * tol for tv, sz in zip(totals, sizes, strict=True))
+                if ok:
+                    out = []
+                    for tv in totals:
+                        man, exp = tv.mid().man_exp()
+                        out.append(ctx.ldexp(ctx.mpf(int(man)), int(exp)))
+                    return out
+            P += 64
+        raise ArithmeticError("the quadrature's ball arithmetic did not reach the working "
+                              "precision")  # pragma: no cover - safety net
+
     def _scales(self, A: int, B: int, kinds: tuple[int, ...]) -> list[float]:
         """The size of each weight that its sum's error is measured against (``log``)."""
         top = self.top if self.top is not None else 1
@@ -736,7 +869,8 @@ class SimpleSums:
         """Euler-Maclaurin on ``[A, B]`` (``A >= 4 (dps + guard)``, f smooth on the scale of A)."""
         ctx = mp()
         eps_log = -(self.W * _LN10) - 3
-        with ctx.workprec(128):
+        lowprec = 128 + self.abs_bits(A, B)  # bounds need D to absolute accuracy
+        with ctx.workprec(lowprec):
             low = self._lower(A, B)
             scales = self._scales(A, B, kinds)
         top = self.top if self.top is not None else 0
@@ -755,14 +889,14 @@ class SimpleSums:
             pieces.append(("s", ctx.log(A), ctx.log(Xs)))
         if B > Xs:
             pieces.append(("x", ctx.mpf(Xs - c), ctx.mpf(B - c)))
-        lowprec = 128
         for kind, lo, hi in pieces:
             span = hi - lo
             stack = [(lo, hi)]
             while stack:
                 plo, phi_ = stack.pop()
                 with ctx.workprec(lowprec):
-                    frac = ctx.log((phi_ - plo) / span) + ctx.log(0.5 if len(pieces) > 1 else 1)
+                    frac = _log64(ctx, (phi_ - plo) / span) + math.log(
+                        0.5 if len(pieces) > 1 else 1)
                     targ = [eps_log + low + sc + frac for sc in scales]
                     n = self._plan_panel(kind, plo, phi_, targ, kinds)
                 if n is None:
@@ -774,32 +908,7 @@ class SimpleSums:
                 else:
                     panels.append((kind, plo, phi_, n))
         self.last_panels = panels
-        # the integral
-        total = [ctx.mpf(0) for _ in kinds]
-        for kind, plo, phi_, n in panels:
-            dlo, dhi = plo, phi_
-            ell = (dhi - dlo) / 2
-            mid = (dhi + dlo) / 2
-            for xi, wi in gauss_legendre(ctx, n):
-                if kind == "x":
-                    d = mid + ell * xi
-                    x = c + d
-                    jac = ell * wi
-                else:
-                    x = ctx.exp(mid + ell * xi)
-                    d = x - c
-                    jac = ell * wi * x
-                Dv = self.D(x, d)
-                fv = ctx.exp(Dv) * jac
-                for i, j in enumerate(kinds):
-                    if j == 0:
-                        total[i] += fv
-                    elif j == 1:
-                        total[i] += fv * d
-                    elif j == 2:
-                        total[i] += fv * d * d
-                    else:
-                        total[i] += fv * Dv
+        total = self._integral(panels, kinds)
         # endpoint terms: (F(A) + F(B))/2 + sum_m B_2m/(2m)! (F^(2m-1)(B) - F^(2m-1)(A))
         # Cauchy discs of radius r around [A, B]: r = min(A/2, 2/|D'(A)|) keeps
         # max|f| on them within e**2 of f at the centre near A (f decays at most like

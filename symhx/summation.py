@@ -41,6 +41,7 @@ __all__ = [
     "em_remainder_factor",
     "exp_series",
     "gauss_legendre",
+    "gauss_legendre_raw",
     "gl_error_factor",
     "series_mul",
 ]
@@ -52,10 +53,9 @@ _NODES: dict[tuple[int, int], list[tuple[tuple, tuple]]] = {}
 _LOCK = threading.Lock()
 
 
-def gauss_legendre(ctx: Any, n: int) -> list[tuple[Any, Any]]:
-    """``[(x_i, w_i)]`` of the ``n``-point Gauss-Legendre rule on ``[-1, 1]`` as numbers of
-    ``ctx`` at its current precision (computed by Arb at ``ctx.prec + 32`` bits, cached)."""
-    prec = ctx.prec
+def gauss_legendre_raw(n: int, prec: int) -> list[tuple[tuple[int, int], tuple[int, int]]]:
+    """``[((xm, xe), (wm, we))]``: the ``n``-point Gauss-Legendre rule on ``[-1, 1]``, node
+    ``xm 2**xe`` and weight ``wm 2**we``, computed by Arb at ``prec + 32`` bits (cached)."""
     key = (n, prec)
     raw = _NODES.get(key)
     if raw is None:
@@ -66,17 +66,19 @@ def gauss_legendre(ctx: Any, n: int) -> list[tuple[Any, Any]]:
             for k in range((n + 1) // 2):
                 x, w = arb.legendre_p_root(n, k, weight=True)
                 out.append((_raw(x.mid()), _raw(w.mid())))
-        raw = _NODES[key] = out
-    nodes = []
-    for (xm, xe), (wm, we) in raw:
-        x = ctx.ldexp(ctx.mpf(xm), xe)
-        w = ctx.ldexp(ctx.mpf(wm), we)
-        nodes.append((x, w))
-    full = list(nodes)
-    half = n // 2
-    for x, w in reversed(nodes[:half]):
-        full.append((-x, w))
-    return full
+        half = n // 2
+        full = list(out)
+        for (xm, xe), wr in reversed(out[:half]):
+            full.append(((-xm, xe), wr))
+        raw = _NODES[key] = full
+    return raw
+
+
+def gauss_legendre(ctx: Any, n: int) -> list[tuple[Any, Any]]:
+    """``[(x_i, w_i)]`` of the ``n``-point Gauss-Legendre rule on ``[-1, 1]`` as numbers of
+    ``ctx`` at its current precision (computed by Arb at ``ctx.prec + 32`` bits, cached)."""
+    return [(ctx.ldexp(ctx.mpf(xm), xe), ctx.ldexp(ctx.mpf(wm), we))
+            for (xm, xe), (wm, we) in gauss_legendre_raw(n, ctx.prec)]
 
 
 def _raw(x: Any) -> tuple[int, int]:

@@ -63,3 +63,31 @@ def _term_by_term(N: int, pm: mpmath.mpf, f: mpmath.mpf, K: int
         f = f * pm * (N - k) * k / (k + 1)
     mean = s1 / s0
     return s0, mean, s2 / s0 - mean * mean
+
+
+def log_phi(N: int, p: Fraction, k: int, dps: int) -> mpmath.mpf:
+    """``log Phi(k) = k log p + lgamma(N + 1) - lgamma(N - k + 1) - log k`` at ``dps`` digits
+    *absolute* (mpmath's loggamma with the digits of ``N log N`` on top; not the Stirling
+    series around a reference that :mod:`symhx.simple_sums` uses)."""
+    extra = 2 * len(str(N)) + 20
+    with mpmath.workdps(dps + extra):
+        lp = mpmath.log(p.numerator) - mpmath.log(p.denominator)
+        return k * lp + mpmath.loggamma(N + 1) - mpmath.loggamma(N - k + 1) - mpmath.log(k)
+
+
+def log_lower_sum_geometric(N: int, p: Fraction, k: int, dps: int) -> mpmath.mpf:
+    """``log sum_{j <= k} Phi(j)`` for a ``k`` on the increasing stretch where the ratio
+    ``Phi(j+1)/Phi(j) = p (N - j) j/(j + 1)`` stays well above 1 (``N p >= 2``, ``k`` far
+    below the hump): the terms walked *down* from ``k`` by the exact ratio until they drop
+    below ``10**-(dps+10)`` of the sum."""
+    with mpmath.workdps(dps + 20):
+        pm = mpmath.mpf(p.numerator) / p.denominator
+        total, t, j = mpmath.mpf(1), mpmath.mpf(1), k  # relative to Phi(k)
+        eps = mpmath.mpf(10) ** -(dps + 10)
+        while j > 1:
+            t = t / (pm * (N - (j - 1)) * (j - 1) / j)  # Phi(j-1)/Phi(k)
+            total += t
+            j -= 1
+            if t < eps * total:
+                break
+    return log_phi(N, p, k, dps) + mpmath.log(total)

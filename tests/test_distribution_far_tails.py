@@ -1,0 +1,104 @@
+"""The simple distribution at huge N away from its bulk: cdf, logcdf and logpmf at k far below
+or above the hump (where |log Phi| reaches ~N and a sum's relative accuracy needs log Phi to
+absolute accuracy), and quantiles at N up to 10**1000, decided to the integer."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import pytest
+
+import symhx
+from symhx.validation import mpf_to_fraction
+from tests.reference.distribution_large_n import log_lower_sum_geometric, log_phi
+
+
+def _pc(N: int) -> Fraction:
+    return mpf_to_fraction(symhx.critical_point(N, dps=80).p)
+
+
+@pytest.mark.parametrize("k", [10**20, 10**49, 10**60, 10**99])
+def test_logcdf_far_below_the_hump_matches_a_direct_walk_down(k: int) -> None:
+    """N = 1e100, N p = 2: below the hump every ratio Phi(j+1)/Phi(j) is about 2, so the cdf
+    at k is Phi(k) times a geometric factor; log cdf(k) (~ -1.9e99, to 30 significant digits)
+    is checked against the terms walked down from k with loggamma minus log Gamma at 140
+    digits, and against the same call at 60 digits."""
+    N, p = 10**100, Fraction(2, 10**100)
+    d = symhx.distribution_of(N, p, dps=30)
+    with mpmath.workdps(150):
+        want = log_lower_sum_geometric(N, p, k, 140) - \
+            symhx.distribution_of(N, p, dps=140).log_normaliser
+        assert abs(d.logcdf(k) - want) <= abs(want) * mpmath.mpf(10) ** -29
+        hi = symhx.distribution_of(N, p, dps=60).logcdf(k)
+        assert abs(hi - want) <= abs(want) * mpmath.mpf(10) ** -59
+
+
+def test_cdf_far_below_the_hump_keeps_its_digits() -> None:
+    """cdf itself (~exp(-1e99)): dps 30 against dps 60 to 29 digits relative."""
+    N, p = 10**100, Fraction(2, 10**100)
+    lo, hi = symhx.distribution_of(N, p, dps=30), symhx.distribution_of(N, p, dps=60)
+    for k in (10**30, 10**99):
+        with mpmath.workdps(80):
+            assert abs(lo.cdf(k) / hi.cdf(k) - 1) <= mpmath.mpf(10) ** -29, k
+
+
+def test_cdf_keeps_relative_accuracy_where_its_log_is_huge() -> None:
+    """cdf ~ 10**(-10**20) at N = 1e100, 10**60 below the mode: its dps digits hold."""
+    N = 10**100
+    p = _pc(N) * 10
+    lo, hi = symhx.distribution_of(N, p, dps=30), symhx.distribution_of(N, p, dps=60)
+    k = lo.mode() - 10**60
+    with mpmath.workdps(80):
+        assert abs(lo.cdf(k) / hi.cdf(k) - 1) <= mpmath.mpf(10) ** -29
+        assert abs(lo.sf(k + 2 * 10**60) / hi.sf(k + 2 * 10**60) - 1) <= mpmath.mpf(10) ** -29
+
+
+@pytest.mark.parametrize("offset", [-(10**60), -(10**52), 10**52, 10**60])
+def test_logpmf_far_from_the_mode_matches_loggamma(offset: int) -> None:
+    """log P(X = k) = log Phi(k) - log Gamma to 10**-dps absolute, |log Phi| up to ~1e20."""
+    N = 10**100
+    p = _pc(N) * 10
+    d = symhx.distribution_of(N, p, dps=30)
+    k = d.mode() + offset
+    with mpmath.workdps(200):  # log Phi and log Gamma are ~1e102 each: 140 digits of both
+        want = log_phi(N, p, k, 40) - symhx.distribution_of(N, p, dps=145).log_normaliser
+        assert abs(d.logpmf(k) - want) <= mpmath.mpf(10) ** -29 * max(1, abs(want))
+
+
+def _check_quantile(N: int, p: Fraction, q: Fraction, k: int, upper: bool = False) -> None:
+    """k is the smallest integer with cdf(k) >= q (upper: sf(k) <= q), with the cdf summed at
+    twice the digits by a fresh distribution; q is resolved to 1e-28 relative as documented."""
+    ref = symhx.distribution_of(N, p, dps=60)
+    with mpmath.workdps(80):
+        qm = mpmath.mpf(q.numerator) / q.denominator
+        if upper:
+            assert ref.sf(k) <= qm * (1 + mpmath.mpf(10) ** -28), (N, q, k)
+            assert ref.sf(k - 1) > qm * (1 - mpmath.mpf(10) ** -28), (N, q, k)
+        else:
+            assert ref.cdf(k) >= qm * (1 - mpmath.mpf(10) ** -28), (N, q, k)
+            assert ref.cdf(k - 1) < qm * (1 + mpmath.mpf(10) ** -28), (N, q, k)
+
+
+@pytest.mark.parametrize("N", [10**30, 10**100])
+@pytest.mark.parametrize("ratio", [Fraction(1, 2), Fraction(999, 1000), Fraction(1001, 1000),
+                                   Fraction(2), Fraction(10)])
+def test_quantiles_at_huge_N_are_the_smallest_k_that_reach_q(N: int, ratio: Fraction) -> None:
+    """ppf at q = 1e-30, 1/2, 1 - 1e-9 and isf at 1e-30, below, at and above the jump."""
+    p = _pc(N) * ratio
+    d = symhx.distribution_of(N, p, dps=30)
+    for q in (Fraction(1, 10**30), Fraction(1, 2), 1 - Fraction(1, 10**9)):
+        _check_quantile(N, p, q, d.ppf(q))
+    _check_quantile(N, p, Fraction(1, 10**30), d.isf(Fraction(1, 10**30)), upper=True)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio", [Fraction(1, 2), Fraction(1001, 1000), Fraction(10)])
+def test_median_at_the_quantile_limit(ratio: Fraction) -> None:
+    """The median at N = MP_QUANTILE_N_LIMIT = 10**300 (proving the integer takes ~180
+    digits of the cdf there: it moves by ~1e-150 per unit of k)."""
+    from symhx.distribution import MP_QUANTILE_N_LIMIT
+
+    N = MP_QUANTILE_N_LIMIT
+    p = _pc(N) * ratio
+    _check_quantile(N, p, Fraction(1, 2), symhx.distribution_of(N, p, dps=30).median())
