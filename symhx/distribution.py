@@ -809,7 +809,9 @@ class SimpleDistribution(Distribution):
         big = self._range_engine(k, k)
         if big is not eng:
             with ctx.workdps(big.W):
-                return export(big.D(k) - ctx.log(_engine_total(big)))
+                ls0 = local(self._mp_extra[1]) if big.c == eng.c else \
+                    ctx.log(_engine_total(big))
+                return export(big.D(k) - ls0)
         with ctx.workdps(eng.W):
             return export(eng.D(k) - local(self._mp_extra[1]))
 
@@ -1070,17 +1072,26 @@ class SimpleDistribution(Distribution):
         assert d is not None
         eng = self._engine(d)
         lm = abs(eng.log_max(lo, hi))
-        extra = 0 if lm < 10 else int(math.log10(lm)) + 2
+        extra = 0 if lm < 10 else int(mp().mag(lm) * 0.30103) + 2
         return eng if extra == 0 else self._engine(d + extra)
 
     def _range_sum(self, lo: int, hi: int, dps: int | None = None) -> tuple[Any, int]:
         """``P(lo <= X <= hi)`` (global mpf) at ``dps`` (default: the distribution's) digits
         relative to itself, and the working digits of the engine that summed it."""
         eng = self._range_engine(lo, hi, dps)
+        base = self._engine(self.dps if dps is None else dps)
         ctx = mp()
         with ctx.workdps(eng.W):
             s = eng.sums(lo, hi, (0,))[0]
-            return export(s / _engine_total(eng)), eng.W
+            # the normaliser only divides: its own digits suffice (the extra digits are for
+            # the absolute accuracy of log Phi over the range), if it has the same reference
+            if base.c != eng.c:
+                total = _engine_total(eng)
+            elif dps is None or dps == self.dps:
+                total = local(self._mp_extra[0])
+            else:
+                total = _engine_total(base)
+            return export(s / local(total)), min(eng.W, base.W)
 
     def _quantile_guess(self, qq: Fraction, upper: bool) -> int:
         """A start for the Newton iteration: the normal approximation around the mean."""
@@ -1132,6 +1143,7 @@ def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any
     ctx = mp()
     with ctx.workdps(eng.W):
         s0, s1, s2, s3 = eng.sums(1, N, (0, 1, 2, 3))
+        eng.__dict__.setdefault("_total", s0)  # the normaliser of later partial sums
         r1 = s1 / s0
         log_s0 = ctx.log(s0)
         extra = export((s0, log_s0, log_s0 - s3 / s0))

@@ -472,7 +472,8 @@ class SimpleSums:
             # Newton for the first 100 steps; bisection after that (it always finishes: each
             # step at least halves the bracket, geometrically or arithmetically)
             for x0, f0, other in ((good, dgood, bad), (bad, dbad, good)) if steps <= 100 else ():
-                s = self.dD(x0)
+                with ctx.workprec(64):  # a slope for a Newton step: 64 bits (psi at the
+                    s = self.dD(x0)     # level cut's thousands of bits costs seconds)
                 if s:
                     step = -f0 / s
                     if abs(step) < hi_ - lo_:
