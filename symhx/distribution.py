@@ -44,10 +44,10 @@ Arithmetic
 Costs (2-core machine shared with other work, dps = 50; ``benchmarks/bench_large_n.py``): the
 first statistic of an (N, p, dps) costs one full pass, 23-40 ms at N = 10**100 (70-120
 ``critical_point`` calls: the issue's target of ~30 is not met; most of it is planning the
-panels, the integrand runs in Arb) and 0.13-0.21 s at 10**1000 (35-56 calls); frozen distributions of the same (N, p, dps) share that
-pass, so ``var``, ``entropy`` and the normaliser after ``mean`` are free and a ``cdf`` costs one
-partial sum; a ``cdf`` then 6-20 ms at 10**100 and 45 ms at 10**1000; a median at dps = 30 takes 0.3-0.4 s at
-10**100.
+panels, the integrand runs in Arb) and 0.13-0.21 s at 10**1000 (35-56 calls).  Frozen
+distributions of the same (N, p, dps) share that pass, so ``var``, ``entropy`` and the
+normaliser after ``mean`` are free and a ``cdf`` then costs one partial sum (6-20 ms at
+10**100, 45 ms at 10**1000); a median at dps = 30 takes 0.3-0.4 s at 10**100.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
