@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from symhx.impact import PipeRow
-from symhx.impact.engine import Engine, MPContext, default_v_stick
+from symhx.impact.engine import Engine, FloatContext, MPContext, default_v_stick, row_arrays
 
 
 def _row(omega, d):
@@ -67,3 +67,40 @@ def test_exported_record_without_events_gives_the_initial_pieces():
         assert all(isinstance(c, mpmath.mpf) for c in coefs[j][0])
         assert [c._mpf_ for c in coefs[j][0]] == [c._mpf_ for c in coef0[j]]
     assert np.asarray(coefs[1][0], dtype=float)[0] == 1.0   # pipe 1 rests at x = d = 1
+
+
+def test_mpmath_engine_uses_the_exact_restitution():
+    """Restitution "0.3" (a decimal string: exactly 3/10) is applied as 3/10 at the working
+    precision, not as the float64 0.29999999999999998890."""
+    row = PipeRow(1, restitution="0.3", alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
+    mc = MPContext()
+    with mc.workdps(40):
+        eng = Engine(row, mc, v_stick=1e-6)
+        eng.run(mc.num(1))
+        _, _, _, u0, u1, _ = eng.log.event_arrays(object)
+        assert len(u0) == 1
+        ratio = u1[0] / u0[0]
+        assert abs(ratio + mc.num(3) / 10) < mc.mp.mpf(10) ** -35
+
+
+@pytest.mark.parametrize("mp", [False, True])
+def test_row_arrays_start_every_pipe_at_its_initial_position_and_velocity(mp):
+    """With forcing at three frequencies (one of them 0) and both forcing coefficients nonzero,
+    each pipe's closed form ``c0 + sum a_m cos(F_m t) + b_m sin(F_m t)`` and its derivative
+    give ``x0`` and ``v0`` at ``t = 0`` (the free part absorbs the forced one)."""
+    rng = np.random.default_rng(11)
+    n, K = 3, 3
+    alpha, beta = rng.normal(size=(n, K)), rng.normal(size=(n, K))
+    x0, v0 = [0.55, 1.3, 1.75], [0.4, -0.7, 0.2]
+    row = PipeRow(n, omega=1.7, d=0.6, Omega=(0.0, 2.3, 0.37), restitution=0.5, alpha=alpha,
+                  beta=beta, x0=x0, v0=v0)
+    ctx = MPContext() if mp else FloatContext()
+    with MPContext().workdps(30):
+        ra = row_arrays(row, ctx)
+        for j in range(1, n + 1):
+            c = [float(v) for v in ra.coef[j]]
+            F = [float(f) for f in ra.F]
+            pos = c[0] + sum(c[1 + 2 * m] for m in range(len(F)))
+            vel = sum(c[2 + 2 * m] * F[m] for m in range(len(F)))
+            assert pos == pytest.approx(x0[j - 1], rel=1e-13, abs=1e-13), j
+            assert vel == pytest.approx(v0[j - 1], rel=1e-13, abs=1e-13), j
