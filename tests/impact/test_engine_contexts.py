@@ -87,7 +87,8 @@ def test_mpmath_engine_uses_the_exact_restitution():
 def test_row_arrays_start_every_pipe_at_its_initial_position_and_velocity(mp):
     """With forcing at three frequencies (one of them 0) and both forcing coefficients nonzero,
     each pipe's closed form ``c0 + sum a_m cos(F_m t) + b_m sin(F_m t)`` and its derivative
-    give ``x0`` and ``v0`` at ``t = 0`` (the free part absorbs the forced one)."""
+    give ``x0`` and ``v0`` at ``t = 0`` (the free part absorbs the forced one); the walls rest
+    at 0 and ``(n + 1) d``."""
     rng = np.random.default_rng(11)
     n, K = 3, 3
     alpha, beta = rng.normal(size=(n, K)), rng.normal(size=(n, K))
@@ -97,6 +98,10 @@ def test_row_arrays_start_every_pipe_at_its_initial_position_and_velocity(mp):
     ctx = MPContext() if mp else FloatContext()
     with MPContext().workdps(30):
         ra = row_arrays(row, ctx)
+        # the walls rest at 0 and (n + 1) d
+        assert [float(v) for v in ra.coef[0]] == [0.0] * ra.coef.shape[1]
+        assert float(ra.coef[n + 1][0]) == pytest.approx((n + 1) * 0.6, rel=1e-15)
+        assert not any(float(v) for v in ra.coef[n + 1][1:])
         for j in range(1, n + 1):
             c = [float(v) for v in ra.coef[j]]
             F = [float(f) for f in ra.F]
