@@ -29,6 +29,12 @@ ROWS = [
     (PipeRow.random(5, 10.0, seed=0, restitution=0.3), 30.0),
     (PipeRow(1, d=0.6, restitution=0.4, Omega=(0.0,), alpha=[[3.0]], beta=[[0.0]], x0=[0.3],
              v0=[0.0]), 6.0),
+    # two rows of the seeded twin campaign of test_fast.py whose cubic-improved search steps
+    # stop doubling on the bound's interior minimum
+    (PipeRow.random(9, 0.35789410755460677, seed=1433274860, restitution=0.8,
+                    omega=0.6122246581527426, d=1.0, Omega=(0.37, 1.9)), 19.600647965090857),
+    (PipeRow.random(8, 0.8026490311094782, seed=1561042993, restitution=0.5,
+                    omega=2.0836765649861246, d=1.0, Omega=(SQRT2,)), 5.759051189444034),
 ]
 
 
