@@ -8,6 +8,7 @@ import time
 import numpy as np
 
 import symhx
+import symhx.forcing.rayleigh as ray
 from tests.harness.errors import assert_refuses
 
 
@@ -26,3 +27,18 @@ def test_rayleigh_sum_rvs_keeps_shapes_and_the_distribution():
     assert x.shape == (200, 50) and isinstance(r.rvs(random_state=3), float)
     # independent: E[Rayleigh(s)] = s sqrt(pi/2), so E[S] = 3 sqrt(pi/2); 1e4 draws, sd ~ 1.3
     assert abs(x.mean() - 3 * np.sqrt(np.pi / 2)) < 5 * 1.3 / 100
+
+
+def test_rayleigh_sum_rvs_refuses_a_string_size_naming_size():
+    r = symhx.RayleighSum([1, 2])
+    for bad in ("3", b"3"):
+        assert_refuses(r.rvs, bad, exc=TypeError, arg="size", value=repr(bad),
+                       allowed=["None", "int >= 0", "tuple"])
+
+
+def test_rayleigh_sum_rvs_accepts_exactly_max_draws():
+    """``MAX_DRAWS`` draws are allowed, one more is refused (checked on the shape, before any
+    draw: ``MAX_DRAWS`` float64 draws would take 800 MB)."""
+    assert ray._check_size(ray.MAX_DRAWS) == (ray.MAX_DRAWS,)
+    assert ray._check_size((ray.MAX_DRAWS // 4, 4)) == (ray.MAX_DRAWS // 4, 4)
+    assert_refuses(ray._check_size, ray.MAX_DRAWS + 1, arg="size", allowed="MAX_DRAWS")
