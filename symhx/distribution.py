@@ -792,14 +792,7 @@ class SimpleDistribution(Distribution):
         """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too: a
         range far in a tail is summed with the digits its magnitude needs)."""
         self._mp_moments  # noqa: B018 - the normaliser
-        lo, hi = max(lo, 1), min(hi, self.N)
-        eng = self._engine()
-        if self._range_engine(lo, hi) is not eng:
-            return self._range_sum(lo, hi)[0]
-        ctx = mp()
-        with ctx.workdps(eng.W):
-            s = eng.sums(lo, hi, (0,))[0]
-            return export(s / local(self._mp_extra[0]))
+        return self._range_sum(max(lo, 1), min(hi, self.N))[0]
 
     def _logpmf_raw(self, k: int) -> Any:
         """log P(X = k) with the engine's guard digits (not rounded): ``log Phi(k)`` to
@@ -963,7 +956,7 @@ class SimpleDistribution(Distribution):
         # the condition at k, on either side: L(k) = P(X <= k) >= tL  <=>  U(k) = 1 - L(k) <= tU
         tL, tU = (1 - qq, qq) if upper else (qq, 1 - qq)
         logt = {side: _flog(ctx, t) for side, t in (("L", tL), ("U", tU))}
-        state = {"dps": dps}
+        work_dps = dps  # raised while a decision is within rounding of the target
 
         def far_step(side: str, lc: Any, ledge: Any) -> Any:
             """A Newton step on ``g = sqrt(1 - log V)`` (``V`` = L or U), linear in ``k`` in a
@@ -986,12 +979,12 @@ class SimpleDistribution(Distribution):
 
         def ok_of(k: int) -> tuple[bool, Any, bool]:
             """(``k`` satisfies the condition, a Newton step or None, the decision is certain)
-            from the smaller side, at ``state["dps"]`` digits."""
+            from the smaller side, at ``work_dps`` digits."""
             if k < 1:
                 return (tL <= 0, None, True)
             if k >= N:
                 return (True, None, True)
-            eng = self._engine(state["dps"])
+            eng = self._engine(work_dps)
             with ctx.workdps(eng.W):
                 ls0 = ctx.log(_engine_total(eng))
             ranges = {"L": (1, k), "U": (k + 1, N)}
@@ -1007,7 +1000,7 @@ class SimpleDistribution(Distribution):
                 small = ub < logt[side] - 1
                 okv = small if side == "U" else not small
                 return (okv, far_step(side, ub if small else lm, ledge), True)
-            val, W = self._range_sum(lo_, hi_, state["dps"])
+            val, W = self._range_sum(lo_, hi_, work_dps)
             with ctx.workdps(W):
                 val = local(val)
                 t = tL if side == "L" else tU
@@ -1036,9 +1029,9 @@ class SimpleDistribution(Distribution):
             k = min(max(k, lo + 1), hi - 1)
             okv, step, certain = ok_of(k)
             if not certain:  # within rounding of the target: more digits, same k
-                if state["dps"] >= top:
+                if work_dps >= top:
                     return k if okv else k + 1
-                state["dps"] = min(top, state["dps"] + 20 + state["dps"] // 2)
+                work_dps = min(top, work_dps + 20 + work_dps // 2)
                 continue
             if okv:
                 hi = k

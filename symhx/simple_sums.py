@@ -120,6 +120,12 @@ def _exp64(ctx: Any, x: Any) -> Any:
         return ctx.exp(x)
 
 
+def _from_ball(ctx: Any, ball: Any) -> Any:
+    """The midpoint of an Arb ball as an mpf of ``ctx`` (exactly: it is dyadic)."""
+    man, exp = ball.mid().man_exp()
+    return ctx.ldexp(ctx.mpf(int(man)), int(exp))
+
+
 def _exact(ctx: Any, n: int) -> Any:
     """The int ``n`` as an mpf of ``ctx`` with every bit (no rounding to the precision)."""
     return ctx.make_mpf(from_int(n))
@@ -567,30 +573,38 @@ class SimpleSums:
         return 1 / ctx.sqrt(-2 * c2) if c2 < 0 else ctx.mpf(1)
 
     # ------------------------------------------------------------------ bounds
-    def _ball_consts(self) -> tuple[int, Any, Any, Any, Any]:
-        """``(bits, log p, c, N + 1, lgamma(N + 1 - c))`` as Arb balls for the bounds: ``bits``
-        keeps ``log g`` (whose parts reach ``N log N`` and cancel) absolutely accurate to
-        ``2**-40``."""
-        got = self.__dict__.get("_bconsts")
+    def _lgamma_bits(self) -> int:
+        """Bits of the parts of ``log Phi`` that cancel (``~ N log N`` and ``N |log p|``): what
+        an Arb evaluation of ``log g`` adds to the absolute accuracy it wants."""
+        lp_bits = abs(self.b.bit_length() - self.a.bit_length()).bit_length()
+        return self.N.bit_length() + self.N.bit_length().bit_length() + lp_bits
+
+    def _ball_consts(self, bits: int) -> tuple[Any, Any, Any, Any]:
+        """``(log p, c, N + 1, lgamma(N + 1 - c))`` as Arb balls at ``bits`` (cached per
+        precision; call inside :func:`~symhx.certify.arb_prec` of at least ``bits``)."""
+        cache: dict[int, tuple[Any, Any, Any, Any]] = self.__dict__.setdefault("_bconsts", {})
+        got = cache.get(bits)
         if got is None:
             from flint import arb, fmpz
 
-            lp_bits = abs(self.b.bit_length() - self.a.bit_length()).bit_length()
-            bits = 64 + self.N.bit_length() + self.N.bit_length().bit_length() + lp_bits + 16
             with arb_prec(bits):
                 lp = arb(fmpz(self.a)).log() - arb(fmpz(self.b)).log()
                 ca, n1 = arb(fmpz(self.c)), arb(fmpz(self.N + 1))
-                got = self.__dict__["_bconsts"] = (bits, lp, ca, n1, (n1 - ca).lgamma())
+                got = cache[bits] = (lp, ca, n1, (n1 - ca).lgamma())
         return got
+
+    @property
+    def _bound_bits(self) -> int:
+        """The Arb precision of the bounds: ``log g`` absolutely accurate to ``2**-40``."""
+        return 80 + self._lgamma_bits()
 
     def _dg_off(self, d: Any) -> Any:
         """``log(g(x)/g(c))`` at the offset ``d = x - c`` for bounds (Arb, ~40 bits absolute)."""
-        ctx = mp()
-        bits, lp, ca, n1, lgc = self._ball_consts()
+        bits = self._bound_bits
+        lp, ca, n1, lgc = self._ball_consts(bits)
         with arb_prec(bits):
             da = to_arb(d)
-            man, exp = (da * lp + lgc - (n1 - ca - da).lgamma()).mid().man_exp()
-        return ctx.ldexp(ctx.mpf(int(man)), int(exp))
+            return _from_ball(mp(), da * lp + lgc - (n1 - ca - da).lgamma())
 
     def _max_dg(self, dlo: Any, dhi: Any) -> Any:
         """``max log(g/g(c))`` for offsets ``x - c`` in ``[dlo, dhi]`` (``g`` log-concave, peak
@@ -652,11 +666,10 @@ class SimpleSums:
 
     def _dgd(self, d: Any) -> Any:
         """``(log g)'(x) = log p + psi(N + 1 - x)`` at the offset ``d = x - c`` (bounds only)."""
-        ctx = mp()
-        bits, lp, ca, n1, _ = self._ball_consts()
+        bits = self._bound_bits
+        lp, ca, n1, _ = self._ball_consts(bits)
         with arb_prec(bits):
-            man, exp = (lp + (n1 - ca - to_arb(d)).digamma()).mid().man_exp()
-        return ctx.ldexp(ctx.mpf(int(man)), int(exp))
+            return _from_ball(mp(), lp + (n1 - ca - to_arb(d)).digamma())
 
     def _plan_panel(self, kind: str, lo: Any, hi: Any, log_target: list[Any],
                     kinds: tuple[int, ...]) -> int | None:
@@ -805,15 +818,11 @@ class SimpleSums:
         ctx = mp()
         wbits = ctx.prec
         raw = {n: gauss_legendre_raw(n, wbits) for _, _, _, n in panels}
-        N, c = self.N, self.c
-        lp_bits = abs(self.b.bit_length() - self.a.bit_length()).bit_length()
-        P = wbits + N.bit_length() + N.bit_length().bit_length() + lp_bits + 24
+        P = wbits + self._lgamma_bits() + 24
         for _ in range(4):
+            lp, ca, n1, lgc = self._ball_consts(P)
             with arb_prec(P):
-                lp = arb(fmpz(self.a)).log() - arb(fmpz(self.b)).log()
-                ca = arb(fmpz(c))
-                n1 = arb(fmpz(N + 1))
-                const = (n1 - ca).lgamma() + ca.log()
+                const = lgc + ca.log()
                 totals = [arb(0) for _ in kinds]
                 sizes = [arb(0) for _ in kinds]  # sums of |f w_j|: what the error is held to
                 for kind, plo, phi_, n in panels:
@@ -840,11 +849,7 @@ class SimpleSums:
                 tol = arb(2) ** (8 - wbits)
                 ok = all(tv.rad() <= sz * tol for tv, sz in zip(totals, sizes, strict=True))
                 if ok:
-                    out = []
-                    for tv in totals:
-                        man, exp = tv.mid().man_exp()
-                        out.append(ctx.ldexp(ctx.mpf(int(man)), int(exp)))
-                    return out
+                    return [_from_ball(ctx, tv) for tv in totals]
             P += 64
         raise ArithmeticError("the quadrature's ball arithmetic did not reach the working "
                               "precision")  # pragma: no cover - safety net

@@ -10,12 +10,7 @@ import mpmath
 import pytest
 
 import symhx
-from symhx.validation import mpf_to_fraction
-from tests.reference.distribution_large_n import log_lower_sum_geometric, log_phi
-
-
-def _pc(N: int) -> Fraction:
-    return mpf_to_fraction(symhx.critical_point(N, dps=80).p)
+from tests.reference.distribution_large_n import critical_p, log_lower_sum_geometric, log_phi
 
 
 @pytest.mark.parametrize("k", [10**20, 10**49, 10**60, 10**99])
@@ -46,7 +41,7 @@ def test_cdf_far_below_the_hump_keeps_its_digits() -> None:
 def test_cdf_keeps_relative_accuracy_where_its_log_is_huge() -> None:
     """cdf ~ 10**(-10**20) at N = 1e100, 10**60 below the mode: its dps digits hold."""
     N = 10**100
-    p = _pc(N) * 10
+    p = critical_p(N) * 10
     lo, hi = symhx.distribution_of(N, p, dps=30), symhx.distribution_of(N, p, dps=60)
     k = lo.mode() - 10**60
     with mpmath.workdps(80):
@@ -58,7 +53,7 @@ def test_cdf_keeps_relative_accuracy_where_its_log_is_huge() -> None:
 def test_logpmf_far_from_the_mode_matches_loggamma(offset: int) -> None:
     """log P(X = k) = log Phi(k) - log Gamma to 10**-dps absolute, |log Phi| up to ~1e20."""
     N = 10**100
-    p = _pc(N) * 10
+    p = critical_p(N) * 10
     d = symhx.distribution_of(N, p, dps=30)
     k = d.mode() + offset
     with mpmath.workdps(200):  # log Phi and log Gamma are ~1e102 each: 140 digits of both
@@ -85,7 +80,7 @@ def _check_quantile(N: int, p: Fraction, q: Fraction, k: int, upper: bool = Fals
                                    Fraction(2), Fraction(10)])
 def test_quantiles_at_huge_N_are_the_smallest_k_that_reach_q(N: int, ratio: Fraction) -> None:
     """ppf at q = 1e-30, 1/2, 1 - 1e-9 and isf at 1e-30, below, at and above the jump."""
-    p = _pc(N) * ratio
+    p = critical_p(N) * ratio
     d = symhx.distribution_of(N, p, dps=30)
     for q in (Fraction(1, 10**30), Fraction(1, 2), 1 - Fraction(1, 10**9)):
         _check_quantile(N, p, q, d.ppf(q))
@@ -100,5 +95,5 @@ def test_median_at_the_quantile_limit(ratio: Fraction) -> None:
     from symhx.distribution import MP_QUANTILE_N_LIMIT
 
     N = MP_QUANTILE_N_LIMIT
-    p = _pc(N) * ratio
+    p = critical_p(N) * ratio
     _check_quantile(N, p, Fraction(1, 2), symhx.distribution_of(N, p, dps=30).median())

@@ -13,12 +13,13 @@ import pytest
 import symhx
 from symhx.distribution import MP_QUANTILE_N_LIMIT
 from symhx.validation import mpf_to_fraction
-from tests.reference.distribution_large_n import direct_sums, head_sums, poisson_side_sums
+from tests.reference.distribution_large_n import (
+    critical_p,
+    direct_sums,
+    head_sums,
+    poisson_side_sums,
+)
 from tests.reference.mp import rel_err
-
-
-def _pc(N: int) -> Fraction:
-    return mpf_to_fraction(symhx.critical_point(N, dps=80).p)
 
 
 def _close(got, want, digits: float, what) -> None:
@@ -33,7 +34,7 @@ def _close(got, want, digits: float, what) -> None:
 def test_mpmath_path_agrees_with_exact_fractions(N: int) -> None:
     """A float p (mpmath path) against the exact path at the same exact binary value."""
     for r in (Fraction(1, 2), Fraction(1), Fraction(3, 2), Fraction(5)):
-        pf = float(_pc(N) * r)
+        pf = float(critical_p(N) * r)
         exact = symhx.distribution_of(N, Fraction(pf))
         d = symhx.distribution_of(N, pf, dps=30)
         for name in ("mean", "var"):
@@ -51,7 +52,7 @@ def test_direct_sum_at_N_1e5() -> None:
     """Near p_c (head and hump both weigh) and at 2 p_c, against every term added."""
     N = 10**5
     for r in (Fraction(1001, 1000), Fraction(2)):
-        p = _pc(N) * r
+        p = critical_p(N) * r
         d = symhx.distribution_of(N, p, dps=25)
         _, mean, var = direct_sums(N, p, 30)
         _close(d.mean(), mean, 24, ("mean", r))
@@ -100,7 +101,7 @@ def test_dps_against_twice_dps(e: int, r) -> None:
     """Mean, var, entropy and the cdf at the median (at the mode beyond the quantile limit)
     agree with a run at 2 dps to dps digits (errors in units of 10**-dps below 1)."""
     N = 10**e
-    p = _q_scaled(e, r[1:]) if isinstance(r, str) else _pc(N) * r
+    p = _q_scaled(e, r[1:]) if isinstance(r, str) else critical_p(N) * r
     dps = 30
     lo = symhx.distribution_of(N, p, dps=dps)
     hi = symhx.distribution_of(N, p, dps=2 * dps)
@@ -118,7 +119,7 @@ def test_dps_against_twice_dps(e: int, r) -> None:
 
 @pytest.mark.parametrize("N", [300, 10**4])
 def test_cdf_sf_ppf_identities(N: int) -> None:
-    d = symhx.distribution_of(N, float(_pc(N) * Fraction(3, 2)), dps=30)
+    d = symhx.distribution_of(N, float(critical_p(N) * Fraction(3, 2)), dps=30)
     with mpmath.workdps(40):
         for k in (1, 2, d.median() - 7, d.median(), N - 1):
             c, s = d.cdf(k), d.sf(k)
@@ -129,7 +130,7 @@ def test_cdf_sf_ppf_identities(N: int) -> None:
 
 def test_moments_are_those_of_the_pmf() -> None:
     N = 400
-    d = symhx.distribution_of(N, float(_pc(N) * 2), dps=30)
+    d = symhx.distribution_of(N, float(critical_p(N) * 2), dps=30)
     with mpmath.workdps(45):
         pm = [d.pmf(k) for k in range(1, N + 1)]
         mu = mpmath.fsum(k * w for k, w in enumerate(pm, 1))
@@ -155,9 +156,9 @@ def test_quantiles_at_huge_N_are_integers_that_bracket_q() -> None:
     documented resolution), checked at twice the digits."""
     N = 10**25
     dps = 30
-    d = symhx.distribution_of(N, _pc(N) * 2, dps=dps)
+    d = symhx.distribution_of(N, critical_p(N) * 2, dps=dps)
     k = d.median()
-    hi = symhx.distribution_of(N, _pc(N) * 2, dps=2 * dps)
+    hi = symhx.distribution_of(N, critical_p(N) * 2, dps=2 * dps)
     with mpmath.workdps(2 * dps):
         qq = (1 - mpmath.mpf(10) ** (1 - dps)) / 2
         assert hi.cdf(k - 1) < qq <= hi.cdf(k)
@@ -165,7 +166,7 @@ def test_quantiles_at_huge_N_are_integers_that_bracket_q() -> None:
 
 def test_float_path_beyond_the_table() -> None:
     N = 10**12
-    p = float(_pc(N) * 3)
+    p = float(critical_p(N) * 3)
     m = symhx.mean(N, [p, 2 * p], dps=None)
     ref = [symhx.mean(N, v, dps=30) for v in (p, 2 * p)]
     for a, b in zip(m, ref, strict=True):
@@ -205,7 +206,7 @@ def test_cdf_and_sf_add_to_one_just_past_the_hump_top_at_huge_N() -> None:
     sf(k + j) + cdf(k + j) = 1 and sf of the mode is about one half (the hump is symmetric to
     leading order)."""
     N = 10**100
-    d = symhx.distribution_of(N, _pc(N) * 10, dps=30)
+    d = symhx.distribution_of(N, critical_p(N) * 10, dps=30)
     k = d.mode()
     with mpmath.workdps(60):
         for j in (0, 1, 2, 10, 10**40):

@@ -17,6 +17,15 @@ from fractions import Fraction
 import mpmath
 
 
+def critical_p(N: int) -> Fraction:
+    """``p_c`` of N as the exact rational of its 80-digit value (the scale of the test grids
+    ``p = r p_c``; symhx's certified critical point, not a reference value)."""
+    import symhx
+    from symhx.validation import mpf_to_fraction
+
+    return mpf_to_fraction(symhx.critical_point(N, dps=80).p)
+
+
 def _mp(p: Fraction) -> mpmath.mpf:
     return mpmath.mpf(p.numerator) / p.denominator
 
