@@ -977,13 +977,14 @@ class SimpleDistribution(Distribution):
                     return None
                 return 2 * g * diff / (slope if side == "L" else -slope)
 
-        def ok_of(k: int) -> tuple[bool, Any, bool]:
-            """(``k`` satisfies the condition, a Newton step or None, the decision is certain)
-            from the smaller side, at ``work_dps`` digits."""
+        def ok_of(k: int) -> tuple[bool, Any, bool, int]:
+            """(``k`` satisfies the condition, a Newton step or None, the decision is certain,
+            the digits that resolve one unit of ``k`` there: ``dps`` plus those of
+            ``C/pmf(edge)``) from the smaller side, at ``work_dps`` digits."""
             if k < 1:
-                return (tL <= 0, None, True)
+                return (tL <= 0, None, True, 0)
             if k >= N:
-                return (True, None, True)
+                return (True, None, True, 0)
             eng = self._engine(work_dps)
             with ctx.workdps(eng.W):
                 ls0 = ctx.log(_engine_total(eng))
@@ -999,7 +1000,7 @@ class SimpleDistribution(Distribution):
             if ub < logt[side] - 1 or lm > logt[side] + 1:  # decided by the bounds
                 small = ub < logt[side] - 1
                 okv = small if side == "U" else not small
-                return (okv, far_step(side, ub if small else lm, ledge), True)
+                return (okv, far_step(side, ub if small else lm, ledge), True, 0)
             val, W = self._range_sum(lo_, hi_, work_dps)
             with ctx.workdps(W):
                 val = local(val)
@@ -1008,30 +1009,31 @@ class SimpleDistribution(Distribution):
                 okv = bool(val >= target) if side == "L" else bool(val <= target)
                 certain = abs(val - target) > abs(target) * ctx.mpf(10) ** (4 - W)
                 if val <= 0:
-                    return (okv, None, certain)
+                    return (okv, None, certain, 0)
                 lc = ctx.log(val)
+                need = dps + int(max(float(lc - ledge), 0) / _LN10) + 10
                 if abs(lc - logt[side]) < 0.5:  # linear Newton step at the working precision
                     fk = ctx.exp(eng.D(edge) - ls0)
                     step = (target - val) / fk if side == "L" else (val - target) / fk
-                    return (okv, step, certain)
+                    return (okv, step, certain, need)
             with ctx.workprec(64 + eng.abs_bits(edge, edge)):
-                return (okv, far_step(side, lc, ledge), certain)
+                return (okv, far_step(side, lc, ledge), certain, need)
 
         lo, hi = 0, N  # not ok(lo), ok(hi): the answer is in (lo, hi]
         k = self._quantile_guess(qq, upper)
         top = dps + digits_of(N) + 40
         skip = 0
-        mark = _bracket_size(lo, hi)  # the size when the current run of Newton steps began
+        last_move = 0  # the size of the previous Newton move
         newton_steps = 0
         for _ in range(8 * N.bit_length() + 64):
             if hi - lo <= 1:
                 break
             k = min(max(k, lo + 1), hi - 1)
-            okv, step, certain = ok_of(k)
-            if not certain:  # within rounding of the target: more digits, same k
-                if work_dps >= top:
-                    return k if okv else k + 1
-                work_dps = min(top, work_dps + 20 + work_dps // 2)
+            okv, step, certain, need = ok_of(k)
+            if not certain:  # within rounding of the target: more digits, same k; at once
+                if work_dps >= top:  # those that resolve one unit of k (~digits(N)/2 above
+                    return k if okv else k + 1  # the jump), not a ladder of full passes
+                work_dps = min(top, max(work_dps + 20 + work_dps // 2, need))
                 continue
             if okv:
                 hi = k
@@ -1040,17 +1042,21 @@ class SimpleDistribution(Distribution):
             if hi - lo <= 1:
                 break
             nk = None
-            size = _bracket_size(lo, hi)
-            if newton_steps >= 3 and size > mark / 2:  # Newton is not converging (a second
-                skip, newton_steps = 1, 0  # bump, a flat stretch): bisect
             if step is not None and not skip and abs(step) < hi - lo:
-                nk = k + int(ctx.nint(step))
+                nk = k + int(step)  # exact (nint would round to the context's 53 bits)
                 if nk == k:
                     nk = k - 1 if okv else k + 1
+                move = abs(nk - k)
+                # Newton converges when its moves shrink (one-sided convergence leaves the
+                # bracket as wide as it was); moves that do not halve mean a second bump or a
+                # flat stretch: bisect
+                if newton_steps >= 3 and 2 * move > last_move:
+                    nk, skip = None, 1
+                last_move = move
             if nk is None or not lo < nk < hi:  # bisect; after a failed Newton step, twice
                 skip = 0 if skip else 1
                 nk = math.isqrt(max(lo, 1) * hi) if hi > 4 * max(lo, 1) else (lo + hi) // 2
-                newton_steps, mark = 0, size
+                newton_steps = 0
             else:
                 skip = 0
                 newton_steps += 1
@@ -1142,14 +1148,6 @@ def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any
         log_s0 = ctx.log(s0)
         extra = export((s0, log_s0, log_s0 - s3 / s0))
         return export((eng.log_phi_ref() + log_s0, eng.c + r1, s2 / s0 - r1 * r1)), extra
-
-
-def _bracket_size(lo: int, hi: int) -> float:
-    """The size of a search bracket as bisection sees it: ``log2(hi/lo)`` while it is geometric
-    (``hi > 4 lo``), else the number of integers in it (both halve per bisection step)."""
-    if hi > 4 * max(lo, 1):
-        return float(hi.bit_length() - max(lo, 1).bit_length() + 2)
-    return float(hi - lo)
 
 
 def _flog(ctx: Any, t: Fraction) -> float:

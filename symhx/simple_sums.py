@@ -87,7 +87,11 @@ _LN10 = math.log(10)
 #: weights: 0 -> 1, 1 -> (k - c), 2 -> (k - c)**2, 3 -> D(k) = log(Phi(k)/Phi(c))
 _ALL = (0, 1, 2, 3)
 _STIRLING: dict[int, tuple[Any, ...]] = {}
-_RHOS = (1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
+#: ellipse parameters tried per panel: small panels of a high-precision sum need a large rho
+#: (256 nodes at rho = 16 give only ~1400 nats), so the list goes on geometrically to 2**40
+#: (``MAX_DPS`` digits); the search stops once a larger rho needs more nodes again
+_RHOS = (1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0) + tuple(
+    2.0**e for e in range(5, 41))
 
 
 def _to_mpf(ctx: Any, num: int, den: int) -> Any:
@@ -616,7 +620,9 @@ class SimpleSums:
         """Upper bounds of ``log |integrand_j|`` on the Bernstein ellipse (semi-axes ``a ell``,
         ``b ell``) around the panel ``mid +/- ell``: in ``x`` (``kind = "x"``, offsets from
         ``c``; integrand ``f w_j``) or in ``s = log x`` (integrand ``x f w_j = c g/g(c) w_j``,
-        ``g`` entire, so only the disc ``|x| <= R = exp(mid + a ell)`` matters).  ``None``
+        ``g`` entire: the image of the ellipse lies in the disc ``|x| <= R = exp(mid + a
+        ell)``, and for ``b ell < 1.5`` in the sector ``|arg x| <= b ell`` of it, whose
+        bounding rectangle right of 0 is used then).  ``None``
         if the region reaches ``Re x <= 0`` (x panels) or ``Re x >= N + 1``."""
         ctx = mp()
         if kind == "x":
@@ -631,8 +637,15 @@ class SimpleSums:
         else:
             R = _exp64(ctx, mid + a * ell)
             xlo, xhi = -R, R
-            dlo, dhi = xlo - self._cm, xhi - self._cm
             y = R
+            th = b * ell
+            if th < 1.5:  # x = exp(s) maps the ellipse into the sector |arg x| <= th, r <= R:
+                # a rectangle right of 0 (the disc would take g at x = -R, which grows like
+                # exp(R |log(N p)|) below the jump)
+                with ctx.workprec(64):
+                    xlo = _exp64(ctx, mid - a * ell) * ctx.cos(th) * (1 - ctx.mpf(2) ** -50)
+                    y = R * ctx.sin(th) * (1 + ctx.mpf(2) ** -50)
+            dlo, dhi = xlo - self._cm, xhi - self._cm
             base_lo = None
         vlo = self._um - dhi
         if vlo <= 1:
@@ -686,8 +699,11 @@ class SimpleSums:
             b = (rho - 1 / rho) / 2
             bounds = self._log_bound(kind, mid, ell, ctx.mpf(a), ctx.mpf(b), kinds)
             if bounds is None:
+                if best is not None:  # the ellipses only grow from here
+                    break
                 continue
             lr = math.log(rho)
+            improved = False
             for n in GL_SIZES:
                 if best is not None and n >= best:
                     break
@@ -696,8 +712,10 @@ class SimpleSums:
                 # either alone has lost every unit that matters)
                 if all(fac + float(bv - t) <= 0 for bv, t in zip(bounds, log_target,
                                                                  strict=True)):
-                    best = n
+                    best, improved = n, True
                     break
+            if best is not None and not improved:  # past the best rho (the bound now grows
+                break  # faster than the nodes' gain): a cost cut, any n found is valid
         return best
 
     # ------------------------------------------------------------------ sums
