@@ -32,10 +32,13 @@ Arithmetic
   decided from bounds without summing; the integer is proved against the sums' error bound, with
   more digits while ``q`` is within it (``q`` is resolved to the ``dps`` digits of the cdf: the
   smallest ``k`` with ``cdf(k) >= q (1 - 10**(1 - dps))``); ``N <= MP_QUANTILE_N_LIMIT =
-  10**300`` (the proof needs ~``dps + digits(N)/2`` digits above the jump).
+  10**1000`` (the proof needs ~``dps + digits(N)/2`` digits above the jump, taken at once).
 * **float64** for ``dps=None``: numpy arrays over the whole support for ``N <= FLOAT_N_LIMIT``
-  (a memory limit of the table); above it the same engine at 17 digits, rounded to float64
-  (vectorised over ``k`` and ``p`` by the API; ``rvs`` still needs the table).
+  (a memory limit of the table; ``log Phi`` from ``gammaln``, ~``1e-16 N log N`` absolute);
+  above it, for any N that fits a float, the engine at 17 digits gives one normaliser per
+  distribution and ``pmf``/``logpmf`` are numpy over ``k`` (:mod:`symhx.float_terms`,
+  ~1e-15 relative in the bulk); ``cdf``/``sf`` and logs take one 17-digit partial sum per
+  distinct ``k`` (1-8 ms each at N = 10**10); ``rvs`` still needs the table.
 * **mode / modes** are decided exactly for every rational ``p`` (floats and mpf included) and
   any N (``10**100`` too): integer arithmetic locates the local maximum of ``Phi`` and a single
   comparison with ``Phi(1)`` is certified by interval arithmetic (exact integers on a near tie).
@@ -47,7 +50,8 @@ first statistic of an (N, p, dps) costs one full pass, 23-40 ms at N = 10**100 (
 panels, the integrand runs in Arb) and 0.13-0.21 s at 10**1000 (35-56 calls).  Frozen
 distributions of the same (N, p, dps) share that pass, so ``var``, ``entropy`` and the
 normaliser after ``mean`` are free and a ``cdf`` then costs one partial sum (6-20 ms at
-10**100, 45 ms at 10**1000); a median at dps = 30 takes 0.3-0.4 s at 10**100.
+10**100, 45 ms at 10**1000); a median at dps = 30 takes 0.2 s at 10**100 and ~5 s at
+10**1000.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
@@ -87,6 +91,7 @@ from symhx.certify import (
     real_ball,
     to_arb,
 )
+from symhx.float_terms import log_phi_diff
 from symhx.simple_sums import SimpleSums
 from symhx.validation import (
     DEFAULT_DPS,
@@ -143,9 +148,10 @@ MP_SUM_N_LIMIT = 10**1000
 #: Newton search on k (far tails decided from bounds, without summing), then the integer
 #: decision proved against the sums' error bound.  Above the jump the cdf moves by only
 #: ``~1/sqrt(N)`` per unit of k, so proving ``cdf(k-1) < q <= cdf(k)`` takes about
-#: ``dps + digits(N)/2`` digits: at dps = 30 a median takes 0.3-0.4 s at N = 10**100, 1.2-1.7 s
-#: at 10**300 and ~50 s at 10**1000 (sums at ~530 digits), so the cap is 10**300.
-MP_QUANTILE_N_LIMIT = 10**300
+#: ``dps + digits(N)/2`` digits, which the search takes at once: at dps = 30 a quantile takes
+#: 0.01-0.8 s at N = 10**100, ~0.4 s at 10**300 and 4-6 s above the jump at 10**1000 (sums
+#: at ~540 digits; 0.01-0.5 s below it), so the cap is the sums' own, 10**1000.
+MP_QUANTILE_N_LIMIT = 10**1000
 
 #: ``table()`` (one row ``(k, P(X = k))`` per k, also ``symhx distribution --table``) on the
 #: mpmath path is refused above this N: each row is a pmf at dps digits (10**4 rows at dps = 50
@@ -383,9 +389,10 @@ class Distribution:
         if self.dps is None:
             if _is_array(k):
                 kk = _check_k_array(k)
-                if kk.dtype.kind == "O":  # huge ints: clip into the int64 range first
+                if kk.dtype.kind == "O":  # huge ints: clip to [0, N + 1] (int64 if it fits)
                     kk = np.array([min(max(int(v), 0), self.N + 1) for v in kk.ravel()],
-                                  dtype=np.int64).reshape(kk.shape)
+                                  dtype=np.int64 if self.N < 2**62 else object
+                                  ).reshape(kk.shape)
                 return table(kk)
             k1 = _check_k_scalar(k)
             return table(np.array(min(max(k1, 0), self.N + 1)))[()]
@@ -888,20 +895,41 @@ class SimpleDistribution(Distribution):
         return SimpleDistribution(self.N, self.p, dps=17)
 
     def _ftake(self, name: str, kk: np.ndarray, below: float, above: float) -> np.ndarray:
+        """float64 values beyond ``FLOAT_N_LIMIT``: pmf and logpmf vectorised over ``k``
+        (:func:`symhx.float_terms.log_phi_diff` minus the engine's log-normaliser, one scalar
+        per distribution); cdf, sf and their logs one partial sum of the 17-digit engine per
+        distinct ``k``."""
         if self.N <= FLOAT_N_LIMIT:
             return super()._ftake(name, kk, below, above)
-        eng = self._float_engine
-        out = np.empty(kk.shape, dtype=float)
         edge = self.N if name in ("pmf", "logpmf") else self.N - 1
-        for idx, v in np.ndenumerate(kk):
-            k = int(v)
-            if k < 1:
-                out[idx] = below
-            elif k > edge:
-                out[idx] = above
-            else:
-                out[idx] = float(getattr(eng, name)(k))
+        inside = (kk >= 1) & (kk <= edge)
+        out = np.where(kk < 1, below, above).astype(float)
+        if not inside.any():
+            return out
+        ks = kk[inside]
+        if name in ("pmf", "logpmf"):
+            c, lpx, ls0 = self._float_reference
+            lv = log_phi_diff(self.N, c, lpx, ks) - ls0
+            out[inside] = np.exp(lv) if name == "pmf" else lv
+            return out
+        eng = self._float_engine
+        uniq, inv = np.unique(ks, return_inverse=True)
+        vals = np.array([float(getattr(eng, name)(int(v))) for v in uniq])
+        out[inside] = vals[inv.reshape(-1)]
         return out
+
+    @cached_property
+    def _float_reference(self) -> tuple[int, float, float]:
+        """``(c, log(p (N + 1 - c)), log sum_k Phi(k)/Phi(c))`` of the 17-digit engine: what
+        the vectorised float64 pmf needs besides ``k``."""
+        eng = self._float_engine
+        eng._mp_moments  # noqa: B018 - the one pass that gives the normaliser
+        c = eng._engine().c
+        fr = eng._fr_work
+        ctx = mp()
+        with ctx.workdps(30):
+            lpx = ctx.log(ctx.mpf(fr.numerator) * (self.N + 1 - c)) - ctx.log(fr.denominator)
+            return c, float(lpx), float(local(eng._mp_extra[1]))
 
     def mean(self) -> Any:
         """``E[X]``: a Fraction when exact, an mpf to ``dps`` digits, or a float."""

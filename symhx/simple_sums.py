@@ -90,8 +90,8 @@ _STIRLING: dict[int, tuple[Any, ...]] = {}
 #: ellipse parameters tried per panel: small panels of a high-precision sum need a large rho
 #: (256 nodes at rho = 16 give only ~1400 nats), so the list goes on geometrically to 2**40
 #: (``MAX_DPS`` digits); the search stops once a larger rho needs more nodes again
-_RHOS = (1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0) + tuple(
-    2.0**e for e in range(5, 41))
+_RHOS = (1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0,
+         *(2.0**e for e in range(5, 41)))
 
 
 def _to_mpf(ctx: Any, num: int, den: int) -> Any:

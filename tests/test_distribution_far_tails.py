@@ -61,18 +61,22 @@ def test_logpmf_far_from_the_mode_matches_loggamma(offset: int) -> None:
         assert abs(d.logpmf(k) - want) <= mpmath.mpf(10) ** -29 * max(1, abs(want))
 
 
-def _check_quantile(N: int, p: Fraction, q: Fraction, k: int, upper: bool = False) -> None:
-    """k is the smallest integer with cdf(k) >= q (upper: sf(k) <= q), with the cdf summed at
-    twice the digits by a fresh distribution; q is resolved to 1e-28 relative as documented."""
-    ref = symhx.distribution_of(N, p, dps=60)
-    with mpmath.workdps(80):
+def _check_quantile(N: int, p: Fraction, q: Fraction, k: int, upper: bool = False,
+                    dps: int = 30) -> None:
+    """k is the smallest integer with cdf(k) >= q (1 - 10**(1 - dps)) (upper: sf(k) <= q (1 +
+    10**(1 - dps))), the documented resolution of q, with the cdf of a fresh distribution at
+    dps + digits(N)/2 + 30 digits: enough to tell k - 1 from k where the cdf moves by
+    ~1/sqrt(N) per unit of k."""
+    ref_dps = dps + len(str(N)) // 2 + 30
+    ref = symhx.distribution_of(N, p, dps=ref_dps)
+    with mpmath.workdps(ref_dps + 20):
         qm = mpmath.mpf(q.numerator) / q.denominator
         if upper:
-            assert ref.sf(k) <= qm * (1 + mpmath.mpf(10) ** -28), (N, q, k)
-            assert ref.sf(k - 1) > qm * (1 - mpmath.mpf(10) ** -28), (N, q, k)
+            qm *= 1 + mpmath.mpf(10) ** (1 - dps)
+            assert ref.sf(k) <= qm < ref.sf(k - 1), (N, q, k)
         else:
-            assert ref.cdf(k) >= qm * (1 - mpmath.mpf(10) ** -28), (N, q, k)
-            assert ref.cdf(k - 1) < qm * (1 + mpmath.mpf(10) ** -28), (N, q, k)
+            qm *= 1 - mpmath.mpf(10) ** (1 - dps)
+            assert ref.cdf(k - 1) < qm <= ref.cdf(k), (N, q, k)
 
 
 @pytest.mark.parametrize("N", [10**30, 10**100])
@@ -88,12 +92,14 @@ def test_quantiles_at_huge_N_are_the_smallest_k_that_reach_q(N: int, ratio: Frac
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("ratio", [Fraction(1, 2), Fraction(1001, 1000), Fraction(10)])
-def test_median_at_the_quantile_limit(ratio: Fraction) -> None:
-    """The median at N = MP_QUANTILE_N_LIMIT = 10**300 (proving the integer takes ~180
-    digits of the cdf there: it moves by ~1e-150 per unit of k)."""
+@pytest.mark.parametrize(("N", "ratio"), [
+    (10**300, Fraction(1, 2)), (10**300, Fraction(1001, 1000)), (10**300, Fraction(10)),
+    (10**1000, Fraction(2))])
+def test_median_up_to_the_quantile_limit(N: int, ratio: Fraction) -> None:
+    """The median at N = 10**300 and at MP_QUANTILE_N_LIMIT = 10**1000 (proving the integer
+    takes ~dps + 500 digits of the cdf there: it moves by ~1e-500 per unit of k)."""
     from symhx.distribution import MP_QUANTILE_N_LIMIT
 
-    N = MP_QUANTILE_N_LIMIT
+    assert N <= MP_QUANTILE_N_LIMIT
     p = critical_p(N) * ratio
     _check_quantile(N, p, Fraction(1, 2), symhx.distribution_of(N, p, dps=30).median())
