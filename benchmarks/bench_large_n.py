@@ -60,6 +60,7 @@ def direct_mean(N: int, p: Fraction, dps: int):
 def cold() -> None:
     """Forget the shared one-pass results and this thread's engines (a cold call)."""
     _dist._shared_moments.cache_clear()
+    _dist._shared_entropy.cache_clear()
     _dist._ENGINES.__dict__.clear()
 
 

@@ -833,13 +833,15 @@ class SimpleDistribution(Distribution):
 
     def entropy(self) -> Any:
         """Shannon entropy ``-sum_k P(X=k) log P(X=k)`` (nats): mpf with absolute error below
-        ``10**-dps`` (float for ``dps=None``), from the same one-pass sums as the moments."""
+        ``10**-dps`` (float for ``dps=None``): a pass of its own over ``Phi log Phi`` (the
+        moments' pass leaves it out: a log per directly summed term and the bounds of ``log``
+        weights roughly double that pass), normalised by the moments' sum."""
         if self.dps is None:
             if self.N > FLOAT_N_LIMIT:
                 return float(self._float_engine.entropy())
             return super().entropy()
-        self._mp_moments  # noqa: B018
-        return self._round_abs(self._mp_extra[2])
+        self._mp_moments  # noqa: B018 - the cap, and the sum the entropy is normalised by
+        return self._round_abs(_shared_entropy(self.N, self._fr_work, self.dps))
 
     @property
     def normaliser(self) -> Any:
@@ -1164,18 +1166,30 @@ def _shared_engine(N: int, fr: Fraction, dps: int) -> SimpleSums:
 
 @lru_cache(maxsize=_SHARED_CACHE_SIZE)
 def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any],
-                                                            tuple[Any, Any, Any]]:
+                                                            tuple[Any, Any]]:
     """One pass over the support: ``(log Gamma, mean, variance)`` and ``(Gamma relative to
-    the reference term, its log, entropy)``, exported with the engine's guard digits."""
+    the reference term, its log)``, exported with the engine's guard digits."""
     eng = _shared_engine(N, fr, dps)
     ctx = mp()
     with ctx.workdps(eng.W):
-        s0, s1, s2, s3 = eng.sums(1, N, (0, 1, 2, 3))
+        s0, s1, s2 = eng.sums(1, N, (0, 1, 2))
         eng.__dict__.setdefault("_total", s0)  # the normaliser of later partial sums
         r1 = s1 / s0
         log_s0 = ctx.log(s0)
-        extra = export((s0, log_s0, log_s0 - s3 / s0))
+        extra = export((s0, log_s0))
         return export((eng.log_phi_ref() + log_s0, eng.c + r1, s2 / s0 - r1 * r1)), extra
+
+
+@lru_cache(maxsize=_SHARED_CACHE_SIZE)
+def _shared_entropy(N: int, fr: Fraction, dps: int) -> Any:
+    """``-sum_k P(k) log P(k) = log S0 - S3/S0`` with ``S3 = sum_k Phi(k)/Phi(c) log(...)``: its
+    own pass (exported with the engine's guard digits)."""
+    _, (s0, log_s0) = _shared_moments(N, fr, dps)
+    eng = _shared_engine(N, fr, dps)
+    ctx = mp()
+    with ctx.workdps(eng.W):
+        s3 = eng.sums(1, N, (3,))[0]
+        return export(local(log_s0) - s3 / local(s0))
 
 
 def _flog(ctx: Any, t: Fraction) -> float:
