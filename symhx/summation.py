@@ -47,7 +47,7 @@ __all__ = [
 ]
 
 #: the node counts a panel may use (each size's nodes are computed once per precision)
-GL_SIZES = (8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256)
+GL_SIZES = (8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512, 768, 1024)
 
 _NODES: dict[tuple[int, int], list[tuple[tuple, tuple]]] = {}
 _LOCK = threading.Lock()
