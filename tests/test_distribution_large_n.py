@@ -205,6 +205,20 @@ def test_float_pmf_beyond_the_table_is_vectorised_and_accurate(e: int, r: Fracti
     assert list(fl.cdf(few)) == [fl.cdf(int(k)) for k in few]
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize(("e", "r", "dps"), [(1000, Fraction(999, 1000), 300),
+                                         (20, Fraction(2), 1000)])
+def test_high_precision_sums_near_and_above_the_jump(e: int, r: Fraction, dps: int) -> None:
+    """Hundreds of digits at huge N: the head below the jump (a log-series over ~1e6 terms,
+    where a panel bound on the disc |x| <= R was e**1300 too large) and the hump at dps 1000
+    (panels need more than 256 nodes); mean at dps against dps + 30."""
+    N = 10**e
+    p = critical_p(N) * r
+    a = symhx.distribution_of(N, p, dps=dps).mean()
+    b = symhx.distribution_of(N, p, dps=dps + 30).mean()
+    assert rel_err(a, b, dps=dps + 60) <= mpmath.mpf(10) ** (1 - dps)
+
+
 def test_sums_beyond_the_limit_are_refused() -> None:
     from symhx.distribution import MP_SUM_N_LIMIT
     from tests.harness.errors import assert_refuses
