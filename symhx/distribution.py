@@ -45,13 +45,12 @@ Arithmetic
   The mode never needs the normaliser.
 
 Costs (2-core machine shared with other work, dps = 50; ``benchmarks/bench_large_n.py``): the
-first statistic of an (N, p, dps) costs one full pass, 23-40 ms at N = 10**100 (70-120
-``critical_point`` calls: the issue's target of ~30 is not met; most of it is planning the
-panels, the integrand runs in Arb) and 0.13-0.21 s at 10**1000 (35-56 calls).  Frozen
-distributions of the same (N, p, dps) share that pass, so ``var``, ``entropy`` and the
-normaliser after ``mean`` are free and a ``cdf`` then costs one partial sum (6-20 ms at
-10**100, 45 ms at 10**1000); a median at dps = 30 takes 0.2 s at 10**100 and ~5 s at
-10**1000.
+first statistic of an (N, p, dps) costs one full pass, 5-30 ms at N = 10**100 (3-19
+``critical_point`` calls of the same N, timed in the same run) and 0.06-0.14 s at 10**1000
+(the first pass of a process adds the Gauss-Legendre nodes, ~60 ms).  Frozen distributions of
+the same (N, p, dps) share that pass, so ``var`` and the normaliser after ``mean`` are free,
+``entropy`` is one more pass, and a ``cdf`` then costs one partial sum (6-20 ms at 10**100,
+45 ms at 10**1000); a median at dps = 30 takes 0.2 s at 10**100 and ~5 s at 10**1000.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
@@ -141,8 +140,10 @@ EXACT_WORK_LIMIT = 500_000
 EXACT_QUANTILE_WORK_LIMIT = 200_000
 #: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs,
 #: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (Arb balls of
-#: ``log2 N`` bits at every quadrature node), 23-40 ms per pass at N = 10**100 and 0.13-0.21 s
-#: at 10**1000 (dps = 50), whatever p; ``mode`` and ``modes`` take any N.
+#: ``log2 N`` bits at every quadrature node), 5-30 ms per pass at N = 10**100 and 0.06-0.14 s
+#: at 10**1000 (dps = 50), whatever p, and roughly like dps**2.5 beyond: 0.5-0.8 s at dps 300,
+#: 2-4 s at dps 1000, 11-15 s at dps 2000 (N = 10**100 ... 10**1000); ``mode`` and ``modes``
+#: take any N.
 MP_SUM_N_LIMIT = 10**1000
 #: largest N for the quantiles of the mpmath path (``ppf``, ``isf``, ``median``, ``interval``): a
 #: Newton search on k (far tails decided from bounds, without summing), then the integer
