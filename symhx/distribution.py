@@ -46,7 +46,7 @@ Arithmetic
 
 Costs (2-core machine shared with other work, dps = 50; ``benchmarks/bench_large_n.py``): the
 first statistic of an (N, p, dps) costs one full pass, 5-30 ms at N = 10**100 (3-19
-``critical_point`` calls of the same N, timed in the same run) and 0.06-0.14 s at 10**1000
+``critical_point`` calls of the same N, timed in the same run) and 0.01-0.14 s at 10**1000
 (the first pass of a process adds the Gauss-Legendre nodes, ~60 ms).  Frozen distributions of
 the same (N, p, dps) share that pass, so ``var`` and the normaliser after ``mean`` are free,
 ``entropy`` is one more pass, and a ``cdf`` then costs one partial sum (6-20 ms at 10**100,
@@ -140,7 +140,7 @@ EXACT_WORK_LIMIT = 500_000
 EXACT_QUANTILE_WORK_LIMIT = 200_000
 #: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs,
 #: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (Arb balls of
-#: ``log2 N`` bits at every quadrature node), 5-30 ms per pass at N = 10**100 and 0.06-0.14 s
+#: ``log2 N`` bits at every quadrature node), 5-30 ms per pass at N = 10**100 and 0.01-0.14 s
 #: at 10**1000 (dps = 50), whatever p, and roughly like dps**2.5 beyond: 0.5-0.8 s at dps 300,
 #: 2-4 s at dps 1000, 11-15 s at dps 2000 (N = 10**100 ... 10**1000); ``mode`` and ``modes``
 #: take any N.
