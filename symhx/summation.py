@@ -55,7 +55,10 @@ _LOCK = threading.Lock()
 
 def gauss_legendre_raw(n: int, prec: int) -> list[tuple[tuple[int, int], tuple[int, int]]]:
     """``[((xm, xe), (wm, we))]``: the ``n``-point Gauss-Legendre rule on ``[-1, 1]``, node
-    ``xm 2**xe`` and weight ``wm 2**we``, computed by Arb at ``prec + 32`` bits (cached)."""
+    ``xm 2**xe`` and weight ``wm 2**we``, computed by Arb at ``prec + 32`` bits or a few more
+    (cached per ``n`` and ``prec`` rounded up to a multiple of 128 bits: engines whose
+    precisions differ by a few bits share one rule)."""
+    prec = -(-prec // 128) * 128
     key = (n, prec)
     raw = _NODES.get(key)
     if raw is None:
