@@ -585,11 +585,16 @@ class SimpleSums:
         return merged
 
     def _sigma_at(self, k: int) -> Any:
-        """``1/sqrt(-D''(k))`` (a width of the hump at its top), as a float."""
+        """``1/sqrt(-D''(k))`` (a width of the hump at its top) at 64 bits (cached per k on the
+        engine: the planner asks for the top's width a dozen times per pass)."""
         ctx = mp()
-        with ctx.workprec(64):
-            c2 = self.taylor(k, 2)[2]
-        return 1 / ctx.sqrt(-2 * c2) if c2 < 0 else ctx.mpf(1)
+        cache: dict[int, Any] = self.__dict__.setdefault("_sigmas", {})
+        got = cache.get(k)
+        if got is None:
+            with ctx.workprec(64):
+                c2 = self.taylor(k, 2)[2]
+                got = cache[k] = 1 / ctx.sqrt(-2 * c2) if c2 < 0 else ctx.mpf(1)
+        return got
 
     # ------------------------------------------------------------------ bounds
     def _lgamma_bits(self) -> int:
