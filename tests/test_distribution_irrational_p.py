@@ -25,3 +25,13 @@ def test_true_tie_at_an_irrational_p_is_refused_with_the_tie_condition():
     assert f"p={str(p)[:60]} (N=9) are not decided at {MAX_IRRATIONAL_BITS} bits" in msg
     assert "Phi(1) and Phi(4) agree to that precision" in msg
     assert "(a true tie when p**3 = 4/perm(8, 3))" in msg
+
+
+def test_irrational_p_exactly_at_a_breakpoint_of_the_mode_is_refused():
+    # (k+1)/(k (N-k)) at N = 9, k = 3 is 2/9, where Phi(3) = Phi(4): written with an
+    # unevaluated factor 1, no ball of it ever lies on one side of the breakpoint
+    x = sympy.Integer(98765432109876543210)
+    p = sympy.Rational(2, 9) * (sympy.sin(x) ** 2 + sympy.cos(x) ** 2)
+    msg = assert_refuses(symhx.modes, 9, p, exc=UndecidedError, arg="p",
+                         allowed="pass p as an exact rational")
+    assert "p lies within the ball's width of a breakpoint (k+1)/(k (N-k)) of the mode" in msg
