@@ -108,6 +108,9 @@ def rows() -> list[tuple[str, str, str]]:
                         f"{ens['symhx_runs_per_s_2_processes']:.0f} runs/s",
                         f"heyoka ensemble propagation: "
                         f"{ens['heyoka_runs_per_s_ensemble_2_threads']:.1f} runs/s"))
+    large = _load("large_n")
+    if large:
+        out.extend(_large_n_rows(large["rows"]))
     spaces = _load("spaces")
     if spaces:
         for r in spaces["rows"]:
@@ -115,6 +118,36 @@ def rows() -> list[tuple[str, str, str]]:
                 out.append(("pmf of X, eq. (41) space, N = 100, dps 30",
                             f"{r['pmf_N100_dps30_s'] * 1e3:.1f} ms",
                             f"naive mpf sum over patterns: {r['naive_mpf_N100_s'] * 1e3:.0f} ms"))
+    return out
+
+
+def _large_n_rows(rs: list[dict]) -> list[tuple[str, str, str]]:
+    """Rows of ``bench_large_n``: the cold mean at N = 10^100 and 10^1000 (both cases), and
+    the float64 pmf beyond the table against the gammaln formula."""
+    out: list[tuple[str, str, str]] = []
+    for N, label, walk in (("1e100", "10^100", "10^50"), ("1e1000", "10^1000", "10^500")):
+        m = [r for r in rs if r["N"] == N and r["stat"] == "mean"]
+        c = [r for r in rs if r["N"] == N and r["stat"] == "cdf after mean"]
+        if m:
+            out.append((f"E[X] at N = {label}, 50 digits (2 p_c and N p − 1 = 2 (N p_c − 1))",
+                        f"{min(r['time_s'] for r in m) * 1e3:.0f}–"
+                        f"{max(r['time_s'] for r in m) * 1e3:.0f} ms "
+                        f"({min(r['ratio_to_critical_point'] for r in m):.0f}–"
+                        f"{max(r['ratio_to_critical_point'] for r in m):.0f} critical_point "
+                        f"calls), error ≤ {max(r['rel_err'] for r in m):.0e}"
+                        + (f"; cdf after it {max(r['time_s'] for r in c) * 1e3:.0f} ms"
+                           if c else ""),
+                        f"direct sum: ~{walk} terms (√N); target ~30 critical_point calls"))
+    for N in ("1e10", "1e100"):
+        f = [r for r in rs if r["N"] == N and r["stat"] == "pmf x1001 (float64)"]
+        g = [r for r in rs if r["N"] == N and r["stat"] == "pmf x1001 (gammaln)"]
+        if f and g:
+            bad = max(r["rel_err"] for r in g)
+            out.append((f"float64 pmf at 1001 k, N = {N} (dps=None)",
+                        f"{max(r['time_s'] for r in f) * 1e3:.0f} ms, rel. error "
+                        f"{max(r['rel_err'] for r in f):.0e}",
+                        f"gammaln formula: {max(r['time_s'] for r in g) * 1e3:.2f} ms, "
+                        + ("no digit right" if bad >= 1 else f"rel. error {bad:.0e}")))
     return out
 
 
