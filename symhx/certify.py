@@ -108,8 +108,10 @@ def _mpf_tuple_to_arb(t: tuple) -> arb:
 def to_arb(x: Any) -> arb:
     """An int / Fraction / mpf (of any context) / float as an exact ``arb`` where the value is
     exactly representable (ints, mpf, floats, dyadic fractions), else a ball containing the
-    exact value at the current precision; a sympy real number goes through :func:`real_ball`.
-    Call it inside :func:`arb_prec`."""
+    exact value at the current precision; a sympy real number goes through :func:`real_ball`;
+    an ``arb`` is returned as it is (radius included). Call it inside :func:`arb_prec`."""
+    if isinstance(x, arb):  # a ball already: kept whole (its ``_mpf_`` is the midpoint alone)
+        return x
     if isinstance(x, int) and not isinstance(x, bool):
         return arb(fmpz(x))
     if hasattr(x, "_mpf_"):
@@ -163,7 +165,8 @@ def _pow_ball(base: arb, expo: Any, shown: Any) -> arb:
     """``base**expo`` for a sympy exponent: integers exactly, rationals ``a/q`` by a q-th root,
     other reals by ``exp(expo log base)``. As in sympy, a negative base with a non-integer
     exponent is the principal *complex* power (``(-8)**(1/3) = 1 + sqrt(3) I``): ValueError. A
-    base ball that still holds 0 gives a ``nan`` ball (the caller raises the precision)."""
+    base ball that still holds 0 gives a ``nan`` ball (the caller raises the precision), and
+    so does a zero base whose irrational exponent's ball still holds 0."""
     if getattr(expo, "is_Integer", False):
         e = int(expo)
         return base**e if e >= 0 else 1 / base**(-e)
@@ -171,7 +174,13 @@ def _pow_ball(base: arb, expo: Any, shown: Any) -> arb:
         raise ValueError(f"{str(shown)[:60]} is not a real number (a negative base to a "
                          f"non-integer power is complex in sympy; write real_root or -x**(1/q))")
     if base.is_zero():
-        positive = real_ball(expo) > 0 if not getattr(expo, "is_Rational", False) else expo > 0
+        if getattr(expo, "is_Rational", False):
+            positive = expo > 0
+        else:
+            x = real_ball(expo)
+            if not (x > 0 or x <= 0):  # the exponent's sign is not proved at this precision
+                return arb.nan()
+            positive = x > 0
         if positive:
             return arb(0)
         raise ValueError(f"{str(shown)[:60]} is not a finite real number")
@@ -360,11 +369,9 @@ def mpf_bounds(x: arb, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
     """``(lo, hi)`` global mpf with ``lo <= every point of x <= hi`` (rounded outward to
     ``dps + 5`` digits)."""
     prec = int((dps + 5) * 3.3219280948873626) + 8
-    with arb_prec(64):
-        work = max(x.mid().bits(), 64) + 64
-    with arb_prec(work):  # lower/upper round outward at ctx.prec
+    with arb_prec(prec):  # lower/upper round outward at ctx.prec: the ends to prec bits
         lo, hi = x.lower(), x.upper()
-        return _mpf_round(lo, prec, "f"), _mpf_round(hi, prec, "c")
+    return _mpf_round(lo, prec, "f"), _mpf_round(hi, prec, "c")
 
 
 def rel_width_ok(x: arb, dps: int) -> bool:
