@@ -50,7 +50,9 @@ first statistic of an (N, p, dps) costs one full pass, 5-30 ms at N = 10**100 (3
 (the first pass of a process adds the Gauss-Legendre nodes, ~60 ms).  Frozen distributions of
 the same (N, p, dps) share that pass, so ``var`` and the normaliser after ``mean`` are free,
 ``entropy`` is one more pass, and a ``cdf`` then costs one partial sum (6-20 ms at 10**100,
-45 ms at 10**1000); a median at dps = 30 takes 0.2 s at 10**100 and ~5 s at 10**1000.
+45 ms at 10**1000); a ``cdf``/``sf`` before any full pass sums its tail and the complement
+(about one pass: 9-11 ms at 10**100), whose sum serves later partial sums as the normaliser;
+a median at dps = 30 takes 0.2 s at 10**100 and ~5 s at 10**1000.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
@@ -798,9 +800,23 @@ class SimpleDistribution(Distribution):
 
     def _mp_sum(self, lo: int, hi: int) -> Any:
         """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too: a
-        range far in a tail is summed with the digits its magnitude needs)."""
-        self._mp_moments  # noqa: B018 - the normaliser
-        return self._range_sum(max(lo, 1), min(hi, self.N))[0]
+        range far in a tail is summed with the digits its magnitude needs).  A tail asked for
+        before any full pass is summed with its complement (two partial sums cost about one
+        pass): their sum is the normaliser, kept on the engine for later partial sums."""
+        lo, hi = max(lo, 1), min(hi, self.N)
+        eng = self._engine()
+        if "_total" not in eng.__dict__ and (lo == 1) != (hi == self.N) \
+                and self._range_engine(lo, hi) is eng:
+            ctx = mp()
+            with ctx.workdps(eng.W):
+                s = eng.sums(lo, hi, (0,))[0]
+                rest = eng.sums(hi + 1, self.N, (0,))[0] if lo == 1 else \
+                    eng.sums(1, lo - 1, (0,))[0]
+                total = eng.__dict__.setdefault("_total", s + rest)
+                return export(s / total)
+        if "_total" not in eng.__dict__:
+            self._mp_moments  # noqa: B018 - the normaliser
+        return self._range_sum(lo, hi)[0]
 
     def _logpmf_raw(self, k: int) -> Any:
         """log P(X = k) with the engine's guard digits (not rounded): ``log Phi(k)`` to
@@ -1118,8 +1134,8 @@ class SimpleDistribution(Distribution):
             # the absolute accuracy of log Phi over the range), if it has the same reference
             if base.c != eng.c:
                 total = _engine_total(eng)
-            elif dps is None or dps == self.dps:
-                total = local(self._mp_extra[0])
+            elif (dps is None or dps == self.dps) and "_total" not in base.__dict__:
+                total = local(self._mp_extra[0])  # the shared pass (of any thread)
             else:
                 total = _engine_total(base)
             return export(s / local(total)), min(eng.W, base.W)

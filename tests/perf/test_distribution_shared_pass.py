@@ -49,3 +49,27 @@ def _forget() -> None:
     dist._shared_moments.cache_clear()
     dist._shared_entropy.cache_clear()
     dist._ENGINES.__dict__.clear()
+
+
+def test_a_cold_cdf_costs_its_tail_and_the_complement(monkeypatch) -> None:
+    """Before any full pass a cdf sums [1, k] and [k + 1, N] (together about one pass), keeps
+    their sum as the normaliser, and a second cdf then costs one partial sum; the values agree
+    with those after a full pass to the dps digits."""
+    N, p = 10**40, mpmath.mpf(3) * 10**-39
+    _forget()
+    calls = _count_sums(monkeypatch)
+    d = symhx.distribution_of(N, p, dps=30)
+    k = d.mode()
+    c1 = d.cdf(k)
+    assert calls == [(1, k), (k + 1, N)]
+    c2 = d.cdf(k + 10**19)
+    assert calls[2:] == [(1, k + 10**19)]
+    s1 = d.sf(k - 10**19)
+    assert calls[3:] == [(k - 10**19 + 1, N)]
+    _forget()
+    warm = symhx.distribution_of(N, p, dps=30)
+    warm.mean()
+    with mpmath.workdps(40):
+        for got, want in ((c1, warm.cdf(k)), (c2, warm.cdf(k + 10**19)),
+                          (s1, warm.sf(k - 10**19))):
+            assert abs(got - want) <= abs(want) * mpmath.mpf(10) ** -29
