@@ -45,9 +45,11 @@ Arithmetic
   The mode never needs the normaliser.
 
 Costs (2-core machine shared with other work, dps = 50; ``benchmarks/bench_large_n.py``): the
-first statistic of an (N, p, dps) costs one full pass, 5-30 ms at N = 10**100 (3-19
-``critical_point`` calls of the same N, timed in the same run) and 0.01-0.14 s at 10**1000
-(the first pass of a process adds the Gauss-Legendre nodes, ~60 ms).  Frozen distributions of
+first statistic of an (N, p, dps) costs one full pass, 5-29 ms at N = 10**100 (about 26-29
+``critical_point`` calls of the same N above the jump, timed in the same run by
+``benchmarks/bench_large_n.py``, up to 84 in the hard case ``N p - 1 ~ N p_c - 1``, where the
+head and the hump both weigh) and 0.01-0.26 s at 10**1000 (40-66 calls); the first pass of a
+process adds the Gauss-Legendre rules, ~60 ms.  Frozen distributions of
 the same (N, p, dps) share that pass, so ``var`` and the normaliser after ``mean`` are free,
 ``entropy`` is one more pass, and a ``cdf`` then costs one partial sum (6-20 ms at 10**100,
 45 ms at 10**1000); a ``cdf``/``sf`` before any full pass sums its tail and the complement
@@ -142,7 +144,7 @@ EXACT_WORK_LIMIT = 500_000
 EXACT_QUANTILE_WORK_LIMIT = 200_000
 #: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs,
 #: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (Arb balls of
-#: ``log2 N`` bits at every quadrature node), 5-30 ms per pass at N = 10**100 and 0.01-0.14 s
+#: ``log2 N`` bits at every quadrature node), 5-29 ms per pass at N = 10**100 and 0.01-0.26 s
 #: at 10**1000 (dps = 50), whatever p, and roughly like dps**2.5 beyond: 0.5-0.8 s at dps 300,
 #: 2-4 s at dps 1000, 11-15 s at dps 2000 (N = 10**100 ... 10**1000); ``mode`` and ``modes``
 #: take any N.
