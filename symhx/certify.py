@@ -135,8 +135,9 @@ def _is_sympy(x: Any) -> bool:
 
 
 def _fn_name(x: Any) -> str:
-    func = getattr(x, "func", None)
-    return getattr(func, "__name__", type(x).__name__)
+    """The sympy head of ``x`` (``sin`` for ``sin(1)``): its class's name (``x.func`` is the
+    class for every sympy function application)."""
+    return type(x).__name__
 
 
 def _unary(name: str) -> Callable[[arb], arb] | None:
@@ -357,12 +358,11 @@ def certified_sign(
     )
 
 
-def _mpf_round(x: arb, prec: int, rnd: str) -> mpmath.mpf:
-    """The exact float ``x`` (an arb with radius 0) rounded to ``prec`` bits, as a global
-    mpf (pure libmp: no context involved)."""
+def _exact_mpf(x: arb) -> mpmath.mpf:
+    """The exact float ``x`` (an arb with radius 0) as a global mpf, bit for bit (pure libmp:
+    no context involved)."""
     man, exp = x.man_exp()
-    raw = libmp.from_man_exp(int(man), int(exp), prec, rnd)
-    return make_mpf(raw)
+    return make_mpf(libmp.from_man_exp(int(man), int(exp)))
 
 
 def mpf_bounds(x: arb, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
@@ -371,7 +371,7 @@ def mpf_bounds(x: arb, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
     prec = int((dps + 5) * 3.3219280948873626) + 8
     with arb_prec(prec):  # lower/upper round outward at ctx.prec: the ends to prec bits
         lo, hi = x.lower(), x.upper()
-    return _mpf_round(lo, prec, "f"), _mpf_round(hi, prec, "c")
+    return _exact_mpf(lo), _exact_mpf(hi)
 
 
 def rel_width_ok(x: arb, dps: int) -> bool:
