@@ -154,7 +154,7 @@ MP_SUM_N_LIMIT = 10**1000
 #: decision proved against the sums' error bound.  Above the jump the cdf moves by only
 #: ``~1/sqrt(N)`` per unit of k, so proving ``cdf(k-1) < q <= cdf(k)`` takes about
 #: ``dps + digits(N)/2`` digits, which the search takes at once: at dps = 30 a quantile takes
-#: 0.01-0.8 s at N = 10**100, ~0.4 s at 10**300 and 4-6 s above the jump at 10**1000 (sums
+#: 0.01-0.8 s at N = 10**100, ~0.4 s at 10**300 and 3-6 s above the jump at 10**1000 (sums
 #: at ~540 digits; 0.01-0.5 s below it), so the cap is the sums' own, 10**1000.
 MP_QUANTILE_N_LIMIT = 10**1000
 
@@ -1035,22 +1035,31 @@ class SimpleDistribution(Distribution):
             if k >= N:
                 return (True, None, True, 0)
             eng = self._engine(work_dps)
-            with ctx.workdps(eng.W):
-                ls0 = ctx.log(_engine_total(eng))
             ranges = {"L": (1, k), "U": (k + 1, N)}
             lmax = {sd: eng.log_max(*r) for sd, r in ranges.items()}  # relative to Phi(c)
             side = "L" if lmax["L"] < lmax["U"] else "U"
             lo_, hi_ = ranges[side]
             edge = hi_ if side == "L" else lo_
+            summed = None
+            if "_total" not in eng.__dict__ and self._range_engine(lo_, hi_, work_dps) is eng:
+                # the first sum at these digits: the side and its complement (about one pass)
+                # instead of a full pass for the normaliser and then the side again
+                with ctx.workdps(eng.W):
+                    part = eng.sums(lo_, hi_, (0,))[0]
+                    rest = eng.sums(*ranges["U" if side == "L" else "L"], (0,))[0]
+                    total = eng.__dict__.setdefault("_total", part + rest)
+                    summed = (export(part / total), eng.W)
+            with ctx.workdps(eng.W):
+                ls0 = ctx.log(_engine_total(eng))
             with ctx.workprec(64 + eng.abs_bits(edge, edge)):
                 ledge = eng.D(edge) - ls0
                 lm = lmax[side] - ls0  # log(largest term / sum)
                 ub = lm + math.log(hi_ - lo_ + 1)
-            if ub < logt[side] - 1 or lm > logt[side] + 1:  # decided by the bounds
-                small = ub < logt[side] - 1
+            if summed is None and (ub < logt[side] - 1 or lm > logt[side] + 1):  # decided
+                small = ub < logt[side] - 1  # by the bounds
                 okv = small if side == "U" else not small
                 return (okv, far_step(side, ub if small else lm, ledge), True, 0)
-            val, W = self._range_sum(lo_, hi_, work_dps)
+            val, W = summed if summed is not None else self._range_sum(lo_, hi_, work_dps)
             with ctx.workdps(W):
                 val = local(val)
                 t = tL if side == "L" else tU
