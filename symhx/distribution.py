@@ -54,7 +54,7 @@ the same (N, p, dps) share that pass, so ``var`` and the normaliser after ``mean
 ``entropy`` is one more pass, and a ``cdf`` then costs one partial sum (6-20 ms at 10**100,
 45 ms at 10**1000); a ``cdf``/``sf`` before any full pass sums its tail and the complement
 (about one pass: 9-11 ms at 10**100), whose sum serves later partial sums as the normaliser;
-a median at dps = 30 takes 0.2 s at 10**100 and ~5 s at 10**1000.
+a median at dps = 30 takes 0.2 s at 10**100 and ~3 s at 10**1000.
 
 Ties: ``mode()`` returns the smallest maximiser; ``modes()`` returns all of them, e.g.
 ``N = 101, p = 1/50`` has modes ``(50, 51)``.
@@ -154,7 +154,7 @@ MP_SUM_N_LIMIT = 10**1000
 #: decision proved against the sums' error bound.  Above the jump the cdf moves by only
 #: ``~1/sqrt(N)`` per unit of k, so proving ``cdf(k-1) < q <= cdf(k)`` takes about
 #: ``dps + digits(N)/2`` digits, which the search takes at once: at dps = 30 a quantile takes
-#: 0.01-0.8 s at N = 10**100, ~0.4 s at 10**300 and 3-6 s above the jump at 10**1000 (sums
+#: 0.01-0.8 s at N = 10**100, ~0.4 s at 10**300 and 1.3-3.3 s above the jump at 10**1000 (sums
 #: at ~540 digits; 0.01-0.5 s below it), so the cap is the sums' own, 10**1000.
 MP_QUANTILE_N_LIMIT = 10**1000
 
