@@ -827,11 +827,9 @@ class SimpleDistribution(Distribution):
         eng = self._engine()
         ctx = mp()
         big = self._range_engine(k, k)
-        if big is not eng:
-            with ctx.workdps(big.W):
-                ls0 = local(self._mp_extra[1]) if big.c == eng.c else \
-                    ctx.log(_engine_total(big))
-                return export(big.D(k) - ls0)
+        if big is not eng:  # more digits for log Phi(k); the normaliser keeps its own (the
+            with ctx.workdps(big.W):  # engines of one (N, p) share the reference c)
+                return export(big.D(k) - local(self._mp_extra[1]))
         with ctx.workdps(eng.W):
             return export(eng.D(k) - local(self._mp_extra[1]))
 
@@ -839,9 +837,7 @@ class SimpleDistribution(Distribution):
     def _pmf1(self, k: int) -> Any:
         if self.exact:
             return self._phi_exact(k) / self._exact_moments[0]
-        if self.dps is None:
-            return float(self._float_engine._pmf1(k))
-        ctx = mp()
+        ctx = mp()  # (dps=None never comes here: its pmf is the numpy path of _ftake)
         with ctx.workdps(self._engine().W):
             return self._round(ctx.exp(local(self._logpmf_raw(k))))
 
@@ -1142,10 +1138,9 @@ class SimpleDistribution(Distribution):
         with ctx.workdps(eng.W):
             s = eng.sums(lo, hi, (0,))[0]
             # the normaliser only divides: its own digits suffice (the extra digits are for
-            # the absolute accuracy of log Phi over the range), if it has the same reference
-            if base.c != eng.c:
-                total = _engine_total(eng)
-            elif (dps is None or dps == self.dps) and "_total" not in base.__dict__:
+            # the absolute accuracy of log Phi over the range; every engine of one (N, p) has
+            # the same reference c, the hump's top or 1)
+            if (dps is None or dps == self.dps) and "_total" not in base.__dict__:
                 total = local(self._mp_extra[0])  # the shared pass (of any thread)
             else:
                 total = _engine_total(base)

@@ -103,3 +103,17 @@ def test_median_up_to_the_quantile_limit(N: int, ratio: Fraction) -> None:
     assert N <= MP_QUANTILE_N_LIMIT
     p = critical_p(N) * ratio
     _check_quantile(N, p, Fraction(1, 2), symhx.distribution_of(N, p, dps=30).median())
+
+
+@pytest.mark.parametrize("offset", [-(10**70), 10**70])
+def test_pmf_where_its_log_is_1e40_keeps_relative_accuracy(offset: int) -> None:
+    """P(X = k) ~ exp(-1e40) 10**70 from the mode at N = 10**100: its relative accuracy needs
+    log P to 1e-30 absolute, 70 digits of it (the engine takes them for that range)."""
+    N = 10**100
+    p = critical_p(N) * 10
+    d = symhx.distribution_of(N, p, dps=30)
+    k = d.mode() + offset
+    with mpmath.workdps(300):
+        want = mpmath.exp(log_phi(N, p, k, 80)
+                          - symhx.distribution_of(N, p, dps=145).log_normaliser)
+        assert abs(d.pmf(k) / want - 1) <= mpmath.mpf(10) ** -29

@@ -219,6 +219,23 @@ def test_high_precision_sums_near_and_above_the_jump(e: int, r: Fraction, dps: i
     assert rel_err(a, b, dps=dps + 60) <= mpmath.mpf(10) ** (1 - dps)
 
 
+def test_float_quantiles_beyond_the_table() -> None:
+    """dps=None past FLOAT_N_LIMIT: ppf and isf are the integers where the 40-digit cdf/sf
+    cross q at float resolution (q (1 -+ 1e-16)); q = 0 and 1 give the ends of the support."""
+    N = 10**8
+    p = float(critical_p(N) * 3)
+    fl = symhx.distribution_of(N, p, dps=None)
+    ref = symhx.distribution_of(N, p, dps=40)
+    with mpmath.workdps(60):
+        for q in (Fraction(1, 1000), Fraction(1, 2)):
+            qm = mpmath.mpf(q.numerator) / q.denominator
+            k = fl.isf(q)
+            assert isinstance(k, int) and ref.sf(k) <= qm * (1 + 1e-16) < ref.sf(k - 1), q
+            k = fl.ppf(q)
+            assert isinstance(k, int) and ref.cdf(k - 1) < qm * (1 - 1e-16) <= ref.cdf(k), q
+    assert (fl.isf(0), fl.isf(1), fl.ppf(0), fl.ppf(1)) == (N, 0, 0, N)
+
+
 def test_sums_beyond_the_limit_are_refused() -> None:
     from symhx.distribution import MP_SUM_N_LIMIT
     from tests.harness.errors import assert_refuses
