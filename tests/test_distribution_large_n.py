@@ -236,6 +236,22 @@ def test_float_quantiles_beyond_the_table() -> None:
     assert (fl.isf(0), fl.isf(1), fl.ppf(0), fl.ppf(1)) == (N, 0, 0, N)
 
 
+def test_float_path_beyond_the_table_at_the_ends_of_the_support() -> None:
+    """dps=None past FLOAT_N_LIMIT with the mass at the top (p = 0.9: P(X = N) ~ 0.3):
+    outside 1..N the pmf is 0 and its log -inf, cdf(N - 1) = 1 - pmf(N), sf(N) = 0."""
+    N = 10**8 + 1
+    d = symhx.distribution_of(N, 0.9, dps=None)
+    ref = symhx.distribution_of(N, 0.9, dps=30)
+    ks = np.array([0, -3, N + 1, N + 5])
+    assert list(d.pmf(ks)) == [0.0] * 4
+    assert list(d.logpmf(ks)) == [-np.inf] * 4
+    top = float(ref.pmf(N))
+    assert top > 0.1
+    assert abs(d.cdf(N - 1) - (1 - top)) <= 1e-14
+    assert abs(d.pmf(N) - top) <= 1e-14 * top
+    assert d.cdf(0) == 0.0 and d.sf(N) == 0.0 and d.logsf(N) == -np.inf
+
+
 def test_sums_beyond_the_limit_are_refused() -> None:
     from symhx.distribution import MP_SUM_N_LIMIT
     from tests.harness.errors import assert_refuses
