@@ -38,6 +38,7 @@ __all__ = [
     "digits_of",
     "log1m_series",
     "mp_value",
+    "stirling_coefficients",
     "stirling_ok",
     "stirling_series",
 ]
@@ -85,6 +86,29 @@ def mp_value(p: Any, fr: Fraction | None) -> mpmath.mpf:
 # the working precision; otherwise it uses loggamma with guard digits.
 
 
+#: ``B_2r / (2r (2r - 1))`` as exact ``(numerator, denominator)``, r = 1, 2, ... (grown on demand)
+_STIRLING_EXACT: list[tuple[int, int]] = []
+
+
+def stirling_coefficients(count: int) -> list[tuple[int, int]]:
+    """The first ``count`` coefficients ``B_2r / (2r (2r - 1))`` of Stirling's series as exact
+    ``(numerator, denominator)``, from FLINT's Bernoulli numbers (mpmath's ``bernoulli`` takes
+    ~6 ms each at 17000 bits: 11 s of a 13 s pass at dps 5000).  Shared by every thread.
+
+    >>> stirling_coefficients(3)
+    [(1, 12), (-1, 360), (1, 1260)]
+    """
+    if len(_STIRLING_EXACT) < count:
+        from flint import fmpq
+
+        with arb_prec(64):  # the process-wide Arb lock: FLINT's Bernoulli cache is shared
+            for r in range(len(_STIRLING_EXACT) + 1, count + 1):
+                b = fmpq.bernoulli(2 * r) / (2 * r * (2 * r - 1))
+                if len(_STIRLING_EXACT) == r - 1:
+                    _STIRLING_EXACT.append((int(b.p), int(b.q)))
+    return _STIRLING_EXACT[:count]
+
+
 def stirling_series(x: Any, eps: Any = None, *, derivative: bool = False) -> mpmath.mpf:
     """``S(x) = sum_{r>=1} B_2r / (2r (2r-1) x**(2r-1))`` (``lgamma(x) - (x - 1/2) log x + x -
     log(2 pi)/2``), or its x-derivative ``-sum B_2r / (2r x**(2r))``, summed until a term is below
@@ -97,9 +121,9 @@ def stirling_series(x: Any, eps: Any = None, *, derivative: bool = False) -> mpm
     total = ctx.mpf(0)
     xinv2 = 1 / (x * x)
     power = xinv2 if derivative else 1 / x
-    for m in range(1, 401):
-        b = ctx.bernoulli(2 * m)
-        term = (-b / (2 * m)) * power if derivative else b / (2 * m * (2 * m - 1)) * power
+    for m, (num, den) in enumerate(stirling_coefficients(400), 1):
+        coef = ctx.mpf(num) / den  # B_2m / (2m (2m - 1))
+        term = -(2 * m - 1) * coef * power if derivative else coef * power
         total += term
         if abs(term) <= eps * abs(total):
             break

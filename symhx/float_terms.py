@@ -35,11 +35,13 @@ import math
 
 import numpy as np
 
+from symhx._numeric import stirling_coefficients
+
 __all__ = ["bd0", "log_phi_diff", "stirling_remainder"]
 
 _HALF_LOG_2PI = 0.5 * math.log(2 * math.pi)
-#: 1/(12 z) - 1/(360 z^3) + ...: the Bernoulli coefficients B_{2m} / (2m (2m - 1))
-_STIRLING = (1 / 12, -1 / 360, 1 / 1260, -1 / 1680, 1 / 1188, -691 / 360360)
+#: 1/(12 z) - 1/(360 z^3) + ...: the first six coefficients B_{2m} / (2m (2m - 1)) as floats
+_STIRLING = tuple(num / den for num, den in stirling_coefficients(6))
 #: below this z the remainder is taken from gammaln (the series' next term is ~1e-17 at 15)
 _SERIES_FROM = 15.0
 

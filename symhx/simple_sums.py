@@ -67,6 +67,7 @@ from typing import Any
 from mpmath.libmp import from_int
 
 from symhx._mpctx import mp
+from symhx._numeric import stirling_coefficients
 from symhx.certify import arb_prec, to_arb
 from symhx.summation import (
     GL_SIZES,
@@ -87,22 +88,6 @@ _LN10 = math.log(10)
 #: weights: 0 -> 1, 1 -> (k - c), 2 -> (k - c)**2, 3 -> D(k) = log(Phi(k)/Phi(c))
 _ALL = (0, 1, 2, 3)
 _STIRLING: dict[int, tuple[Any, ...]] = {}
-#: ``B_2r / (2r (2r - 1))`` as exact ``(numerator, denominator)``, r = 1, 2, ... (grown on demand)
-_STIRLING_EXACT: list[tuple[int, int]] = []
-
-
-def _stirling_fractions(r_max: int) -> list[tuple[int, int]]:
-    """The first ``r_max - 1`` coefficients of Stirling's series as exact fractions, from
-    FLINT's Bernoulli numbers (mpmath's take ~6 ms each at 17000 bits: 11 s for dps 5000)."""
-    if len(_STIRLING_EXACT) < r_max - 1:
-        from flint import fmpq
-
-        with arb_prec(64):  # the process-wide Arb lock: FLINT's Bernoulli cache is shared
-            for r in range(len(_STIRLING_EXACT) + 1, r_max):
-                b = fmpq.bernoulli(2 * r) / (2 * r * (2 * r - 1))
-                if len(_STIRLING_EXACT) == r - 1:
-                    _STIRLING_EXACT.append((int(b.p), int(b.q)))
-    return _STIRLING_EXACT[:r_max - 1]
 #: ellipse parameters tried per panel: small panels of a high-precision sum need a large rho
 #: (256 nodes at rho = 16 give only ~1400 nats), so the list goes on geometrically to 2**40
 #: (``MAX_DPS`` digits); the search stops once a larger rho needs more nodes again
@@ -252,7 +237,7 @@ class SimpleSums:
             if raw is None:
                 r_max = 30 + ctx.dps // 3
                 raw = _STIRLING[key] = tuple(
-                    (ctx.mpf(num) / den)._mpf_ for num, den in _stirling_fractions(r_max))
+                    (ctx.mpf(num) / den)._mpf_ for num, den in stirling_coefficients(r_max - 1))
             got = cache[key] = [ctx.make_mpf(t) for t in raw]
         return got
 

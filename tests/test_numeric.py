@@ -13,7 +13,15 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from symhx._mpctx import export, mp
-from symhx._numeric import G_direct, G_mp, digits_of, mp_value, stirling_ok, stirling_series
+from symhx._numeric import (
+    G_direct,
+    G_mp,
+    digits_of,
+    mp_value,
+    stirling_coefficients,
+    stirling_ok,
+    stirling_series,
+)
 from tests.reference.critical import (
     G_exact_ratio,
     G_log1p_sum,
@@ -200,3 +208,13 @@ def test_mp_value_sympy_and_exact():
         with mpmath.workdps(dps + 20):
             assert abs(got - ref) <= mpmath.mpf(10) ** (-dps) * ref
             assert abs(got_fr - mpmath.mpf(1) / 3) <= mpmath.mpf(10) ** (-dps) / 3
+
+
+def test_stirling_coefficients_are_the_bernoulli_ratios() -> None:
+    """B_2r / (2r (2r - 1)) from FLINT's exact Bernoulli numbers equal mpmath's, r < 400."""
+    got = stirling_coefficients(399)
+    assert len(got) == 399
+    for r, (num, den) in enumerate(got, 1):
+        with mpmath.workdps(60):
+            want = mpmath.bernoulli(2 * r) / (2 * r * (2 * r - 1))
+            assert abs(mpmath.mpf(num) / den - want) <= abs(want) * mpmath.mpf(10) ** -55, r

@@ -82,18 +82,6 @@ def test_runs_keep_the_tail_of_a_range() -> None:
     assert s.runs() == s.runs(1, N)
 
 
-def test_stirling_coefficients_are_the_bernoulli_ratios() -> None:
-    """B_2r / (2r (2r - 1)) from FLINT's exact Bernoulli numbers equal mpmath's, r < 400."""
-    from symhx.simple_sums import _stirling_fractions
-
-    got = _stirling_fractions(400)
-    assert len(got) == 399
-    for r, (num, den) in enumerate(got, 1):
-        with mpmath.workdps(60):
-            want = mpmath.bernoulli(2 * r) / (2 * r * (2 * r - 1))
-            assert abs(mpmath.mpf(num) / den - want) <= abs(want) * mpmath.mpf(10) ** -55, r
-
-
 @pytest.mark.parametrize("dps", [2000, pytest.param(4950, marks=pytest.mark.slow)])
 def test_thousands_of_digits_at_moderate_N(dps: int) -> None:
     """log Phi at dps ~5000 needs ~1700 Stirling coefficients (mpmath's Bernoulli numbers took
