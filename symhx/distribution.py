@@ -806,19 +806,30 @@ class SimpleDistribution(Distribution):
         before any full pass is summed with its complement (two partial sums cost about one
         pass): their sum is the normaliser, kept on the engine for later partial sums."""
         lo, hi = max(lo, 1), min(hi, self.N)
-        eng = self._engine()
-        if "_total" not in eng.__dict__ and (lo == 1) != (hi == self.N) \
-                and self._range_engine(lo, hi) is eng:
-            ctx = mp()
-            with ctx.workdps(eng.W):
-                s = eng.sums(lo, hi, (0,))[0]
-                rest = eng.sums(hi + 1, self.N, (0,))[0] if lo == 1 else \
-                    eng.sums(1, lo - 1, (0,))[0]
-                total = eng.__dict__.setdefault("_total", s + rest)
-                return export(s / total)
-        if "_total" not in eng.__dict__:
+        first = self._tail_with_complement(lo, hi)
+        if first is not None:
+            return first[0]
+        if "_total" not in self._engine().__dict__:
             self._mp_moments  # noqa: B018 - the normaliser
         return self._range_sum(lo, hi)[0]
+
+    def _tail_with_complement(self, lo: int, hi: int, dps: int | None = None
+                              ) -> tuple[Any, int] | None:
+        """``(P(lo <= X <= hi), working digits)`` for a tail (``lo == 1`` or ``hi == N``) when
+        the engine at ``dps`` has no normaliser yet and the tail needs no extra digits: the tail
+        and its complement (two partial sums, about one pass), whose sum is kept on the engine
+        as the normaliser of later partial sums; else None."""
+        eng = self._engine(dps)
+        if "_total" in eng.__dict__ or (lo == 1) == (hi == self.N) \
+                or self._range_engine(lo, hi, dps) is not eng:
+            return None
+        ctx = mp()
+        with ctx.workdps(eng.W):
+            part = eng.sums(lo, hi, (0,))[0]
+            rest = eng.sums(hi + 1, self.N, (0,))[0] if lo == 1 else \
+                eng.sums(1, lo - 1, (0,))[0]
+            total = eng.__dict__.setdefault("_total", part + rest)
+            return export(part / total), eng.W
 
     def _logpmf_raw(self, k: int) -> Any:
         """log P(X = k) with the engine's guard digits (not rounded): ``log Phi(k)`` to
@@ -1036,15 +1047,9 @@ class SimpleDistribution(Distribution):
             side = "L" if lmax["L"] < lmax["U"] else "U"
             lo_, hi_ = ranges[side]
             edge = hi_ if side == "L" else lo_
-            summed = None
-            if "_total" not in eng.__dict__ and self._range_engine(lo_, hi_, work_dps) is eng:
-                # the first sum at these digits: the side and its complement (about one pass)
-                # instead of a full pass for the normaliser and then the side again
-                with ctx.workdps(eng.W):
-                    part = eng.sums(lo_, hi_, (0,))[0]
-                    rest = eng.sums(*ranges["U" if side == "L" else "L"], (0,))[0]
-                    total = eng.__dict__.setdefault("_total", part + rest)
-                    summed = (export(part / total), eng.W)
+            # the first sum at these digits: the side and its complement (about one pass),
+            # not a full pass for the normaliser and then the side again
+            summed = self._tail_with_complement(lo_, hi_, work_dps)
             with ctx.workdps(eng.W):
                 ls0 = ctx.log(_engine_total(eng))
             with ctx.workprec(64 + eng.abs_bits(edge, edge)):
