@@ -1003,7 +1003,8 @@ class SimpleDistribution(Distribution):
         the answer ``C(k)`` is summed by :mod:`symhx.simple_sums` with the digits its
         magnitude needs (:meth:`_range_engine`), and the final decision ``C(k-1)`` vs ``C(k)``
         is checked against the sums' relative error bound; a margin inside it repeats the
-        decision with 20 more digits (up to ``dps + digits(N) + 40``), so rounding never
+        decision at once with the digits that resolve one unit of ``k`` there (``dps`` plus
+        those of ``C/pmf``; at least 20 more, up to ``dps + digits(N) + 40``), so rounding never
         decides the integer.  About 5-15 partial sums per quantile."""
         self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         N = self.N

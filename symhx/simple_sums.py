@@ -427,14 +427,19 @@ class SimpleSums:
     def log_max(self, A: int, B: int) -> Any:
         """``max D`` over ``[A, B]`` (``log`` of the largest term relative to ``Phi(c)``), to
         64 bits *absolute* (an mpf of the thread's context with as many bits as that needs):
-        the magnitude that decides the digits a sum over the range needs."""
-        ctx = mp()
-        top = self.top if (self.top is not None and self.top > 1) else None
-        cands = {A, B}
-        if top is not None and A <= top <= B:
-            cands.add(top)
-        with ctx.workprec(64 + self.abs_bits(A, B)):
-            return max(self.D(k) for k in cands)
+        the magnitude that decides the digits a sum over the range needs (cached per range: a
+        quantile step asks for it to choose a side and again to choose the engine)."""
+        cache: dict[tuple[int, int], Any] = self.__dict__.setdefault("_log_max", {})
+        got = cache.get((A, B))
+        if got is None:
+            ctx = mp()
+            top = self.top if (self.top is not None and self.top > 1) else None
+            cands = {A, B}
+            if top is not None and A <= top <= B:
+                cands.add(top)
+            with ctx.workprec(64 + self.abs_bits(A, B)):
+                got = cache[(A, B)] = max(self.D(k) for k in cands)
+        return got
 
     def _fb(self, k: int) -> int:
         """``b (Phi(k+1)/Phi(k) - 1) (k+1)``-sign: ``Phi(k+1) >= Phi(k)`` iff ``>= 0``."""
