@@ -785,12 +785,13 @@ class SimpleDistribution(Distribution):
             pm = mp_value(self.p, None)  # a rigorous Arb enclosure's midpoint (no sympy evalf)
         return mpf_to_fraction(export(pm))
 
-    def _engine(self, dps: int | None = None) -> SimpleSums:
-        """The summation engine of :mod:`symhx.simple_sums` at ``dps`` (default: ``self.dps``)."""
+    def _engine(self, dps: int | None = None, extra: int = 0) -> SimpleSums:
+        """The summation engine of :mod:`symhx.simple_sums` at ``dps`` (default: ``self.dps``)
+        relative digits, working with ``extra`` more (see :meth:`_range_engine`)."""
         self._check_mp_cap("summing the distribution", MP_SUM_N_LIMIT, "MP_SUM_N_LIMIT")
         d = self.dps if dps is None else dps
         assert d is not None
-        return _shared_engine(self.N, self._fr_work, d)
+        return _shared_engine(self.N, self._fr_work, d, extra)
 
     @cached_property
     def _mp_moments(self) -> tuple[mpmath.mpf, mpmath.mpf, mpmath.mpf]:
@@ -799,6 +800,20 @@ class SimpleDistribution(Distribution):
         assert self.dps is not None
         moments, self._mp_extra = _shared_moments(self.N, self._fr_work, self.dps)
         return moments
+
+    @property
+    def _mp_norm(self) -> tuple[Any, Any]:
+        """``(S0, log S0)``, ``S0 = sum_k Phi(k)/Phi(c)`` (global mpf, the engine's digits): from
+        the moments' pass if it ran, else from a pass of the weight 1 alone (what a pmf, a
+        cdf or the entropy needs costs less than the moments)."""
+        got = self.__dict__.get("_mp_extra")
+        if got is None:
+            eng = self._engine()
+            ctx = mp()
+            with ctx.workdps(eng.W):
+                total = _engine_total(eng)
+                got = self.__dict__["_mp_extra"] = export((total, ctx.log(total)))
+        return got
 
     def _mp_sum(self, lo: int, hi: int) -> Any:
         """``P(lo <= X <= hi)`` at the engine's precision (relative accuracy, tails too: a
@@ -809,8 +824,6 @@ class SimpleDistribution(Distribution):
         first = self._tail_with_complement(lo, hi)
         if first is not None:
             return first[0]
-        if "_total" not in self._engine().__dict__:
-            self._mp_moments  # noqa: B018 - the normaliser
         return self._range_sum(lo, hi)[0]
 
     def _tail_with_complement(self, lo: int, hi: int, dps: int | None = None
@@ -834,15 +847,15 @@ class SimpleDistribution(Distribution):
     def _logpmf_raw(self, k: int) -> Any:
         """log P(X = k) with the engine's guard digits (not rounded): ``log Phi(k)`` to
         absolute accuracy, with more digits when ``|log Phi(k)/Phi(c)|`` is large."""
-        self._mp_moments  # noqa: B018
+        ls0 = local(self._mp_norm[1])
         eng = self._engine()
         ctx = mp()
         big = self._range_engine(k, k)
         if big is not eng:  # more digits for log Phi(k); the normaliser keeps its own (the
             with ctx.workdps(big.W):  # engines of one (N, p) share the reference c)
-                return export(big.D(k) - local(self._mp_extra[1]))
+                return export(big.D(k) - ls0)
         with ctx.workdps(eng.W):
-            return export(eng.D(k) - local(self._mp_extra[1]))
+            return export(eng.D(k) - ls0)
 
     # ----------------------------------------------------------------- per-k values
     def _pmf1(self, k: int) -> Any:
@@ -861,12 +874,12 @@ class SimpleDistribution(Distribution):
         """Shannon entropy ``-sum_k P(X=k) log P(X=k)`` (nats): mpf with absolute error below
         ``10**-dps`` (float for ``dps=None``): a pass of its own over ``Phi log Phi`` (the
         moments' pass leaves it out: a log per directly summed term and the bounds of ``log``
-        weights roughly double that pass), normalised by the moments' sum."""
+        weights roughly double that pass), which also sums the normaliser if no pass has."""
         if self.dps is None:
             if self.N > FLOAT_N_LIMIT:
                 return float(self._float_engine.entropy())
             return super().entropy()
-        self._mp_moments  # noqa: B018 - the cap, and the sum the entropy is normalised by
+        self._engine()  # the cap
         return self._round_abs(_shared_entropy(self.N, self._fr_work, self.dps))
 
     @property
@@ -1124,16 +1137,17 @@ class SimpleDistribution(Distribution):
         return hi
 
     def _range_engine(self, lo: int, hi: int, dps: int | None = None) -> SimpleSums:
-        """The summation engine for a sum over ``[lo, hi]``: ``dps`` plus the digits of the
-        largest ``|log Phi(k)/Phi(c)|`` of the range (absolute accuracy of ``log Phi`` is what
-        a sum's relative accuracy needs; far in a tail at huge N it is ~N), so a cdf of
-        ``10**(-10**20)`` keeps its ``dps`` digits."""
+        """The summation engine for a sum over ``[lo, hi]``: ``dps`` relative digits, worked
+        with the digits of the largest ``|log Phi(k)/Phi(c)|`` of the range on top (absolute
+        accuracy of ``log Phi`` is what a sum's relative accuracy needs; far in a tail at huge
+        N it is ~N), so a cdf of ``10**(-10**20)`` keeps its ``dps`` digits; its cuts and
+        panels aim at ``dps`` digits only."""
         d = self.dps if dps is None else dps
         assert d is not None
         eng = self._engine(d)
         lm = abs(eng.log_max(lo, hi))
         extra = 0 if lm < 10 else int(mp().mag(lm) * 0.30103) + 2
-        return eng if extra == 0 else self._engine(d + extra)
+        return eng if extra == 0 else self._engine(d, extra)
 
     def _range_sum(self, lo: int, hi: int, dps: int | None = None) -> tuple[Any, int]:
         """``P(lo <= X <= hi)`` (global mpf) at ``dps`` (default: the distribution's) digits
@@ -1147,10 +1161,10 @@ class SimpleDistribution(Distribution):
             # the absolute accuracy of log Phi over the range; every engine of one (N, p) has
             # the same reference c, the hump's top or 1)
             if (dps is None or dps == self.dps) and "_total" not in base.__dict__:
-                total = local(self._mp_extra[0])  # the shared pass (of any thread)
+                total = local(self._mp_norm[0])  # a pass (of any thread), or one of weight 1
             else:
                 total = _engine_total(base)
-            return export(s / local(total)), min(eng.W, base.W)
+            return export(s / local(total)), min(eng.R, base.R)
 
     def _quantile_guess(self, qq: Fraction, upper: bool) -> int:
         """A start for the Newton iteration: the normal approximation around the mean."""
@@ -1178,14 +1192,15 @@ _SHARED_CACHE_SIZE = 32
 _ENGINES = threading.local()
 
 
-def _shared_engine(N: int, fr: Fraction, dps: int) -> SimpleSums:
-    """The summation engine of :mod:`symhx.simple_sums` for ``(N, p, dps)`` (this thread's)."""
+def _shared_engine(N: int, fr: Fraction, dps: int, extra: int = 0) -> SimpleSums:
+    """The summation engine of :mod:`symhx.simple_sums` for ``(N, p, dps)`` working with
+    ``extra`` more digits (this thread's)."""
     cache = _ENGINES.__dict__.setdefault("lru", OrderedDict())
-    key = (N, fr, dps)
+    key = (N, fr, dps, extra)
     eng = cache.get(key)
     if eng is None:
         hump = _hump(N, fr, None)
-        eng = cache[key] = SimpleSums(N, fr, dps, None if hump is None else hump[1])
+        eng = cache[key] = SimpleSums(N, fr, dps, None if hump is None else hump[1], extra)
         while len(cache) > _SHARED_CACHE_SIZE // 4:
             cache.popitem(last=False)
     else:
@@ -1212,13 +1227,18 @@ def _shared_moments(N: int, fr: Fraction, dps: int) -> tuple[tuple[Any, Any, Any
 @lru_cache(maxsize=_SHARED_CACHE_SIZE)
 def _shared_entropy(N: int, fr: Fraction, dps: int) -> Any:
     """``-sum_k P(k) log P(k) = log S0 - S3/S0`` with ``S3 = sum_k Phi(k)/Phi(c) log(...)``: its
-    own pass (exported with the engine's guard digits)."""
-    _, (s0, log_s0) = _shared_moments(N, fr, dps)
+    own pass (exported with the engine's guard digits), which also gives ``S0`` unless the
+    moments' pass already has."""
     eng = _shared_engine(N, fr, dps)
     ctx = mp()
     with ctx.workdps(eng.W):
-        s3 = eng.sums(1, N, (3,))[0]
-        return export(local(log_s0) - s3 / local(s0))
+        total = eng.__dict__.get("_total")
+        if total is None:
+            s0, s3 = eng.sums(1, N, (0, 3))
+            eng.__dict__["_total"] = s0
+        else:
+            s0, s3 = total, eng.sums(1, N, (3,))[0]
+        return export(ctx.log(s0) - s3 / s0)
 
 
 def _flog(ctx: Any, t: Fraction) -> float:

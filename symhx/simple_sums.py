@@ -154,13 +154,18 @@ class SimpleSums:
         decreasing on ``[1, N]``.
     """
 
-    def __init__(self, N: int, fr: Fraction, dps: int, top: int | None = None) -> None:
+    def __init__(self, N: int, fr: Fraction, dps: int, top: int | None = None,
+                 extra: int = 0) -> None:
         self.N = N
         self.fr = Fraction(fr)
         self.a, self.b = self.fr.numerator, self.fr.denominator
         self.dps = dps
         self.guard = 12 + 2 * len(str(len(str(N))))
-        self.W = dps + self.guard
+        #: the digits every sum is correct to, relative to itself (cuts, panels, remainders)
+        self.R = dps + self.guard
+        #: the working precision: ``R`` plus ``extra`` digits for the *absolute* accuracy of
+        #: ``log Phi`` where it is large (a range far in a tail: ``|D| ~ 1e20`` needs 20 more)
+        self.W = self.R + extra
         self.top = top
         ctx = mp()
         with ctx.workdps(self.W):
@@ -366,8 +371,11 @@ class SimpleSums:
             psi_minus_log = s
         else:
             psi_minus_log = ctx.digamma(v) - ctx.log(v)
-        t = ctx.mpf(d) / self.u
-        return self._L1 + psi_minus_log + ctx.log1p(-t) - 1 / ctx.mpf(x)
+        if 2 * v >= self.u:
+            lvu = ctx.log1p(-ctx.mpf(d) / self.u)
+        else:  # v/u small (x near N at huge N): d/u would round to 1
+            lvu = ctx.log(v) - ctx.log(self.u)
+        return self._L1 + psi_minus_log + lvu - 1 / ctx.mpf(x)
 
     def taylor(self, x0: Any, order: int, d0: Any = None) -> list[Any]:
         """Taylor coefficients ``D(x0), D'(x0), D''(x0)/2, ...`` up to ``order``."""
@@ -537,16 +545,16 @@ class SimpleSums:
                 if lo <= hi:
                     pieces.append((lo, hi, inc, self.D(hi if inc else lo)))
             dmax = max(p[3] for p in pieces)
-            level = dmax - (self.W * _LN10 + math.log(B - A + 1) + 10)
+            level = dmax - (self.R * _LN10 + math.log(B - A + 1) + 10)
             out: list[tuple[int, int]] = []
             for lo, hi, inc, dtop in pieces:
-                if dtop < level:
+                if dtop < level or self._negligible(lo, hi, dtop, dmax):
                     continue
                 lev = level
                 if not inc and top is None and lo == A and self.a * N < self.b:
                     # no hump, N p < 1: each ratio is below N p, so the dropped tail is at
                     # most f(e1)/(1 - N p) (not N f(e1))
-                    lev = dmax - (self.W * _LN10 + 10) + _log_ratio(ctx, self.b - self.a * N,
+                    lev = dmax - (self.R * _LN10 + 10) + _log_ratio(ctx, self.b - self.a * N,
                                                                      self.b)  # log(1 - N p)
                 if inc:
                     guess = lo
@@ -573,6 +581,23 @@ class SimpleSums:
                     merged.append((lo, hi))
         cache[key] = merged
         return merged
+
+    def _negligible(self, lo: int, hi: int, dtop: Any, dmax: Any) -> bool:
+        """Whether a whole monotone stretch ``[lo, hi]`` (largest term ``exp(dtop)``) is below
+        ``10**-(dps+guard) e**-10`` of the largest term ``exp(dmax)`` of the range for every
+        weight: its ``hi - lo + 1`` terms times ``|k - c|**j`` (``j <= 2``, against the
+        weights' scale ``sigma**j`` of :meth:`_scales`) or ``|D|`` (``f |log f|`` grows with
+        ``f`` below ``1/e``).  Such a stretch (the head near ``p_c`` at huge N: ``e**-358``
+        of the hump, over 10**50 terms) needs no level cut and no sum."""
+        if dtop >= dmax or dtop > -2:
+            return False
+        ctx = mp()
+        top = self.top if (self.top is not None and self.top > 1) else None
+        lsig = float(_log64(ctx, self._sigma_at(top))) if top is not None else 0.0
+        far = max(abs(lo - self.c), abs(hi - self.c)) + 1
+        excess = max(0.0, 2 * (math.log(far) - lsig), math.log(abs(float(dtop)) + 1))
+        bound = math.log(hi - lo + 1) + float(dtop - dmax) + excess
+        return bound < -(self.R * _LN10 + 10)
 
     def _sigma_at(self, k: int) -> Any:
         """``1/sqrt(-D''(k))`` (a width of the hump at its top) at 64 bits (cached per k on the
@@ -808,15 +833,15 @@ class SimpleSums:
     @property
     def direct_terms(self) -> int:
         """Runs up to this many terms are summed term by term."""
-        return max(1500, 16 * self.W)
+        return max(1500, 16 * self.R)
 
     def _run_sum(self, A: int, B: int, kinds: tuple[int, ...], limit: int | None = None
                  ) -> list[Any]:
         if B - A + 1 <= self.direct_terms:
             return self._direct(A, B, kinds, limit)
-        K0 = max(A, 4 * self.W)
+        K0 = max(A, 4 * self.R)
         ctx = mp()
-        rmin = 0.45 * self.W + 3  # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
+        rmin = 0.45 * self.R + 3  # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
         with ctx.workprec(64):
             # Euler-Maclaurin needs f smooth on a disc of radius min(x/2, 2/|D'(x)|) >= rmin
             # at both ends (where f decays like exp(D'(x) t))
@@ -824,7 +849,7 @@ class SimpleSums:
                 s = abs(self.dD(x))
                 return min(ctx.mpf(x) / 2, 2 / s) if s else ctx.mpf(x) / 2
 
-            while K0 < B and radius(K0) < rmin and K0 < 64 * self.W:
+            while K0 < B and radius(K0) < rmin and K0 < 64 * self.R:
                 K0 = min(B, 2 * K0)
             smooth = radius(K0) >= rmin and radius(B) >= rmin
         if B - K0 + 1 <= self.direct_terms or K0 >= B or not smooth:
@@ -887,7 +912,7 @@ class SimpleSums:
         top = self.top if self.top is not None else 1
         ctx = mp()
         sig = self._sigma_at(top) if top > 1 else ctx.mpf(1)
-        T = self.W * _LN10
+        T = self.R * _LN10
         width = max(sig, ctx.mpf(B - A) / (4 * T), ctx.mpf(1))
         out = []
         for j in kinds:
@@ -902,7 +927,7 @@ class SimpleSums:
     def _em(self, A: int, B: int, kinds: tuple[int, ...]) -> list[Any]:
         """Euler-Maclaurin on ``[A, B]`` (``A >= 4 (dps + guard)``, f smooth on the scale of A)."""
         ctx = mp()
-        eps_log = -(self.W * _LN10) - 3
+        eps_log = -(self.R * _LN10) - 3
         lowprec = 128 + self.abs_bits(A, B)  # bounds need D to absolute accuracy
         with ctx.workprec(lowprec):
             low = self._lower(A, B)

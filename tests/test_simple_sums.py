@@ -3,6 +3,7 @@ high precision, the significant runs, and sums against every term added."""
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -93,3 +94,70 @@ def test_thousands_of_digits_at_moderate_N(dps: int) -> None:
     b = symhx.distribution_of(10**4, p, dps=dps + 50).mean()
     with mpmath.workdps(dps + 80):
         assert abs(a - b) <= abs(b) * mpmath.mpf(10) ** (1 - dps)
+
+
+def _hard_case(N: int) -> tuple[Fraction, int]:
+    """p with N p - 1 = 2 (N p_c - 1) (head and hump both present; the head ~e**-358 of the
+    hump's top at N = 10**100) as an exact rational, and the hump's top."""
+    import symhx
+    from symhx.validation import mpf_to_fraction
+
+    q = symhx.critical_point(N, dps=120).q
+    with mpmath.workdps(2 * len(str(N)) + 120):
+        p = mpf_to_fraction((1 + 2 * mpmath.mpf(q)) / N)
+    return p, symhx.mode(N, p)
+
+
+def test_a_negligible_head_is_left_out_and_is_negligible() -> None:
+    """Near p_c at N = 10**100 the head [1, valley] holds 10**50 terms of ~e**-358 each: the runs
+    of the whole support leave it out, and summed on its own (where it is the largest part) it
+    is below 10**-(dps + guard) of the total for every weight (sigma**j for (k - c)**j)."""
+    N = 10**100
+    p, top = _hard_case(N)
+    s = SimpleSums(N, p, 30, top)
+    runs = s.runs(1, N)
+    m = s.valley()
+    assert len(runs) == 1 and runs[0][0] > m
+    ctx = mp()
+    with ctx.workdps(s.W):
+        head = s.sums(1, m, (0, 1, 2))
+        full = s.sums(1, N, (0, 1, 2))
+        sigma2 = full[2] / full[0] - (full[1] / full[0]) ** 2
+        eps = ctx.mpf(10) ** -s.R
+        assert 0 < head[0] < eps * full[0]
+        assert abs(head[1]) < eps * full[0] * ctx.sqrt(sigma2)
+        assert head[2] < eps * full[0] * sigma2
+
+
+def test_dD_near_the_end_of_the_support_at_huge_N() -> None:
+    """D'(x) = log p + psi(N + 1 - x) - 1/x at x = N, N - 1 (N + 1 - x = 1, 2) for N = 10**100:
+    ``(x - c)/u`` rounds to 1 there, so ``log(1 - d/u)`` must come from ``log(v/u)``."""
+    N, p = 10**100, Fraction(2, 10**100)
+    s = SimpleSums(N, p, 30, N // 2)
+    ctx = mp()
+    for x in (N, N - 1, N - 10**6):
+        with ctx.workdps(s.W):
+            got = s.dD(x)
+        with mpmath.workdps(300):
+            want = mpmath.log(mpmath.mpf(2) / N) + mpmath.digamma(N + 1 - x) - 1 / mpmath.mpf(x)
+            assert abs(mpmath.mpf(got) - want) < mpmath.mpf(10) ** -35 * abs(want)
+
+
+def test_extra_working_digits_do_not_move_the_cuts() -> None:
+    """An engine with extra working digits (a range far in a tail, where |D| ~ 10**99 needs them
+    for absolute accuracy) cuts its runs at the level of its relative digits, not of its
+    working ones: the cuts are the same with 110 and 160 extra digits."""
+    N = 10**100
+    import symhx
+
+    p = Fraction(4, N)  # above the jump: [1, 10**50] is far in the hump's left tail
+    top = symhx.mode(N, p)
+    a = SimpleSums(N, p, 30, top, extra=110)
+    b = SimpleSums(N, p, 30, top, extra=160)
+    assert a.R == b.R and a.W + 50 == b.W
+    ra = a.runs(1, 10**50)
+    assert ra == b.runs(1, 10**50)
+    (lo, hi), = ra
+    # terms grow by ~N p = 4 per step: the run holds (R ln 10 + ln 10**50 + 10)/ln 4 terms
+    want = (a.R * math.log(10) + 50 * math.log(10) + 10) / math.log(4)
+    assert hi == 10**50 and abs((hi - lo + 1) - want) < 3

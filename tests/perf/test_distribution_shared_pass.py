@@ -73,3 +73,32 @@ def test_a_cold_cdf_costs_its_tail_and_the_complement(monkeypatch) -> None:
         for got, want in ((c1, warm.cdf(k)), (c2, warm.cdf(k + 10**19)),
                           (s1, warm.sf(k - 10**19))):
             assert abs(got - want) <= abs(want) * mpmath.mpf(10) ** -29
+
+
+def _count_kinds(monkeypatch) -> list[tuple[int, int, tuple[int, ...]]]:
+    calls: list[tuple[int, int, tuple[int, ...]]] = []
+    orig = SimpleSums.sums
+
+    def counted(self, A, B, kinds=(0,)):
+        calls.append((A, B, tuple(kinds)))
+        return orig(self, A, B, kinds)
+
+    monkeypatch.setattr(SimpleSums, "sums", counted)
+    return calls
+
+
+def test_a_cold_entropy_is_one_pass_and_a_cold_pmf_needs_no_moments(monkeypatch) -> None:
+    """The entropy sums its weight log(Phi/Phi(c)) and the normaliser in one pass; a pmf or a
+    cdf far in a tail needs the normaliser alone (weight 1), not the mean and the variance."""
+    N, p = 10**40, mpmath.mpf(3) * 10**-39
+    _forget()
+    calls = _count_kinds(monkeypatch)
+    symhx.entropy(N, p, dps=30)
+    assert calls == [(1, N, (0, 3))]
+    _forget()
+    calls.clear()
+    d = symhx.distribution_of(N, p, dps=30)
+    d.pmf(d.mode())
+    assert calls == [(1, N, (0,))]
+    d.cdf(10**10)  # far in the left tail (more working digits): a partial sum, normalised
+    assert calls[1:] == [(1, 10**10, (0,))]

@@ -135,3 +135,46 @@ def test_old_reports_merge_with_new_c_entries(old_entry):
     assert mutation.C_TOOL in merged["tool"]
     assert "symhx/impact/_fast.c" not in merged["modules_without_run"]
     assert "symhx/critical.py" in merged["modules_without_run"]
+
+
+def test_wilson_interval_brackets_the_rate_and_narrows_with_the_sample():
+    from statistics import NormalDist
+
+    assert mutation.wilson(0, 0) == (0.0, 1.0)
+    lo, hi = mutation.wilson(10, 10)
+    assert hi == 1.0 and 0.70 < lo < 0.75  # (n/(n + z**2)) = 0.7225 for k = n = 10
+    for k, n in ((3, 10), (50, 60), (990, 1000)):
+        lo, hi = mutation.wilson(k, n)
+        assert lo < k / n < hi
+        lo2, hi2 = mutation.wilson(4 * k, 4 * n)
+        assert hi2 - lo2 < hi - lo
+    # the interval's centre and half-width solve |p - k/n| = z sqrt(p (1 - p)/n) (its definition)
+    k, n = 7, 20
+    z = NormalDist().inv_cdf(0.975)
+    for p in mutation.wilson(k, n, z):
+        assert abs(abs(p - k / n) - z * (p * (1 - p) / n) ** 0.5) < 1e-12
+
+
+def test_a_sample_draws_only_mutants_without_a_verdict_reproducibly(tmp_path):
+    codes = {f"symhx.a.x_f__mutmut_{i}": (1 if i % 3 == 0 else None) for i in range(30)}
+    meta = tmp_path / "mutants" / "symhx" / "a.py.meta"
+    meta.parent.mkdir(parents=True)
+    meta.write_text(json.dumps({"exit_code_by_key": codes}))
+    one = mutation.sample_mutants(tmp_path, ["symhx/a.py", "symhx/gone.py"], 5, seed=3)
+    assert one == mutation.sample_mutants(tmp_path, ["symhx/a.py"], 5, seed=3)
+    assert len(one) == len(set(one)) == 5
+    assert all(codes[n] is None for n in one)
+    assert one != mutation.sample_mutants(tmp_path, ["symhx/a.py"], 5, seed=4)
+    pending = sorted(n for n, c in codes.items() if c is None)
+    assert sorted(mutation.sample_mutants(tmp_path, ["symhx/a.py"], 99, seed=0)) == pending
+
+
+def test_report_weights_each_module_rate_by_its_mutants():
+    rep = mutation._assemble({
+        "symhx/a.py": {"total": 900, "killed": 900, "survived": 0, "no_tests": 0,
+                       "equivalent": 0, "kill_rate": 1.0},
+        "symhx/b.py": {"total": 100, "killed": 5, "survived": 5, "no_tests": 0,
+                       "equivalent": 0, "kill_rate": 0.5, "sample": {"size_per_run": 10}},
+    }, {}, {})
+    assert rep["totals"]["kill_rate_weighted_by_module_size"] == 0.95
+    assert rep["totals"]["kill_rate"] == round(905 / 910, 4)
