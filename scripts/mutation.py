@@ -13,6 +13,7 @@ Usage (from the repository root)::
     python scripts/mutation.py symhx/circuits.py --rerun symhx.circuits.x_phi__mutmut_3  # after
                                                     # adding a test for a survivor
     python scripts/mutation.py symhx/critical.py --workdir W --resume  # finish a stopped run
+    python scripts/mutation.py symhx/plots/core.py --sample 12        # 12 random mutants
 
 **Which tests cover a module** is read from the layout of ``tests/`` (issue 26), never from a
 hand-kept map: the tests of ``symhx/a/b.py`` (or ``symhx/a/_b.py``, or the C source
@@ -64,6 +65,13 @@ counts as survived. Reports written by earlier versions of this script are read 
 ``--resume`` continues a stopped run in its ``--workdir`` with the current sources and tests:
 mutmut keeps the verdict of every mutant whose function is unchanged (it compares a hash of each
 function's source) and runs the rest.
+
+``--sample K`` runs, for each Python module, ``K`` mutants drawn at random (``--seed``) from those
+without a verdict (all of them in a fresh run; with ``--resume``, the ones a stopped run did not
+reach): an unbiased estimate of the module's kill rate where a full campaign would take hours
+(mutmut itself runs mutants in order of their tests' cost, so the first ones of a stopped run
+are not a random sample).  The report marks such an entry with ``"sample"`` and
+``--summary`` prints a 95% Wilson interval for it.
 """
 
 from __future__ import annotations
@@ -73,7 +81,9 @@ import ast
 import difflib
 import hashlib
 import json
+import math
 import os
+import random
 import re
 import shutil
 import subprocess
@@ -229,7 +239,8 @@ def _module_of(meta: Path, workdir: Path) -> str:
 
 
 def build_report(workdir: Path, modules: list[str], old: dict,
-                 tests: dict[str, list[str]] | None = None) -> dict:
+                 tests: dict[str, list[str]] | None = None,
+                 sample: dict[str, dict] | None = None) -> dict:
     """Read mutmut's ``.meta`` files in ``workdir`` and merge with the equivalent declarations
     (and the modules of ``old`` that this run did not touch)."""
     equivalent_decl: dict = old.get("equivalent", {})
@@ -279,6 +290,7 @@ def build_report(workdir: Path, modules: list[str], old: dict,
             "survivors": survivors,
             **({"unresolved": unresolved} if unresolved else {}),
             **({"tests": tests[module]} if tests and module in tests else {}),
+            **({"sample": sample[module]} if sample and module in sample else {}),
         }
     return _assemble(per_module, equivalent_decl, stale)
 
@@ -300,6 +312,14 @@ def _assemble(per_module: dict, equivalent_decl: dict, stale: dict) -> dict:
                                          if live else None)
     rest = tot["total"] - tot["equivalent"]
     tot["kill_rate_all_mutants"] = round(tot["killed"] / rest, 4) if rest else None
+    # each module's rate (of a full run, a stopped one or a random sample) weighted by its
+    # number of mutants: an estimate for the package, where a plain total would let the
+    # modules with full runs outweigh the sampled ones
+    rated = [(m["total"], m["kill_rate"]) for m in per_module.values()
+             if m.get("kill_rate") is not None and m.get("total")]
+    weight = sum(t for t, _ in rated)
+    tot["kill_rate_weighted_by_module_size"] = (round(sum(t * r for t, r in rated) / weight, 4)
+                                                if weight else None)
     tools = ["mutmut " + _mutmut_version()]
     if any(m.endswith(".c") for m in per_module):
         tools.append(C_TOOL)
@@ -568,6 +588,17 @@ def run_c_module(module: str, tests: list[str], workdir: Path, k: int | None,
     }
 
 
+def wilson(k: int, n: int, z: float = 1.96) -> tuple[float, float]:
+    """The Wilson score interval of a proportion ``k/n`` (95% for ``z = 1.96``)."""
+    if n == 0:
+        return 0.0, 1.0
+    ph = k / n
+    den = 1 + z * z / n
+    mid = (ph + z * z / (2 * n)) / den
+    half = z * math.sqrt(ph * (1 - ph) / n + z * z / (4 * n * n)) / den
+    return max(0.0, mid - half), min(1.0, mid + half)
+
+
 def summary_lines(report: dict) -> list[str]:
     """One line per module of the package: its kill rate, or that it has no run yet."""
     lines = []
@@ -578,14 +609,21 @@ def summary_lines(report: dict) -> list[str]:
             tests = mirror_tests(m) if (ROOT / m).exists() else []
             lines.append(f"{m}: no run yet" + ("" if tests else " (no mirror tests)"))
         else:
-            lines.append(f"{m}: killed {r.get('killed', 0)}, survived {r.get('survived', 0)}, "
-                         f"no tests {r.get('no_tests', 0)}, equivalent {r.get('equivalent', 0)},"
-                         f" not checked {r.get('not_checked', 0)} of {r.get('total', 0)}, "
-                         f"kill rate {r.get('kill_rate')}")
+            line = (f"{m}: killed {r.get('killed', 0)}, survived {r.get('survived', 0)}, "
+                    f"no tests {r.get('no_tests', 0)}, equivalent {r.get('equivalent', 0)},"
+                    f" not checked {r.get('not_checked', 0)} of {r.get('total', 0)}, "
+                    f"kill rate {r.get('kill_rate')}")
+            if "sample" in r:
+                live = r.get("killed", 0) + r.get("survived", 0) + r.get("no_tests", 0)
+                lo, hi = wilson(r.get("killed", 0), live)
+                line += f" (random sample of {live}: 95% interval {lo:.3f}-{hi:.3f})"
+            lines.append(line)
     t = report.get("totals", {})
     lines.append(f"all modules: kill rate {t.get('kill_rate')} over the {len(modules)} modules "
-                 f"run ({t.get('kill_rate_all_mutants')} counting mutants never run); "
-                 f"{len(set(all_modules()) - set(modules))} modules without a run")
+                 f"run ({t.get('kill_rate_all_mutants')} counting mutants never run; "
+                 f"{t.get('kill_rate_weighted_by_module_size')} as the modules' rates weighted "
+                 f"by their mutants); {len(set(all_modules()) - set(modules))} modules without "
+                 f"a run")
     return lines
 
 
@@ -623,6 +661,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="rerun only these mutants in the existing --workdir with the current "
                              "test files (after adding tests for survivors), then rebuild the "
                              "report")
+    parser.add_argument("--sample", type=int, default=None, metavar="K",
+                        help="run K mutants per Python module, drawn at random from those "
+                             "without a verdict (an estimate of the kill rate)")
+    parser.add_argument("--seed", type=int, default=0, help="the seed of --sample")
     parser.add_argument("--resume", action="store_true",
                         help="continue a stopped run in --workdir: refresh its sources and tests, "
                              "keep the verdicts of unchanged functions (C: of mutants in the "
@@ -716,8 +758,34 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
         # work tree) would make the tests import the unmutated code, or confuse its statistics.
         env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
         print("running:", " ".join(cmd), "in", workdir, "\n  tests:", " ".join(tests), flush=True)
-        subprocess.run(cmd, cwd=workdir, env=env, check=False)
-    return build_report(workdir, modules, old, tests_of)
+        if args.sample is None:
+            subprocess.run(cmd, cwd=workdir, env=env, check=False)
+        else:
+            # a filter that matches no mutant: mutmut generates the mutants and collects which
+            # tests run which function, then stops
+            subprocess.run([*cmd, "symhx.no_such_mutant"], cwd=workdir, env=env, check=False,
+                           capture_output=True)
+            chosen = sample_mutants(workdir, modules, args.sample, args.seed)
+            print(f"  a random sample of {len(chosen)} mutants (seed {args.seed})", flush=True)
+            if chosen:
+                subprocess.run([*cmd, *chosen], cwd=workdir, env=env, check=False)
+    sample = None if args.sample is None else {
+        m: {"size_per_run": args.sample, "seed": args.seed} for m in modules}
+    return build_report(workdir, modules, old, tests_of, sample)
+
+
+def sample_mutants(workdir: Path, modules: list[str], k: int, seed: int) -> list[str]:
+    """``k`` mutants per module, drawn at random from those without a verdict in ``workdir``."""
+    rng = random.Random(seed)
+    chosen: list[str] = []
+    for m in modules:
+        meta = workdir / "mutants" / (m + ".meta")
+        if not meta.exists():
+            continue
+        codes = json.loads(meta.read_text())["exit_code_by_key"]
+        pending = sorted(n for n, c in codes.items() if c is None)
+        chosen += sorted(rng.sample(pending, min(k, len(pending))))
+    return chosen
 
 
 if __name__ == "__main__":
