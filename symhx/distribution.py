@@ -838,9 +838,9 @@ class SimpleDistribution(Distribution):
             return None
         ctx = mp()
         with ctx.workdps(eng.W):
-            part = eng.sums(lo, hi, (0,))[0]
-            rest = eng.sums(hi + 1, self.N, (0,))[0] if lo == 1 else \
-                eng.sums(1, lo - 1, (0,))[0]
+            part = _partial_sum(eng, lo, hi)
+            rest = _partial_sum(eng, hi + 1, self.N) if lo == 1 else \
+                _partial_sum(eng, 1, lo - 1)
             total = eng.__dict__.setdefault("_total", part + rest)
             return export(part / total), eng.W
 
@@ -1156,7 +1156,7 @@ class SimpleDistribution(Distribution):
         base = self._engine(self.dps if dps is None else dps)
         ctx = mp()
         with ctx.workdps(eng.W):
-            s = eng.sums(lo, hi, (0,))[0]
+            s = _partial_sum(eng, lo, hi)
             # the normaliser only divides: its own digits suffice (the extra digits are for
             # the absolute accuracy of log Phi over the range; every engine of one (N, p) has
             # the same reference c, the hump's top or 1)
@@ -1167,14 +1167,25 @@ class SimpleDistribution(Distribution):
             return export(s / local(total)), min(eng.R, base.R)
 
     def _quantile_guess(self, qq: Fraction, upper: bool) -> int:
-        """A start for the Newton iteration: the normal approximation around the mean."""
+        """A start for the Newton iteration: the normal approximation around the hump's top
+        with its width (no pass) when the head is provably light (its terms times their number
+        below ``e**-5`` of the top's height times the width), else around the mean."""
         from statistics import NormalDist
 
         ctx = mp()
-        mu, var = self._mp_moments[1], self._mp_moments[2]
         top = self.mode()
-        if top > 1:  # the hump's top is exact; the mean is only dps digits of ~N
-            mu = top
+        eng = self._engine()
+        mu = var = None
+        if top > 1 and eng.c == top and "_mp_moments" not in self.__dict__:
+            with ctx.workprec(64 + eng.abs_bits(1, top)):
+                sig = eng._sigma_at(top)
+                head = eng.D(1) + ctx.log(eng.valley())
+                if head < ctx.log(sig) - 5:
+                    mu, var = top, sig * sig
+        if mu is None:
+            mu, var = self._mp_moments[1], self._mp_moments[2]
+            if top > 1:  # the hump's top is exact; the mean is only dps digits of ~N
+                mu = top
         q = min(max(float(qq), 1e-300), 1 - 1e-16)
         z = NormalDist().inv_cdf(q)
         if upper:
@@ -1247,6 +1258,54 @@ def _flog(ctx: Any, t: Fraction) -> float:
         return -math.inf
     with ctx.workprec(64):
         return float(ctx.log(ctx.mpf(t.numerator)) - ctx.log(ctx.mpf(t.denominator)))
+
+
+def _partial_sum(eng: SimpleSums, lo: int, hi: int) -> Any:
+    """``sum_{k=lo}^{hi} Phi(k)/Phi(c)`` at the engine's working precision, from an earlier sum
+    of the same engine that shares an end when one is near (the steps of a quantile search
+    move one end by a little): the earlier sum plus or minus the stretch between, when the
+    stretch is shorter than the range and, if subtracted, under half the earlier sum (so no
+    digit is lost); else summed whole.  Sums are cached on the engine (engines are per
+    thread)."""
+    cache: dict[tuple[int, int], Any] = eng.__dict__.setdefault("_partials", {})
+    got = cache.get((lo, hi))
+    if got is not None:
+        return got
+    best = None
+    for (a, b), v in cache.items():
+        if a == lo and b != hi:
+            gap = abs(b - hi)
+        elif b == hi and a != lo:
+            gap = abs(a - lo)
+        else:
+            continue
+        if gap < hi - lo + 1 and (best is None or gap < best[0]):
+            best = (gap, a, b, v)
+    total = None
+    if best is not None:
+        _, a, b, v = best
+        if a == lo:  # the same left end: add or remove (b, hi] / (hi, b]
+            grow, stretch = (hi > b), ((b + 1, hi) if hi > b else (hi + 1, b))
+        else:  # the same right end: [lo, a) / [a, lo)
+            grow, stretch = (lo < a), ((lo, a - 1) if lo < a else (a, lo - 1))
+        ctx = mp()
+        light = False
+        if not grow:  # removing: only when the stretch is provably under half the sum
+            with ctx.workprec(64 + eng.abs_bits(*stretch)):
+                bound = eng.log_max(*stretch) + ctx.log(stretch[1] - stretch[0] + 1)
+                light = bound < ctx.log(v) - 1
+        if grow or light:
+            d = eng.sums(*stretch, (0,))[0]
+            if grow:
+                total = v + d
+            elif 2 * d <= v:
+                total = v - d
+    if total is None:
+        total = eng.sums(lo, hi, (0,))[0]
+    if len(cache) > 64:
+        cache.clear()
+    cache[(lo, hi)] = total
+    return total
 
 
 def _engine_total(eng: SimpleSums) -> Any:

@@ -24,7 +24,10 @@ Algorithm (one pass, for ``sum_{k=A}^{B} f(k) w(k)`` with ``w`` in ``1, k - c, (
    run ``[1, e1]`` and the hump run ``[s2, e2]`` are cut where ``D`` falls below
    ``-(dps + guard) ln 10 - ln N - 10`` (safeguarded Newton on ``D``); each dropped term is then
    below ``10**-(dps+guard) / N`` of the largest, so all of them together are below
-   ``10**-(dps+guard)`` of the sum.  Runs that touch are merged.
+   ``10**-(dps+guard)`` of the sum.  A whole monotone stretch is dropped without a cut when its
+   length times its largest term (times the weight, against the weight's scale) is already
+   below ``10**-(dps+guard) e**-10`` of the largest term: near ``p_c`` at ``N = 10**100`` the
+   head holds ``10**50`` terms of ``e**-358`` of the hump's top.  Runs that touch are merged.
 2. *Short runs* (at most ``direct_terms`` terms) are summed term by term with the exact ratio
    ``Phi(k+1)/Phi(k) = p (N-k) k/(k+1)``.
 3. *Long runs* ``[A, B]``: the first ``K0 - A`` terms (``K0 = 4 (dps + guard)``) directly, then
@@ -44,7 +47,9 @@ Algorithm (one pass, for ``sum_{k=A}^{B} f(k) w(k)`` with ``w`` in ``1, k - c, (
    terms to one unit of the working precision times its size, so a range whose terms are
    ``exp(-1e20)`` below the reference needs 20 more digits: :meth:`SimpleSums.log_max` gives
    that size and the caller (:class:`symhx.distribution.SimpleDistribution`) picks an engine
-   with the extra digits; level cuts and bounds add :meth:`SimpleSums.abs_bits` bits.
+   with ``extra`` working digits (``W = R + extra``), whose cuts, panels and remainders still
+   aim at its relative digits ``R = dps + guard``; level cuts and bounds add
+   :meth:`SimpleSums.abs_bits` bits.
 5. Every error term (dropped tails, quadrature, remainder) is held below ``10**-(dps+guard)`` of a
    proved lower bound of the sum (``2 delta min(f(x* - delta), f(x* + delta))`` around its
    largest term ``x*``), so the result is correct to ``dps`` digits with ``guard`` digits to spare
@@ -558,7 +563,7 @@ class SimpleSums:
                                                                      self.b)  # log(1 - N p)
                 if inc:
                     guess = lo
-                    if hi == top:
+                    if top is not None:  # the hump's rising side (clipped at hi <= top too)
                         span = int(ctx.nint(self._sigma_at(top) * ctx.sqrt(2 * (dtop - lev))
                                             * 1.05)) + 2
                         guess = max(lo, hi - span)
@@ -936,7 +941,7 @@ class SimpleSums:
         c = self.c
         xg = self._xg  # N + 1/2 - 1/p
         # s-region [A, Xs] near the pole at 0, x-region [Xs, B]
-        if top and A < top <= B + 1 and xg / 4 > A:
+        if top and A <= top and xg / 4 > A:  # (a range that stops short of the top too)
             Xs = min(B, int(xg / 4))  # int() of an mpf is exact
         elif top and A >= xg / 4:
             Xs = A

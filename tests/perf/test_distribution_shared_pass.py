@@ -53,8 +53,9 @@ def _forget() -> None:
 
 def test_a_cold_cdf_costs_its_tail_and_the_complement(monkeypatch) -> None:
     """Before any full pass a cdf sums [1, k] and [k + 1, N] (together about one pass), keeps
-    their sum as the normaliser, and a second cdf then costs one partial sum; the values agree
-    with those after a full pass to the dps digits."""
+    their sum as the normaliser; a second cdf or sf near an earlier one then sums only the
+    stretch between (an earlier sum shares its end); the values agree with those after a full
+    pass to the dps digits."""
     N, p = 10**40, mpmath.mpf(3) * 10**-39
     _forget()
     calls = _count_sums(monkeypatch)
@@ -63,9 +64,11 @@ def test_a_cold_cdf_costs_its_tail_and_the_complement(monkeypatch) -> None:
     c1 = d.cdf(k)
     assert calls == [(1, k), (k + 1, N)]
     c2 = d.cdf(k + 10**19)
-    assert calls[2:] == [(1, k + 10**19)]
+    assert calls[2:] == [(k + 1, k + 10**19)]
     s1 = d.sf(k - 10**19)
-    assert calls[3:] == [(k - 10**19 + 1, N)]
+    assert calls[3:] == [(k - 10**19 + 1, k)]
+    d.cdf(3 * k // 4)  # far from every earlier end: summed whole
+    assert calls[4:] == [(1, 3 * k // 4)]
     _forget()
     warm = symhx.distribution_of(N, p, dps=30)
     warm.mean()
