@@ -35,22 +35,15 @@ from symhx.certify import (
     to_arb,
 )
 from tests.reference.distribution import phi_exact
-from tests.reference.irrational import bracket
+from tests.reference.irrational import bracket, sympy_value
 
 S = sympy
 R = sympy.Rational
 NE = dict(evaluate=False)
 
 
-def _reference(expr, bits):
-    """sympy's own evaluation of ``expr`` at three times the digits of ``bits``."""
-    digits = int(bits * 0.3) * 3 + 30
-    with mpmath.workdps(digits):
-        return mpmath.mpf(sympy.N(expr, digits))
-
-
 def _assert_encloses_tightly(expr, bits):
-    ref = _reference(expr, bits)
+    ref = sympy_value(expr, bits)
     with arb_prec(bits):
         ball = real_ball(expr)
         assert ball.contains(to_arb(ref)), (expr, bits, ball)
@@ -159,7 +152,7 @@ def test_real_ball_refusal_names_the_function_and_the_part(expr, name):
 
 def test_to_arb_of_a_sympy_expression_is_its_real_ball():
     expr = S.sqrt(2) * S.pi
-    ref = _reference(expr, 200)
+    ref = sympy_value(expr, 200)
     with arb_prec(200):
         ball = to_arb(expr)
         assert ball.contains(to_arb(ref)) and ball.rad() < arb(2) ** -185
@@ -232,7 +225,7 @@ def test_mpf_bounds_are_rounded_to_dps_plus_5_digits(dps):
     max_bits = int((dps + 5) * math.log2(10)) + 8
     widths = []
     for expr in (S.sqrt(2), S.pi / 7, -S.E * 10**30, S.sqrt(3) / 10**30, S.log(3) - 1):
-        ref = _reference(expr, 3000)
+        ref = sympy_value(expr, 3000)
         with arb_prec(3000):
             ball = real_ball(expr)
         lo, hi = mpf_bounds(ball, dps)

@@ -25,19 +25,7 @@ from symhx.site_weights import BALL_TABLE_N_LIMIT
 from symhx.sites import SiteClasses
 from symhx.validation import mpf_to_fraction
 from tests.harness.errors import assert_refuses
-from tests.reference.sites import direction_c, expand, mode_weights
-
-
-def _ref_argmins(w: tuple[Fraction, ...]) -> tuple[int, ...]:
-    """Every argmin of c_k, compared exactly: c_j <= c_k iff (c_j**(j-1))**(k-1) <=
-    (c_k**(k-1))**(j-1)."""
-    N = len(w)
-    powers = {k: direction_c(w, k) for k in range(2, N + 1)}
-
-    def le(j: int, k: int) -> bool:
-        return powers[j] ** (k - 1) <= powers[k] ** (j - 1)
-
-    return tuple(k for k in powers if all(le(k, j) for j in powers))
+from tests.reference.sites import direction_argmins, direction_c, expand, mode_weights
 
 
 def _modes_at(sizes, w, t) -> tuple[int, ...]:
@@ -63,7 +51,7 @@ def test_table_argmins_and_enclosure_against_exact_reference(seed):
     N = sum(sizes)
     cp = direction_critical_point(N, SiteClasses(sizes, w), dps=30)
     sites = expand(sizes, w)
-    assert cp.argmins == _ref_argmins(sites)
+    assert cp.argmins == direction_argmins(sites)
     assert cp.k_after == max(cp.argmins) and cp.k_before == 1
     # the enclosure holds the exact crossing: W_t(k) <= W_t(1) for every k at t = lo, and
     # W_t(k_after) >= W_t(1) at t = hi (exact rationals: t**(k-1) c_k**(-(k-1)))

@@ -15,15 +15,9 @@ import symhx
 from symhx.certify import UndecidedError
 from symhx.validation import mpf_to_fraction
 from tests.reference.distribution import brute_modes
-from tests.reference.irrational import bracket, decided_at_both_ends
+from tests.reference.irrational import bracket, decided
 
 R = sympy.Rational
-
-
-def _reference(N: int, p: sympy.Expr, digits: int = 200) -> tuple[int, ...]:
-    want = decided_at_both_ends(lambda fr: brute_modes(N, fr), p, digits)
-    assert want is not None, "the reference bracket is too wide for this p"
-    return want
 
 
 def test_issue_case_beyond_sixty_digits():
@@ -31,8 +25,8 @@ def test_issue_case_beyond_sixty_digits():
     # 51 (it was read at 60 digits as exactly 1/50 and answered 50)
     up = R(1, 50) + sympy.sqrt(2) / 10**70
     down = R(1, 50) - sympy.sqrt(2) / 10**70
-    assert symhx.modes(101, up) == _reference(101, up, 110) == (51,)
-    assert symhx.modes(101, down) == _reference(101, down, 110) == (50,)
+    assert symhx.modes(101, up) == decided(lambda fr: brute_modes(101, fr), up, 110) == (51,)
+    assert symhx.modes(101, down) == decided(lambda fr: brute_modes(101, fr), down, 110) == (50,)
     assert symhx.mode(101, up) == 51 and symhx.distribution_of(101, up).modes() == (51,)
 
 
@@ -48,7 +42,8 @@ def test_irrationals_next_to_every_kind_of_breakpoint(N, e):
     for bp in points:
         for sign in (1, -1):
             p = R(bp.numerator, bp.denominator) * (1 + sign * sympy.sqrt(3) / 10**e)
-            assert symhx.modes(N, p) == _reference(N, p, e + 40), (N, e, bp, sign)
+            assert symhx.modes(N, p) \
+                == decided(lambda fr: brute_modes(N, fr), p, e + 40), (N, e, bp, sign)
 
 
 def test_a_true_tie_at_an_irrational_is_refused_clearly():
@@ -64,7 +59,8 @@ def test_a_true_tie_at_an_irrational_is_refused_clearly():
     # either side of the tie is decided, as the reference says
     for sign in (1, -1):
         q = p * (1 + sign * sympy.pi / 10**90)
-        assert symhx.modes(9, q) == _reference(9, q) == ((4,) if sign > 0 else (1,))
+        assert symhx.modes(9, q) \
+            == decided(lambda fr: brute_modes(9, fr), q) == ((4,) if sign > 0 else (1,))
 
 
 def test_a_rational_written_irrationally_at_a_tie_is_refused():
@@ -102,5 +98,6 @@ def test_huge_N_next_to_a_step_of_the_mode(N):
 
 def test_p_far_below_or_above_the_jump():
     assert symhx.modes(10**100, sympy.pi / 10**110) == (1,)
-    assert symhx.modes(101, sympy.sqrt(2) / 50) == _reference(101, sympy.sqrt(2) / 50)
-    assert symhx.modes(5, sympy.E) == _reference(5, sympy.E)
+    assert symhx.modes(101, sympy.sqrt(2) / 50) \
+        == decided(lambda fr: brute_modes(101, fr), sympy.sqrt(2) / 50)
+    assert symhx.modes(5, sympy.E) == decided(lambda fr: brute_modes(5, fr), sympy.E)

@@ -16,7 +16,7 @@ from symhx.sites import SiteClasses
 from symhx.spaces import parse_space
 from tests.harness.errors import assert_refuses
 from tests.reference.mp import assert_mp_close
-from tests.reference.sites import brute_weights, expand, mode_weights
+from tests.reference.sites import brute_weights, expand, mode_weights, site_pmf
 
 CASES = [((2, 99), (Fraction(1, 100), Fraction(1, 50))),
          ((3, 5, 4), (Fraction(1, 2), Fraction(1, 9), Fraction(3))),
@@ -29,17 +29,11 @@ def _mp(x):
         return mpmath.mpf(x.numerator) / x.denominator
 
 
-def _ref_pmf(sizes, probs):
-    w = mode_weights(sizes, probs)
-    g = sum(w)
-    return [x / g for x in w]
-
-
 @pytest.mark.parametrize("sizes, probs", CASES)
 def test_exact_distribution_equals_the_class_convolution(sizes, probs):
     N = sum(sizes)
     d = SitesDistribution(N, SiteClasses(sizes, probs))
-    ref = _ref_pmf(sizes, probs)
+    ref = site_pmf(sizes, probs)
     assert d.exact and [d.pmf(k) for k in range(1, N + 1)] == ref
     mean = sum(k * p for k, p in enumerate(ref, 1))
     assert d.mean() == mean

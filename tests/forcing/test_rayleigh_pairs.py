@@ -15,29 +15,12 @@ import numpy as np
 import pytest
 
 from symhx.forcing import RayleighSum
-from tests.reference.forcing import log_pair_sf, pair_pdf, pair_tail
+from tests.reference.forcing import pair_pdf, pair_tail, pair_value
 
 EPS = float(np.finfo(float).eps)
 
 #: unequal and equal pairs, a spread of 40
 PAIRS = [(1.0, 1.0), (1.0, 0.3), (2.0, 0.05)]
-
-
-def _ref(a: float, b: float, x: float, kind: str) -> mpmath.mpf:
-    """The independent closed form at 40 digits (the log of the upper tail without exp(-E),
-    the log of the lower tail as log1p of minus the upper tail above the median)."""
-    with mpmath.workdps(40):
-        xm, am, bm = mpmath.mpf(x), mpmath.mpf(a), mpmath.mpf(b)
-        if kind == "sf":
-            return pair_tail(xm, am, bm, True)
-        if kind == "cdf":
-            return pair_tail(xm, am, bm, False)
-        if kind == "pdf":
-            return pair_pdf(xm, am, bm)
-        if kind == "logsf":
-            return log_pair_sf(xm, am, bm)
-        sf = pair_tail(xm, am, bm, True)
-        return mpmath.log1p(-sf) if sf < 0.5 else mpmath.log(pair_tail(xm, am, bm, False))
 
 
 def _grid(a: float, b: float) -> np.ndarray:
@@ -59,7 +42,7 @@ def test_pair_float64_is_the_closed_form_on_both_sides_of_the_median(a, b, kind)
     assert got.shape == x.shape
     var = a * a + b * b
     for xi, g in zip(x, got, strict=True):
-        ref = _ref(a, b, float(xi), kind)
+        ref = pair_value(a, b, float(xi), kind)
         big_e = xi * xi / (2 * var)
         with mpmath.workdps(40):
             err = abs(mpmath.mpf(float(g)) - ref)
@@ -77,13 +60,13 @@ def test_pair_float64_logs_keep_relative_accuracy_in_both_far_tails(a, b):
     S = RayleighSum([a, b])
     sd = math.hypot(a, b)
     for x in (10.0 * sd, 14.0 * sd):
-        ref = _ref(a, b, x, "sf")
+        ref = pair_value(a, b, x, "sf")
         assert ref < 1e-17
         got = S.logcdf(x)
         assert got < 0
         assert abs(got + float(ref)) <= 1e-12 * float(ref), (x, got, float(ref))
     x = 1e-3 * min(a, b)
-    ref = _ref(a, b, x, "cdf")
+    ref = pair_value(a, b, x, "cdf")
     assert ref < 1e-12
     got = S.logsf(x)
     assert abs(got + float(ref)) <= 1e-12 * float(ref), (x, got, float(ref))
@@ -98,7 +81,7 @@ def test_pair_float64_error_estimate_covers_the_error_and_is_never_zero(a, b, ta
     kind = "sf" if tail == "upper" else "cdf"
     for x in _grid(a, b)[1:8]:
         res = S.probability(float(x), tail=tail)
-        ref = _ref(a, b, float(x), kind)
+        ref = pair_value(a, b, float(x), kind)
         with mpmath.workdps(40):
             true = abs(mpmath.mpf(res.value) - ref)
         assert res.error > 0, (tail, x)

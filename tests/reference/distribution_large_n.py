@@ -84,6 +84,17 @@ def log_phi(N: int, p: Fraction, k: int, dps: int) -> mpmath.mpf:
         return k * lp + mpmath.loggamma(N + 1) - mpmath.loggamma(N - k + 1) - mpmath.log(k)
 
 
+def log_phi_ratio(N: int, p: Fraction | float, x: mpmath.mpf | int, c: int,
+                 digits: int | None = None) -> mpmath.mpf:
+    """``log Phi(x) - log Phi(c)`` for a real ``x`` (``0 < x < N + 1``) from mpmath's loggamma
+    at ``digits`` (default ``2 digits(N) + 80``) digits: the direct form, whose parts of size
+    ``N log N`` cancel (not the saddle-point or Stirling forms of symhx)."""
+    with mpmath.workdps(digits or 2 * len(str(N)) + 80):
+        pm = _mp(p) if isinstance(p, Fraction) else mpmath.mpf(p)
+        return (x - c) * mpmath.log(pm) + mpmath.loggamma(N + 1 - c) \
+            - mpmath.loggamma(N + 1 - x) - mpmath.log(mpmath.mpf(x) / c)
+
+
 def log_lower_sum_geometric(N: int, p: Fraction, k: int, dps: int) -> mpmath.mpf:
     """``log sum_{j <= k} Phi(j)`` for a ``k`` on the increasing stretch where the ratio
     ``Phi(j+1)/Phi(j) = p (N - j) j/(j + 1)`` stays well above 1 (``N p >= 2``, ``k`` far

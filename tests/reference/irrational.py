@@ -14,7 +14,7 @@ from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
-__all__ = ["bracket", "decided_at_both_ends"]
+__all__ = ["bracket", "decided", "decided_at_both_ends", "sympy_value"]
 
 
 def bracket(expr: Any, digits: int = 200) -> tuple[Fraction, Fraction]:
@@ -36,3 +36,21 @@ def decided_at_both_ends(decide: Callable[[Fraction], Any], expr: Any,
     lo, hi = bracket(expr, digits)
     a, b = decide(lo), decide(hi)
     return a if a == b else None
+
+
+def decided(decide: Callable[[Fraction], Any], expr: Any, digits: int = 200) -> Any:
+    """:func:`decided_at_both_ends`, asserting that the bracket is narrow enough to decide."""
+    want = decided_at_both_ends(decide, expr, digits)
+    assert want is not None, "the reference bracket is too wide for this p"
+    return want
+
+
+def sympy_value(expr: Any, bits: int) -> Any:
+    """sympy's own evaluation of ``expr`` (``N``) at three times the digits of ``bits``, as an
+    mpf of that precision."""
+    import mpmath
+    import sympy
+
+    digits = int(bits * 0.3) * 3 + 30
+    with mpmath.workdps(digits):
+        return mpmath.mpf(sympy.N(expr, digits))

@@ -104,6 +104,25 @@ def direction_c(w: tuple[Fraction, ...], k: int) -> Fraction:
     return elementary(w, 1) / simple_weight(w, k)
 
 
+def direction_argmins(w: tuple[Fraction, ...]) -> tuple[int, ...]:
+    """Every argmin of ``c_k`` (:func:`direction_c`), compared exactly: ``c_j <= c_k`` iff
+    ``(c_j**(j-1))**(k-1) <= (c_k**(k-1))**(j-1)``."""
+    N = len(w)
+    powers = {k: direction_c(w, k) for k in range(2, N + 1)}
+
+    def le(j: int, k: int) -> bool:
+        return powers[j] ** (k - 1) <= powers[k] ** (j - 1)
+
+    return tuple(k for k in powers if all(le(k, j) for j in powers))
+
+
+def site_pmf(sizes: tuple[int, ...], probs: tuple[Fraction, ...]) -> list[Fraction]:
+    """``P(X = k)``, k = 1..N, exactly from the class convolution :func:`mode_weights`."""
+    w = mode_weights(sizes, probs)
+    g = sum(w)
+    return [x / g for x in w]
+
+
 def mode_weights(sizes: tuple[int, ...], probs: tuple[Fraction, ...]) -> list[Fraction]:
     """``W(k)``, ``k = 1..N``, of the simple space for classes, from the class convolution
     ``e_k = sum prod C(n_i, k_i) q_i**k_i`` written out over compositions of k."""

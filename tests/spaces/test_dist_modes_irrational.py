@@ -14,16 +14,10 @@ import sympy
 import symhx
 from symhx.certify import UndecidedError
 from symhx.validation import mpf_to_fraction
-from tests.reference.irrational import decided_at_both_ends
+from tests.reference.irrational import decided
 from tests.reference.spaces import argmax, space_weights
 
 N = 40
-
-
-def _reference(p: sympy.Expr, space: str, digits: int) -> tuple[int, ...]:
-    want = decided_at_both_ends(lambda fr: argmax(N, space, fr), p, digits)
-    assert want is not None, "the reference bracket is too wide for this p"
-    return want
 
 
 def _distinct_jump(space: str) -> tuple[int, sympy.Expr]:
@@ -45,7 +39,8 @@ def test_the_jump_written_exactly_is_a_tie_refused_clearly(space):
     assert f"(1, {k})" in str(info.value) and "exact rational" in str(info.value)
     for sign, want in ((1, (k,)), (-1, (1,))):
         p = pc * (1 + sign * sympy.sqrt(2) / 10**60)
-        assert symhx.modes(N, p, space=space) == _reference(p, space, 100) == want
+        assert symhx.modes(N, p, space=space) \
+            == decided(lambda fr: argmax(N, space, fr), p, 100) == want
 
 
 @pytest.mark.parametrize("space", ["eq41", "excess<=2", "eq41;distinct"])
@@ -59,13 +54,14 @@ def test_next_to_the_jump_beyond_sixty_digits(space, e):
     for sign in (1, -1):
         p = base * (1 + sign * sympy.pi / 10**e)
         got = symhx.modes(N, p, space=space)
-        assert got == _reference(p, space, e + 40), (space, e, sign)
+        assert got == decided(lambda fr: argmax(N, space, fr), p, e + 40), (space, e, sign)
         assert got == ((cp.k_after,) if sign > 0 else (1,))
 
 
 def test_the_distribution_object_and_the_float_seed_at_an_irrational():
     p = sympy.sqrt(2) / 40
     d = symhx.distribution_of(N, p, space="eq41", dps=30)
-    assert d.modes() == _reference(p, "eq41", 60) == symhx.spaces.modes(N, p, space="eq41")
+    want = decided(lambda fr: argmax(N, "eq41", fr), p, 60)
+    assert d.modes() == want == symhx.spaces.modes(N, p, space="eq41")
     with pytest.raises(ValueError, match="irrational"):
         d.weight_exact(3)  # no exact value exists (it was a 60-digit rational)

@@ -24,7 +24,9 @@ The tests (issue 26; see ``book/testing.md``):
 * error tests check the argument's name, value and the allowed range (``tests.harness.errors.
   assert_refuses``), never a whole sentence: no ``match=`` anchored with ``^`` or ``$``;
 * test names say what they pin, not how it was found (no ``mut``, ``survivor``, ``roundN``,
-  ``audit``); no data files in ``tests/`` but the mutation report and reference data.
+  ``audit``); no data files in ``tests/`` but the mutation report and reference data;
+* independent references are written once, in ``tests/reference/``: no ``_ref*`` /
+  ``_reference*`` function elsewhere.
 
 Violations in modules owned by other engineers are listed in ``KNOWN_*`` below so that the test
 guards against *new* ones; delete an entry when it is fixed (the test then keeps it fixed).  The
@@ -416,6 +418,24 @@ def test_tests_hold_no_data_files_but_the_mutation_report_and_references() -> No
                    p.parts and p.name not in DATA_FILES
                    and _folder(p.relative_to(ROOT)) not in SHARED_FOLDERS)
     assert extra == [], f"records or data in tests/ (a failure belongs in a test): {extra}"
+
+
+#: the names of a private reference helper (``_ref``, ``_ref_pmf``, ``_reference``)
+REFERENCE_HELPER = re.compile(r"^_ref(?:erence)?(?:_|$)")
+
+
+def test_references_live_only_in_the_reference_package() -> None:
+    """An independent reference is written once, in ``tests/reference/``: no test file
+    defines its own ``_ref*`` / ``_reference*`` function."""
+    bad = []
+    for f in _checked():
+        if _folder(f) == "reference":
+            continue
+        for node in ast.walk(_parse(f)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and \
+                    REFERENCE_HELPER.match(node.name):
+                bad.append(f"{f}:{node.lineno} {node.name}")
+    assert bad == [], f"references outside tests/reference/: {bad}"
 
 
 def test_test_names_say_what_they_pin_not_how_they_were_found() -> None:
