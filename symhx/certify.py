@@ -83,17 +83,20 @@ class UndecidedError(ArithmeticError):
 
 
 @contextmanager
-def arb_prec(bits: int) -> Iterator[None]:
-    """Set flint's working precision to ``bits`` for the block (restored on exit), holding
-    :data:`ARB_LOCK` (process-wide, re-entrant) until the block ends: Arb sections of different
-    threads are serialized, so none runs at another's precision."""
+def arb_prec(bits: int, cap: int | None = None) -> Iterator[None]:
+    """Set flint's working precision to ``bits`` (and, given ``cap``, the length to which
+    power series are truncated: flint's default is 10 terms) for the block (restored on exit),
+    holding :data:`ARB_LOCK` (process-wide, re-entrant) until the block ends: Arb sections of
+    different threads are serialized, so none runs at another's precision."""
     with ARB_LOCK:
-        old = ctx.prec
+        old, old_cap = ctx.prec, ctx.cap
         ctx.prec = int(bits)
+        if cap is not None:
+            ctx.cap = int(cap)
         try:
             yield
         finally:
-            ctx.prec = old
+            ctx.prec, ctx.cap = old, old_cap
 
 
 def _mpf_tuple_to_arb(t: tuple) -> arb:

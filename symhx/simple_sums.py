@@ -29,16 +29,20 @@ Algorithm (one pass, for ``sum_{k=A}^{B} f(k) w(k)`` with ``w`` in ``1, k - c, (
    below ``10**-(dps+guard) e**-10`` of the largest term: near ``p_c`` at ``N = 10**100`` the
    head holds ``10**50`` terms of ``e**-358`` of the hump's top.  Runs that touch are merged.
 2. *Short runs* (at most ``direct_terms`` terms) are summed term by term with the exact ratio
-   ``Phi(k+1)/Phi(k) = p (N-k) k/(k+1)``.
-3. *Long runs* ``[A, B]``: the first ``K0 - A`` terms (``K0 = 4 (dps + guard)``) directly, then
+   ``Phi(k+1)/Phi(k) = p (N-k) k/(k+1)``, in fixed-point integers (the largest term of the run
+   at ``2**P``, ``P`` the working bits plus twice those of the run's length).
+3. *Long runs* ``[A, B]``: the first ``K0 - A`` terms (``K0 = 16 (dps + guard)``) directly, then
    Euler-Maclaurin on ``[K0, B]``: the integral by Gauss-Legendre panels (in ``s = log x`` near
    the pole of ``f`` at 0, in ``x`` elsewhere), each panel's node count chosen from its
    Bernstein-ellipse bound ``(64/15) l M rho**(-2n)/(rho**2 - 1)`` with ``M`` from the two facts
-   above (panels that need more than 256 nodes are halved), and the endpoint corrections from the
-   Taylor coefficients of ``D`` (``psi`` and its derivatives, ``1/x**n``).  The remainder is
-   bounded by Cauchy's estimate on discs of radius ``r`` (``r = x/2`` near 0, about ``sqrt(2)
-   sigma`` in the hump): ``|R_M| <= sum_panels 2 zeta(2M) (2M)!/(2 pi r)**(2M) max|F| (B - A)``;
-   ``M`` is the smallest that makes it negligible.
+   above (panels that need more than 1024 nodes are halved), and the endpoint corrections
+   from the Taylor coefficients of ``D`` (``psi`` and its derivatives from Arb's power series
+   of ``lgamma``, each to the working precision relative to itself, and ``1/x**n``); an end
+   whose terms are provably negligible by Cauchy's estimate on a disc around it (a run cut at
+   a level) gets none.  The remainder is bounded by Cauchy's estimate on discs of radius
+   ``r`` (``r = x/2`` near 0, about ``sqrt(2) sigma`` in the hump): ``|R_M| <= sum_panels
+   2 zeta(2M) (2M)!/(2 pi r)**(2M) max|F| (B - A)``; ``M`` is the smallest that makes it
+   negligible.
 4. *Arithmetic.*  The integrand at the quadrature nodes and ``log g`` in the panel bounds are
    evaluated in Arb ball arithmetic (``lgamma``/``digamma`` of python-flint, C speed) at the
    working precision plus the bits of ``N log N`` (the parts of ``log Phi`` that cancel); the
@@ -388,28 +392,42 @@ class SimpleSums:
         if d0 is None:
             d0 = x0 - self.c
         out = [self.D(x0, d0), self.dD(x0, d0)]
-        v = ctx.mpf(self.u - d0)
+        if order < 2:
+            return out
+        v = self.u - d0
+        lg = self._lgamma_series(v if isinstance(v, int) else ctx.mpf(v), order)
         x0 = ctx.mpf(x0)
+        xp = x0
         for n in range(2, order + 1):
-            m = n - 1  # psi^(m)(v)
-            if v >= STIRLING_MIN:
-                # (-1)**(m+1) [(m-1)!/v**m + m!/(2 v**(m+1)) + sum B_2k (2k+m-1)!/((2k)! v**(2k+m))]
-                s = ctx.factorial(m - 1) / v**m + ctx.factorial(m) / (2 * v ** (m + 1))
-                vi2 = 1 / (v * v)
-                power = 1 / v**m
-                for k in range(1, 200):
-                    power *= vi2
-                    term = ctx.bernoulli(2 * k) * ctx.factorial(2 * k + m - 1) / \
-                        ctx.factorial(2 * k) * power
-                    s += term
-                    if abs(term) <= ctx.eps * abs(s):
-                        break
-                psim = s if m % 2 == 1 else -s
-            else:
-                psim = ctx.psi(m, v)
+            xp *= x0
             sign = 1 if n % 2 == 0 else -1
-            out.append(sign * (-psim / ctx.factorial(n) + 1 / (n * x0**n)))
+            out.append(lg[n - 2] + sign / (n * xp))
         return out
+
+    def _lgamma_series(self, v: Any, order: int) -> list[Any]:
+        """The coefficients ``n = 2..order`` of the power series of ``-lgamma(v - t)``
+        (``-psi^(n-1)(v)/n!`` up to sign), each to the working precision *relative to
+        itself*: Arb's power series of ``lgamma`` carry absolute errors of the size of
+        ``lgamma(v)``, so the precision is raised by the bits that cost until every ball is
+        narrow enough (``~ n log2 v`` bits for the last one)."""
+        from flint import arb_series
+
+        ctx = mp()
+        bits = ctx.prec + 20
+        for _ in range(8):
+            with arb_prec(bits, cap=order + 1):
+                coeffs = (-arb_series([to_arb(v), -1], prec=order + 1).lgamma()).coeffs()
+                lost = 0
+                for b in coeffs[2:order + 1]:
+                    if b.rad() > 0:  # bits short of a radius below 2**-(prec + 8) of the value
+                        mid, rad = _from_ball(ctx, b.mid()), _from_ball(ctx, b.rad())
+                        lost = max(lost, ctx.mag(rad) - ctx.mag(mid) + ctx.prec + 8
+                                   if mid else bits)
+                if lost <= 0:
+                    return [_from_ball(ctx, b) for b in coeffs[2:order + 1]]
+            bits += lost + 32
+        raise ArithmeticError("the power series of lgamma did not reach the working "
+                              "precision")  # pragma: no cover - safety net
 
     def log_phi_ref(self) -> Any:
         """``log Phi(c)`` at the current precision (``c`` the reference index)."""
@@ -764,7 +782,16 @@ class SimpleSums:
         """``sum_{k=A}^{B} f(k) w_j(k)`` term by term (exact ratio recurrence); with ``limit``,
         the sum goes on past ``B`` (up to ``limit``) while a weighted term still counts at the
         working precision against its own sum (a point mass at ``k = 1`` has its variance in
-        the terms the plain cut drops)."""
+        the terms the plain cut drops).  Without the weight ``D`` the terms are walked in
+        integers (:meth:`_direct_fixed`)."""
+        if 3 not in kinds:
+            return self._direct_fixed(A, B, kinds, limit)
+        return self._direct_mpf(A, B, kinds, limit)
+
+    def _direct_mpf(self, A: int, B: int, kinds: tuple[int, ...], limit: int | None = None
+                    ) -> list[Any]:
+        """:meth:`_direct` in mpf arithmetic (every term to the working precision relative to
+        itself)."""
         ctx = mp()
         N, c = self.N, self.c
         sums = [ctx.mpf(0) for _ in kinds]
@@ -797,6 +824,76 @@ class SimpleSums:
             f = f * p * (N - k) * k / (k + 1)
             k += 1
         return sums
+
+    def _direct_fixed(self, A: int, B: int, kinds: tuple[int, ...], limit: int | None = None
+                      ) -> list[Any]:
+        """:meth:`_direct` for the weights ``1, k - c, (k - c)**2`` in fixed point: the terms as
+        integers, the largest of ``[A, B]`` at about ``2**P``, each the last one times
+        ``a (N - k) k`` floor-divided by ``b (k + 1)`` (``p = a/b``), the sums in integers.
+        ``P`` is the working bits, plus the bits by which the terms grow from ``A`` to their
+        largest (so the first term has the working bits too: floor errors grow with the
+        terms), plus twice the bits of the number of terms, plus 20; each floor loses one unit
+        and carries it on in proportion, so a sum errs by at most ``n**2`` units times its
+        largest weight.  A weighted sum whose value is not far above that (a point mass at
+        ``k = c``, whose spread lives in terms ``1e-300`` of it) is redone in mpf."""
+        ctx = mp()
+        N, c, a, b = self.N, self.c, self.a, self.b
+        span = (B if limit is None else max(B, limit)) - A + 1
+        lfA = self.D(A)
+        P = ctx.prec + 2 * max(span, 1).bit_length() + 20
+        with ctx.workprec(64 + self.abs_bits(A, B)):
+            lmax = self.log_max(A, B)
+            P += max(0, int(ctx.ceil((lmax - lfA) / ctx.ln2)))  # the terms' growth from A
+            shift = P - int(ctx.floor(lmax / ctx.ln2))
+        F = int(ctx.ldexp(ctx.exp(lfA), shift))
+        sums = [0 for _ in kinds]
+        k = A
+        dmax = 0
+        while True:
+            if k > B:
+                if limit is None or k > limit or F == 0:
+                    break
+                d = k - c
+                ws = (1, abs(d), d * d)
+                if not any(F * ws[j] > abs(sums[i]) >> ctx.prec for i, j in enumerate(kinds)):
+                    break
+            d = k - c
+            dmax = max(dmax, abs(d))
+            for i, j in enumerate(kinds):
+                if j == 0:
+                    sums[i] += F
+                elif j == 1:
+                    sums[i] += F * d
+                else:
+                    sums[i] += F * d * d
+            F = F * (a * (N - k) * k) // (b * (k + 1))
+            k += 1
+        n = k - A + 1
+        for i, j in enumerate(kinds):
+            if (n * n * max(dmax, 1) ** j) << ctx.prec > abs(sums[i]):
+                return self._direct_mpf(A, B, kinds, limit)
+        return [ctx.ldexp(ctx.mpf(v), -shift) for v in sums]
+
+    def _negligible_end(self, x0: int, lr: float, M: int, kinds: tuple[int, ...],
+                        targets: list[Any]) -> bool:
+        """Whether the Euler-Maclaurin terms at the end ``x0``, ``F(x0)/2 + sum_{m<=M}
+        B_2m/(2m)! F^(2m-1)(x0)`` with ``F = f w_j``, are below ``exp(targets[j])``: by
+        Cauchy's estimate on the disc of radius ``r = exp(lr)`` they are at most ``max|F|``
+        there times ``1/2 + sum_m r 2 zeta(2m) (2m)!/((2 pi r)**(2m) 2m)``, and ``max|F|``
+        is :meth:`_log_bound` of the square around the disc.  An end at a level cut
+        (``e**-171`` of the top at ``N = 10**6``) needs no Taylor series."""
+        if lr < 0:
+            return False
+        ctx = mp()
+        with ctx.workprec(64 + self.abs_bits(x0, x0)):
+            r = ctx.exp(lr)
+            bounds = self._log_bound("x", ctx.mpf(x0 - self.c), r, ctx.mpf(1), ctx.mpf(1),
+                                     kinds)
+            if bounds is None:
+                return False
+            fac = math.log(0.5 + sum(math.exp(lr + em_remainder_factor(m, lr)) / (2 * m)
+                                     for m in range(1, M + 1)))
+            return all(float(bv - t) + fac < 0 for bv, t in zip(bounds, targets, strict=True))
 
     def _lower(self, A: int, B: int) -> Any:
         """A proved lower bound of ``log sum_{k=A}^{B} f(k)`` (``A <= B``)."""
@@ -844,7 +941,7 @@ class SimpleSums:
                  ) -> list[Any]:
         if B - A + 1 <= self.direct_terms:
             return self._direct(A, B, kinds, limit)
-        K0 = max(A, 4 * self.R)
+        K0 = max(A, 16 * self.R)
         ctx = mp()
         rmin = 0.45 * self.R + 3  # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
         with ctx.workprec(64):
@@ -930,7 +1027,7 @@ class SimpleSums:
         return out
 
     def _em(self, A: int, B: int, kinds: tuple[int, ...]) -> list[Any]:
-        """Euler-Maclaurin on ``[A, B]`` (``A >= 4 (dps + guard)``, f smooth on the scale of A)."""
+        """Euler-Maclaurin on ``[A, B]`` (``A >= 16 (dps + guard)``, f smooth on the scale of A)."""
         ctx = mp()
         eps_log = -(self.R * _LN10) - 3
         lowprec = 128 + self.abs_bits(A, B)  # bounds need D to absolute accuracy
@@ -993,6 +1090,9 @@ class SimpleSums:
             Mx = 1
             while em_remainder_factor(Mx, float(lr0)) > eps_log - 5 and Mx < M:
                 Mx += 1
+            if self._negligible_end(x0, float(lr0) - math.log(4), Mx, kinds,
+                                    [eps_log + low + sc - math.log(4) for sc in scales]):
+                continue
             order = 2 * Mx
             tc = self.taylor(x0, order)
             f0 = ctx.exp(tc[0])

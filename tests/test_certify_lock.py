@@ -51,3 +51,16 @@ def test_blocks_nest_and_restore_the_precision_on_errors():
     assert flint.ctx.prec == before
     assert ARB_LOCK.acquire(blocking=False)  # not left held
     ARB_LOCK.release()
+
+
+def test_arb_prec_sets_the_series_length_for_the_block_only():
+    """flint truncates power series at ``ctx.cap`` terms (10 by default, silently): a block
+    that asks for 30 coefficients gets them, and the length is restored after it."""
+    from flint import arb_series
+
+    before = flint.ctx.cap
+    with arb_prec(128, cap=31):
+        assert len(arb_series([1, 1], prec=31).exp().coeffs()) == 31
+    assert flint.ctx.cap == before
+    with arb_prec(128):
+        assert flint.ctx.cap == before

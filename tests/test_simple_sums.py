@@ -151,3 +151,40 @@ def test_extra_working_digits_do_not_move_the_cuts() -> None:
     # terms grow by ~N p = 4 per step: the run holds (R ln 10 + ln 10**50 + 10)/ln 4 terms
     want = (a.R * math.log(10) + 50 * math.log(10) + 10) / math.log(4)
     assert hi == 10**50 and abs((hi - lo + 1) - want) < 3
+
+
+@pytest.mark.parametrize("v", [1, 2, 7, 20, 10**4, 10**6, 10**100])
+def test_taylor_coefficients_of_lgamma_against_polygamma(v: int) -> None:
+    """The coefficients of -lgamma(v - t) are -(-1)**n psi^(n-1)(v)/n!, each to the working
+    precision relative to itself (Arb's series carry absolute errors of lgamma(v)'s size:
+    the last coefficient is 10**-4000 of it at v = 10**100)."""
+    s = SimpleSums(10**6, Fraction(2, 10**6), 40, 500000)
+    ctx = mp()
+    with ctx.workdps(s.W):
+        got = s._lgamma_series(v, 40)
+    with mpmath.workdps(s.W + 20):
+        for n, g in enumerate(got, 2):
+            want = -(-1) ** n * mpmath.polygamma(n - 1, v) / mpmath.factorial(n)
+            assert abs(mpmath.mpf(g) - want) <= abs(want) * mpmath.mpf(10) ** (2 - s.W), n
+
+
+@pytest.mark.parametrize(("N", "p"), [(10**6, Fraction(1, 10**12)), (10**4, Fraction(1, 10**3)),
+                                      (2, Fraction(3, 5)), (10**5, Fraction(3, 2))])
+def test_short_runs_in_integers_match_every_term(N: int, p: Fraction) -> None:
+    """Runs up to direct_terms long are walked in fixed-point integers: the moments of a point
+    mass at k = 1 (its variance lives in the terms past the plain cut), of a head, of N = 2
+    and of a mass at k = N, against mpmath adding every term (head_sums / direct_sums)."""
+    import symhx
+    from tests.reference.distribution_large_n import direct_sums, head_sums
+
+    top = symhx.mode(N, p)
+    s = SimpleSums(N, p, 30, top if top > 1 else None)
+    ctx = mp()
+    with ctx.workdps(s.W):
+        s0, s1, s2 = s.sums(1, N, (0, 1, 2))
+        mean = s.c + s1 / s0
+        var = s2 / s0 - (s1 / s0) ** 2
+    ref = head_sums(N, p, 60, 400) if N > 10**5 else direct_sums(N, p, 60)
+    with mpmath.workdps(60):
+        assert abs(mpmath.mpf(mean) / ref[1] - 1) < mpmath.mpf(10) ** -30
+        assert abs(mpmath.mpf(var) / ref[2] - 1) < mpmath.mpf(10) ** -29

@@ -105,3 +105,21 @@ def test_a_cold_entropy_is_one_pass_and_a_cold_pmf_needs_no_moments(monkeypatch)
     assert calls == [(1, N, (0,))]
     d.cdf(10**10)  # far in the left tail (more working digits): a partial sum, normalised
     assert calls[1:] == [(1, 10**10, (0,))]
+
+
+def test_a_hump_cut_at_its_levels_needs_no_taylor_series_at_its_ends(monkeypatch) -> None:
+    """The Euler-Maclaurin terms at a hump's ends (cut at e**-171 of its top at N = 10**6)
+    are bounded by Cauchy's estimate and dropped: the moments' pass computes one Taylor series,
+    of order 2, for the hump's width."""
+    N = 10**6
+    _forget()
+    orders: list[int] = []
+    orig = SimpleSums.taylor
+
+    def counted(self, x0, order, d0=None):
+        orders.append(order)
+        return orig(self, x0, order, d0)
+
+    monkeypatch.setattr(SimpleSums, "taylor", counted)
+    symhx.mean(N, mpmath.mpf(4) / N, dps=50)
+    assert orders == [2]
