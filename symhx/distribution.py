@@ -892,7 +892,7 @@ class SimpleDistribution(Distribution):
             return self._exact_moments[0]
         ctx = mp()
         with ctx.workdps(self._engine().W):
-            return self._round(ctx.exp(local(self._mp_moments[0])))
+            return self._round(ctx.exp(local(self._mp_log_gamma)))
 
     @property
     def log_normaliser(self) -> Any:
@@ -903,7 +903,19 @@ class SimpleDistribution(Distribution):
             return float(self._ftab["lognorm"])
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
-        return self._round(self._mp_moments[0])
+        return self._round(self._mp_log_gamma)
+
+    @property
+    def _mp_log_gamma(self) -> Any:
+        """``log Gamma = log Phi(c) + log S0`` (global mpf, the engine's digits): from the
+        moments' pass if it ran, else from the normaliser's pass of weight 1."""
+        if "_mp_moments" in self.__dict__:
+            return self._mp_moments[0]
+        eng = self._engine()
+        ls0 = self._mp_norm[1]
+        ctx = mp()
+        with ctx.workdps(eng.W):
+            return export(eng.log_phi_ref() + local(ls0))
 
     def modes(self) -> tuple[int, ...]:
         """All maximisers of ``P(X = k)``, increasing (exact for rational ``p``).

@@ -123,3 +123,16 @@ def test_a_hump_cut_at_its_levels_needs_no_taylor_series_at_its_ends(monkeypatch
     monkeypatch.setattr(SimpleSums, "taylor", counted)
     symhx.mean(N, mpmath.mpf(4) / N, dps=50)
     assert orders == [2]
+
+
+def test_a_cold_normaliser_is_a_pass_of_weight_one(monkeypatch) -> None:
+    """log Gamma = log Phi(c) + log S0 needs S0 alone; the value equals the moments' one."""
+    N, p = 10**40, mpmath.mpf(3) * 10**-39
+    _forget()
+    calls = _count_kinds(monkeypatch)
+    lg = symhx.distribution_of(N, p, dps=30).log_normaliser
+    assert calls == [(1, N, (0,))]
+    _forget()
+    d = symhx.distribution_of(N, p, dps=30)
+    d.mean()
+    assert d.log_normaliser == lg
