@@ -62,4 +62,10 @@ def space_style(space: str, i: int) -> dict[str, Any]:
     if space == "eq41-printed":
         return {"color": "C3", "ls": "--", "lw": 1.2, "marker": "o", "ms": 3, "mfc": "none",
                 "zorder": 3}
-    return {"color": f"C{(i + 4) % 10}", "ls": "-.", "lw": 1.2, "zorder": 2}
+    # the other spaces cycle through the colours the three above do not use (C7, C8, C9 for
+    # the 4th to 6th space of the paper's figure, as before)
+    return {"color": _OTHER_COLOURS[(i - 3) % len(_OTHER_COLOURS)], "ls": "-.", "lw": 1.2,
+            "zorder": 2}
+
+
+_OTHER_COLOURS = ("C7", "C8", "C9", "C2", "C4", "C5", "C6")
