@@ -94,6 +94,7 @@ from symhx.certify import (
     real_ball,
     to_arb,
 )
+from symhx.float_sums import FloatSums
 from symhx.float_terms import log_phi_diff
 from symhx.simple_sums import SimpleSums
 from symhx.validation import (
@@ -940,11 +941,22 @@ class SimpleDistribution(Distribution):
             lv = log_phi_diff(self.N, c, lpx, ks) - ls0
             out[inside] = np.exp(lv) if name == "pmf" else lv
             return out
-        eng = self._float_engine
-        uniq, inv = np.unique(ks, return_inverse=True)
-        vals = np.array([float(getattr(eng, name)(int(v))) for v in uniq])
-        out[inside] = vals[inv.reshape(-1)]
+        lo, up = self._float_sums.log_tails(ks)
+        tot = np.logaddexp(lo, up)
+        with np.errstate(divide="ignore"):  # near log = 0: -log1p of the other tail's ratio
+            logcdf = np.where(lo >= up, -np.log1p(np.exp(up - lo)), lo - tot)
+            logsf = np.where(up >= lo, -np.log1p(np.exp(lo - up)), up - tot)
+        val = {"cdf": np.exp(logcdf), "sf": np.exp(logsf), "logcdf": logcdf,
+               "logsf": logsf}[name]
+        out[inside] = val
         return out
+
+    @cached_property
+    def _float_sums(self) -> FloatSums:
+        """The float64 partial sums beyond ``FLOAT_N_LIMIT`` (:mod:`symhx.float_sums`),
+        relative to the engine's reference ``c``."""
+        c, lpx, _ = self._float_reference
+        return FloatSums(self.N, self._float_engine._fr_work, c, lpx)
 
     @cached_property
     def _float_reference(self) -> tuple[int, float, float]:
