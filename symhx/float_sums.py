@@ -52,6 +52,7 @@ True
 from __future__ import annotations
 
 import bisect
+import itertools
 import math
 from fractions import Fraction
 from typing import Any
@@ -112,6 +113,13 @@ def _turns(N: int, fr: Fraction) -> tuple[int, int]:
     return lo, hi + 1
 
 
+def _ln2_residual(E: int, shift: float) -> float:
+    """``E log 2 - shift`` for the float ``shift`` nearest ``E log 2`` (exact rational
+    arithmetic on a 40-digit ``log 2``)."""
+    ln2 = Fraction("0.6931471805599453094172321214581765680755")
+    return float(E * ln2 - Fraction(shift))
+
+
 class _Seg:
     """Points ``x = A + sigma s`` (``s >= 0`` a float) for one anchor ``A`` of ``0, c, N+1``."""
 
@@ -163,6 +171,16 @@ class FloatSums:
         self._segs = [_Seg(N, c, 0, 1), _Seg(N, c, c, -1), _Seg(N, c, c, 1),
                       _Seg(N, c, N + 1, -1)]
         self._seg_cuts = [(1, b1, 0), (b1, c, 1), (c, b3, 2), (b3, N, 3)]
+        # the sums are kept relative to Phi(c) 2**E (E ~ log2 of the hump's width), so that
+        # logs near the bulk are O(1) and keep ~1e-16 absolute (a log ~ 345 would keep 6e-14)
+        E = 0
+        if 1 < c < N:
+            curv = 1 / u + (0.5 / u) / u - (1 / c) / c  # -D''(c) ~ psi'(N + 1 - c) - 1/c**2
+            if curv > 0:
+                E = max(0, min(1000, round(math.log2(math.sqrt(2 * math.pi / curv)))))
+        self.E = E
+        self.shift = E * math.log(2)
+        self._rho = _ln2_residual(E, self.shift)
         self._build()
 
     # ------------------------------------------------------------------ evaluation of D
@@ -225,7 +243,8 @@ class FloatSums:
         lv = self._D(segs.ravel(), nodes.ravel()).reshape(nodes.shape)
         top = lv.max(axis=1)
         with np.errstate(divide="ignore"):
-            return top + np.log(np.abs(h[:, 0]) * (np.exp(lv - top[:, None]) @ _GL_W))
+            return top + np.log(np.ldexp(np.abs(h[:, 0]), -self.E)
+                                * (np.exp(lv - top[:, None]) @ _GL_W)) + self._rho
 
     # ------------------------------------------------------------------ the structure
     def _bisect(self, seg: np.ndarray, sa: np.ndarray, sb: np.ndarray,
@@ -255,7 +274,7 @@ class FloatSums:
             dmax = float(self._D(np.array([ts]), np.array([self._segs[ts].s_of(top)]))[0])
             self._run_max.append(dmax)
             pts = sorted({lo, hi, *(v for v in cuts if lo < v < hi)})
-            for a, b in zip(pts[:-1], pts[1:], strict=False):
+            for a, b in itertools.pairwise(pts):
                 si = next(i for l2, h2, i in self._seg_cuts if l2 <= a and b <= h2)
                 panels.extend(self._sub_panels(si, ri, a, b, dmax))
         self._make_items(panels)
@@ -269,7 +288,7 @@ class FloatSums:
         if hi_s == lo_s:
             return []
         da, db = self._D(np.array([si, si]), np.array([lo_s, hi_s]))
-        pts = [lo_s, hi_s]
+        cand = [lo_s, hi_s]
         levels = dmax - LEVEL_STEP * np.arange(1, int(COVER / LEVEL_STEP) + 2)
         inside = levels[(levels > min(da, db)) & (levels < max(da, db))]
         if inside.size:
@@ -280,14 +299,14 @@ class FloatSums:
             def fl(sg: np.ndarray, s: np.ndarray) -> np.ndarray:
                 return self._D(sg, s) - lv
 
-            pts += list(self._bisect(segs, np.full(n, lo_s), np.full(n, hi_s), fl))
+            cand += list(self._bisect(segs, np.full(n, lo_s), np.full(n, hi_s), fl))
         # powers of two of x and of N + 1 - x (no panel closer to 0 or N + 1 than its
         # length), and the edges x = 40, N + 1 - x = 40 of the direct sums
         marks = [1 << e for e in range(max(a.bit_length() - 1, 0), b.bit_length() + 1)]
         marks.append(int(_EDGE))
         ys = [self.N + 1 - v for v in marks]
-        pts += [g.s_of(v) for v in marks + ys if a < v < b]
-        pts = np.unique(np.array(pts))
+        cand += [g.s_of(v) for v in marks + ys if a < v < b]
+        pts = np.unique(np.array(cand))
         # where |D'| crosses SLOPE_MAX
         d1 = self._derivs(np.full(pts.size, si), pts, 1)[0]
         sgn = np.sign(np.abs(d1) - SLOPE_MAX)
@@ -361,11 +380,11 @@ class FloatSums:
     def _fill_direct(self, it: dict[str, Any]) -> None:
         ks = np.arange(it["hi"] - it["lo"] + 1)
         if self.N < 2**53:
-            lv = self._D_int(it["lo"] + ks)
+            lv = self._D_int(it["lo"] + ks) - self.shift
         else:
             seg, s0 = self._int_points([it["lo"]])
             sg = self._segs[int(seg[0])].sigma
-            lv = self._D(np.full(ks.size, seg[0]), s0[0] + sg * ks.astype(float))
+            lv = self._D(np.full(ks.size, seg[0]), s0[0] + sg * ks.astype(float)) - self.shift
         it["cum"] = np.logaddexp.accumulate(lv)
         it["rcum"] = np.concatenate([np.logaddexp.accumulate(lv[::-1])[::-1], [-np.inf]])
         it["total"] = float(it["cum"][-1])
@@ -388,7 +407,7 @@ class FloatSums:
         it["pcum"] = np.concatenate([[-np.inf], np.logaddexp.accumulate(li)])
         it["psuf"] = np.concatenate([np.logaddexp.accumulate(li[::-1])[::-1], [-np.inf]])
         ends_seg, ends_s = self._int_points([it["lo"], it["hi"]])
-        fe = self._D(ends_seg, ends_s)
+        fe = self._D(ends_seg, ends_s) - self.shift
         it["elo"] = fe[0] + self._em_end(ends_seg[:1], ends_s[:1], False)[0]
         it["ehi"] = fe[1] + self._em_end(ends_seg[1:], ends_s[1:], True)[0]
         it["total"] = float(np.logaddexp.reduce([it["pcum"][-1], it["elo"], it["ehi"]]))
@@ -424,13 +443,15 @@ class FloatSums:
         w = np.minimum(np.ceil(w), span)
         out = np.empty(len(starts))
         direct = (w <= WINDOW_DIRECT) | (g > SLOPE_MAX)
-        if direct.any():
-            idx = np.nonzero(direct)[0]
-            n = int(min(w[idx].max(), 4 * WINDOW_DIRECT)) + 1
+        wd = np.where(direct, np.minimum(w, 4 * WINDOW_DIRECT), 0.0)
+        bucket = np.ceil(np.log2(wd + 2)).astype(int)  # rows of similar length together
+        for bk in np.unique(bucket[direct]):
+            idx = np.nonzero(direct & (bucket == bk))[0]
+            n = int(wd[idx].max()) + 1
             j = np.arange(n, dtype=float)
-            pts = s0[idx, None] + e[idx, None] * j[None, :]
+            pts = s0[idx, None] + e[idx, None] * np.minimum(j[None, :], w[idx, None])
             lv = self._D(np.broadcast_to(seg[idx, None], pts.shape).ravel(),
-                         pts.ravel()).reshape(pts.shape)
+                         pts.ravel()).reshape(pts.shape) - self.shift
             lv = np.where(j[None, :] <= w[idx, None], lv, -np.inf)
             out[idx] = np.logaddexp.reduce(lv, axis=1)
         if (~direct).any():
@@ -449,13 +470,16 @@ class FloatSums:
             c1 = np.where(upper_first, self._em_end(seg[idx], s1, False),
                           self._em_end(seg[idx], s1, True))
             out[idx] = np.logaddexp.reduce(
-                [li, d0[idx] + c0, self._D(seg[idx], s1) + c1], axis=0)
+                [li, d0[idx] + c0 - self.shift, self._D(seg[idx], s1) + c1 - self.shift],
+                axis=0)
         return out
 
     # ------------------------------------------------------------------ queries
     def log_tails(self, k: Any) -> tuple[np.ndarray, np.ndarray]:
-        """``(log sum_{i<=k} f(i), log sum_{i>k} f(i))`` for integers ``1 <= k <= N - 1``
-        (an array of ints, Python ints for ``N > 2**63``), ``f(i) = Phi(i)/Phi(c)``.
+        """``(log sum_{i<=k} f(i), log sum_{i>k} f(i)) - shift`` for integers
+        ``1 <= k <= N - 1`` (an array of ints, Python ints for ``N > 2**63``),
+        ``f(i) = Phi(i)/Phi(c)`` (the attribute ``shift = E log 2`` keeps the logs of the bulk
+        near 0).
 
         Returns
         -------
@@ -510,13 +534,14 @@ class FloatSums:
         # lower: panels before j, then [sl_j, k], + f(lo) E-(lo) + f(k) E+(k)
         part = np.where(sl == s_j, -np.inf,
                         self._gl(seg_j, np.minimum(sl, s_j), np.maximum(sl, s_j)))
-        fk = self._D(seg_j, s_j) + self._em_end(seg_j, s_j, True)
+        fk = self._D(seg_j, s_j) + self._em_end(seg_j, s_j, True) - self.shift
         low[qa] = np.logaddexp.reduce([self._prefix[wi], cum, part, elo, fk], axis=0)
         # upper: [k + 1, sr_j1], then panels after j1, + f(k+1) E-(k+1) + f(hi) E+(hi)
         part = np.where((sr == s_j1) | last, -np.inf,
                         self._gl(seg_j1, np.minimum(sr, s_j1), np.maximum(sr, s_j1)))
         fk1 = np.where(last, -np.inf,
-                       self._D(seg_j1, s_j1) + self._em_end(seg_j1, s_j1, False))
+                       self._D(seg_j1, s_j1) + self._em_end(seg_j1, s_j1, False)
+                       - self.shift)
         ehi = np.where(last, -np.inf, ehi)
         suf = np.where(last, -np.inf, suf)
         upp[qa] = np.logaddexp.reduce([self._suffix[wi + 1], suf, part, fk1, ehi], axis=0)
