@@ -60,7 +60,7 @@ from typing import Any
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
-from symhx.float_terms import _log_ratio, log_phi_diff_real
+from symhx.float_terms import log_phi_diff_real, log_ratio
 
 __all__ = ["COVER", "LEVEL_STEP", "SLOPE_MAX", "WINDOW_DIRECT", "FloatSums"]
 
@@ -77,6 +77,8 @@ _WINDOW_DROP = 45.0
 #: a window of at most this many terms is summed directly
 WINDOW_DIRECT = 600
 _WINDOW_PANELS = 12
+#: a direct block never holds more terms than this (steep runs have at most ~20 per panel)
+_DIRECT_MAX = 100_000
 #: Euler-Maclaurin order M: corrections with f', f''', ..., f^{(2M-1)}
 _EM_M = 6
 _GL_X, _GL_W = leggauss(20)
@@ -177,7 +179,7 @@ class FloatSums:
         if 1 < c < N:
             curv = 1 / u + (0.5 / u) / u - (1 / c) / c  # -D''(c) ~ psi'(N + 1 - c) - 1/c**2
             if curv > 0:
-                E = max(0, min(1000, round(math.log2(math.sqrt(2 * math.pi / curv)))))
+                E = max(0, min(1000, round(0.5 * (math.log2(2 * math.pi) - math.log2(curv)))))
         self.E = E
         self.shift = E * math.log(2)
         self._rho = _ln2_residual(E, self.shift)
@@ -199,7 +201,9 @@ class FloatSums:
 
     def _D(self, seg: np.ndarray, s: np.ndarray) -> np.ndarray:
         x, d, y = self._xdy(seg, s)
-        return log_phi_diff_real(self.c, self.lpx, self.u, x, d, y)
+        with np.errstate(over="ignore", invalid="ignore"):
+            v = log_phi_diff_real(self.c, self.lpx, self.u, x, d, y)
+        return np.where(np.isnan(v), -np.inf, v)  # beyond -1.8e308 (N ~ 1e308 only)
 
     def _derivs(self, seg: np.ndarray, s: np.ndarray, order: int) -> list[np.ndarray]:
         """``[D'(x), D''(x), ..., D^{(order)}(x)]`` (derivatives in ``x``)."""
@@ -214,8 +218,8 @@ class FloatSums:
         ys = np.where(big, 1.0, y)
         small = digamma(ys) - np.log(ys)
         with np.errstate(divide="ignore", invalid="ignore"):
-            log_py = self.lpx + _log_ratio(y, np.full_like(y, self.u), d)
-        out = [log_py + np.where(big, ser, small) - 1 / x]
+            log_py = self.lpx + log_ratio(y, np.full_like(y, self.u), d)
+        out = [np.nan_to_num(log_py + np.where(big, ser, small) - 1 / x, nan=0.0)]
         with np.errstate(over="ignore", under="ignore"):
             for j in range(2, order + 1):
                 sign = 1.0 if j % 2 == 0 else -1.0
@@ -254,7 +258,7 @@ class FloatSums:
         lo, hi = sa.astype(float), sb.astype(float)  # lo < hi; fun changes sign in between
         for _ in range(200):
             base = np.maximum(lo, 1.0)
-            mid = np.where(hi > 4 * base, np.sqrt(base) * np.sqrt(hi), lo + 0.5 * (hi - lo))
+            mid = np.where(hi / 4 > base, np.sqrt(base) * np.sqrt(hi), lo + 0.5 * (hi - lo))
             fm = fun(seg, mid)
             same = np.sign(fm) == np.sign(fa)
             lo = np.where(same, mid, lo)
@@ -278,6 +282,14 @@ class FloatSums:
                 si = next(i for l2, h2, i in self._seg_cuts if l2 <= a and b <= h2)
                 panels.extend(self._sub_panels(si, ri, a, b, dmax))
         self._make_items(panels)
+        # re-centre the logs when the sum is far from Phi(c) 2**E (a head spread over many
+        # decades of x: the hump's width is not the scale then); the panels stay
+        tot = float(np.logaddexp.reduce([it["total"] for it in self._items]))
+        if abs(tot) > 2 and np.isfinite(tot):
+            self.E += round(tot / math.log(2))
+            self.shift = self.E * math.log(2)
+            self._rho = _ln2_residual(self.E, self.shift)
+            self._make_items(panels)
 
     def _sub_panels(self, si: int, ri: int, a: int, b: int, dmax: float
                     ) -> list[tuple[int, int, float, float, bool, bool]]:
@@ -359,7 +371,7 @@ class FloatSums:
             cov, smooth = grp[0][4], grp[0][5]
             if not cov:
                 kind = "far"
-            elif smooth and hi - lo > 64:
+            elif (smooth and hi - lo > 64) or hi - lo > _DIRECT_MAX:
                 kind = "em"
             else:
                 kind = "direct"
@@ -422,11 +434,17 @@ class FloatSums:
         """``log sum f(i)`` from each ``start`` towards ``bound`` (inclusive), ``f`` decreasing
         that way: until ``D`` has fallen by ``_WINDOW_DROP`` nats."""
         seg, s0 = self._int_points(starts)
+        d0 = self._D(seg, s0)
+        if not np.all(np.isfinite(d0)):  # a first term beyond -1.8e308 (N ~ 1e308): so is
+            out = np.full(len(starts), -np.inf)  # the window's log
+            ok = np.nonzero(np.isfinite(d0))[0]
+            if ok.size:
+                out[ok] = self._windows([starts[i] for i in ok], [bounds[i] for i in ok])
+            return out
         sig = np.array([self._segs[i].sigma for i in seg], dtype=float)
         step = np.array([1.0 if b >= a else -1.0 for a, b in zip(starts, bounds, strict=True)])
         e = step * sig  # direction in s
         span = np.array([float(abs(b - a)) for a, b in zip(starts, bounds, strict=True)])
-        d0 = self._D(seg, s0)
         g = np.abs(self._derivs(seg, s0, 1)[0])
         # Newton for the point where D = d0 - drop, from the linear guess, kept in the span
         w = np.minimum(span, _WINDOW_DROP / np.maximum(g, 1e-300))
@@ -440,7 +458,7 @@ class FloatSums:
             w = nw
             if done:
                 break
-        w = np.minimum(np.ceil(w), span)
+        w = np.minimum(np.ceil(np.nan_to_num(w, nan=0.0)), span)
         out = np.empty(len(starts))
         direct = (w <= WINDOW_DIRECT) | (g > SLOPE_MAX)
         wd = np.where(direct, np.minimum(w, 4 * WINDOW_DIRECT), 0.0)

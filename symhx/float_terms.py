@@ -37,7 +37,7 @@ import numpy as np
 
 from symhx._numeric import stirling_coefficients
 
-__all__ = ["bd0", "log_phi_diff", "log_phi_diff_real", "stirling_remainder"]
+__all__ = ["bd0", "log_phi_diff", "log_phi_diff_real", "log_ratio", "stirling_remainder"]
 
 _HALF_LOG_2PI = 0.5 * math.log(2 * math.pi)
 #: 1/(12 z) - 1/(360 z^3) + ...: the first six coefficients B_{2m} / (2m (2m - 1)) as floats
@@ -82,7 +82,7 @@ def bd0(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
     near = np.abs(d) < 0.1 * (x + y)
     v = np.where(near, -d / np.where(near, x + y, 1.0), 0.0)  # (y - x)/(y + x)
     s = -d * v
-    ej = 2 * y * v
+    ej = y * (2 * v)  # (2 y) would overflow for y > 9e307
     v2 = v * v
     for j in range(1, 40):  # |v| < 0.1: 1e-16 after ~8 terms; stop when nothing moves
         ej = ej * v2
@@ -90,12 +90,16 @@ def bd0(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
         if np.array_equal(nxt, s):
             break
         s = nxt
-    return np.where(near, s, y * _log_ratio(y, x, d) + d)
+    return np.where(near, s, y * log_ratio(y, x, d) + d)
 
 
-def _log_ratio(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
+def log_ratio(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
     """``log(y/x)`` with ``d = x - y``: ``log1p(-d/x)`` near 1, ``log`` of the rounded ratio
-    away from it, the logs' difference where the ratio would be subnormal."""
+    away from it, the logs' difference where the ratio would be subnormal (elementwise).
+
+    >>> float(log_ratio(np.array([1.0]), np.array([2.0]), np.array([1.0]))[0]) == math.log(0.5)
+    True
+    """
     with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
         near = np.log1p(-np.where(np.abs(d) < 0.5 * x, d, 0.0) / x)
         ratio = y / x  # rounded once: log keeps 1e-16 absolute, unless it is subnormal
@@ -162,7 +166,7 @@ def log_phi_diff_real(c: int, log_px: float, x: float, k: np.ndarray, d: np.ndar
     with np.errstate(divide="ignore", invalid="ignore"):
         log_kc = np.where(near, np.log1p(np.where(near, d, 0.0) / c),
                           np.log(kf) - math.log(c))
-    out = d * log_px - bd0(y, xs, d) + 0.5 * _log_ratio(y, xs, d) \
+    out = d * log_px - bd0(y, xs, d) + 0.5 * log_ratio(y, xs, d) \
         + (stirling_remainder(np.array([x]))[0] - stirling_remainder(np.maximum(y, 1.0))) \
         - log_kc
     return np.where(d == 0, 0.0, out)
