@@ -412,8 +412,20 @@ class FloatSums:
         seg = np.array([p[0] for p in grp])
         sl = np.array([p[2] for p in grp])
         sr = np.array([p[3] for p in grp])
-        sl[0] = self._segs[grp[0][0]].s_of(it["lo"])
-        sr[-1] = self._segs[grp[-1][0]].s_of(it["hi"])
+        # the item owns lo..hi: panel parts left of lo or right of hi (slivers of a panel
+        # narrower than the rounding to integers) are cut off
+        for j in range(len(grp)):
+            g = self._segs[int(seg[j])]
+            s_lo = g.s_of(it["lo"])
+            if (sl[j] - s_lo) * g.sigma >= 0:
+                break
+            sl[j] = s_lo if (sr[j] - s_lo) * g.sigma > 0 else sr[j]
+        for j in range(len(grp) - 1, -1, -1):
+            g = self._segs[int(seg[j])]
+            s_hi = g.s_of(it["hi"])
+            if (s_hi - sr[j]) * g.sigma >= 0:
+                break
+            sr[j] = s_hi if (s_hi - sl[j]) * g.sigma > 0 else sl[j]
         it["seg"], it["sl"], it["sr"] = seg, sl, sr
         li = self._gl(seg, sl, sr)
         it["pcum"] = np.concatenate([[-np.inf], np.logaddexp.accumulate(li)])

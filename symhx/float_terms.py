@@ -79,8 +79,9 @@ def bd0(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
     y = np.asarray(y, dtype=float)
     x = np.asarray(x, dtype=float)
     d = np.asarray(d, dtype=float)
-    near = np.abs(d) < 0.1 * (x + y)
-    v = np.where(near, -d / np.where(near, x + y, 1.0), 0.0)  # (y - x)/(y + x)
+    half = 0.5 * x + 0.5 * y  # (x + y)/2 without overflow at 1e308
+    near = np.abs(d) < 0.2 * half
+    v = np.where(near, -0.5 * d / np.where(near, half, 1.0), 0.0)  # (y - x)/(y + x)
     s = -d * v
     ej = y * (2 * v)  # (2 y) would overflow for y > 9e307
     v2 = v * v
