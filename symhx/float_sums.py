@@ -34,11 +34,18 @@ Gauss-Legendre rule):
    their relative accuracy however small they are (``logsf = -1e5`` is as accurate as
    ``sf = 0.3``).  The normaliser is their sum: ``cdf = L/(L + U)``, ``sf = U/(L + U)``.
 
+5. *Scale.*  Every log is kept relative to ``Phi(c) 2**E`` (``E`` from the hump's width, then
+   re-centred on the total), the width of a panel entering as an exact ``ldexp``: a log of
+   size 345 (the hump's width at ``N = 1e300``) would keep only ``6e-14`` absolute.  Logs
+   beyond ``-1.8e308`` (possible only for ``N`` near ``1e308``) are ``-inf``.
+
 Error: ~``1e-15`` relative in each tail from the quadrature and EM terms, plus the error of
 ``D`` itself (~``1e-16 |D|``, so relative ``~1e-16 |log tail|`` far in a tail; the log forms are
-good to ``~1e-15 (1 + |value|)`` absolute).  Cost: the structure takes ~10-50 ms (a few
-thousand evaluations of ``D``); each distinct ``k`` then costs ~``2 x 20`` evaluations (or a
-window of ~``12 x 20``), vectorised.
+good to ``~1e-15 (1 + |value|)`` absolute).  Measured against the mpmath engine at 30 digits,
+the log-series and Poisson laws and every term summed: below ``5e-16`` (relative, or
+``(1 + |log|)`` absolute) from ``N = 1e7`` to ``1.7e308``.  Cost: the structure takes
+8000-25000 evaluations of ``D`` (10-100 ms); each distinct ``k`` then costs 30-170
+evaluations, vectorised (1000 ``k``: 0.02-0.1 s).
 
 >>> from fractions import Fraction
 >>> import numpy as np

@@ -80,14 +80,24 @@ def test_cdf_family_matches_the_30_digit_engine(N: int, ratio: str) -> None:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("N", GRID_N, ids=_nid)
-@pytest.mark.parametrize("ratio", ["1.001", "2", "10", "1e3"])
+@pytest.mark.parametrize("ratio", ["1e-3", "0.5", "0.999", "1.001", "2", "10", "1e3"])
 def test_cdf_family_matches_the_30_digit_engine_on_the_grid(N: int, ratio: str) -> None:
     if (N, ratio) in FAST_ENGINE:
         pytest.skip("in the fast set")
     if (N, ratio) == (10**300, "1.001"):  # the reference, not the float path, fails here
         pytest.skip("the 30-digit engine raises 'quadrature panels do not converge' at "
                     "N = 1e300, p = 1.001 p_c (simple_sums; reported)")
+    if N >= 10**50 and Fraction(ratio) < 1:
+        pytest.skip("below the jump at N >= 1e50: the log-series law test (the 30-digit "
+                    "engine takes minutes on the far tails there)")
     _engine_case(N, critical_p(N) * Fraction(ratio))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("N", GRID_N, ids=_nid)
+@pytest.mark.parametrize("p", [Fraction(1, 2), Fraction(1), Fraction(3)])
+def test_p_of_order_one_matches_the_30_digit_engine_on_the_grid(N: int, p: Fraction) -> None:
+    _engine_case(N, p)
 
 
 @pytest.mark.parametrize("N", [10**50, 10**100, 10**300], ids=_nid)
@@ -154,3 +164,16 @@ def test_cdf_is_monotone_and_sf_its_complement_over_the_support() -> None:
     c, s = d.cdf(ks), d.sf(ks)
     assert np.all(np.diff(c) >= 0) and np.all(np.diff(s) <= 0)
     assert np.all(np.abs(c + s - 1) <= 1e-15)
+
+
+def test_largest_float_n_matches_the_engine() -> None:
+    """N = 1.7e308 (x + y and 2 y overflow float64 in the term formula's pieces)."""
+    N = 17 * 10**307
+    p = critical_p(N) * 2
+    top = symhx.mode(N, p)
+    sd = int(symhx.distribution_of(N, p, dps=None).std()) + 1
+    ks = [top - 3 * sd, top, top + sd, top + 5 * sd]
+    got = _float_family(N, p, ks)
+    ref = symhx.distribution_of(N, p, dps=30)
+    for i, k in enumerate(ks):
+        _check(got, i, ref.logcdf(k), ref.logsf(k), f"k = top + {(k - top) // sd} sd")
