@@ -37,7 +37,7 @@ import numpy as np
 
 from symhx._numeric import stirling_coefficients
 
-__all__ = ["bd0", "log_phi_diff", "stirling_remainder"]
+__all__ = ["bd0", "log_phi_diff", "log_phi_diff_real", "log_ratio", "stirling_remainder"]
 
 _HALF_LOG_2PI = 0.5 * math.log(2 * math.pi)
 #: 1/(12 z) - 1/(360 z^3) + ...: the first six coefficients B_{2m} / (2m (2m - 1)) as floats
@@ -79,10 +79,11 @@ def bd0(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
     y = np.asarray(y, dtype=float)
     x = np.asarray(x, dtype=float)
     d = np.asarray(d, dtype=float)
-    near = np.abs(d) < 0.1 * (x + y)
-    v = np.where(near, -d / np.where(near, x + y, 1.0), 0.0)  # (y - x)/(y + x)
+    half = 0.5 * x + 0.5 * y  # (x + y)/2 without overflow at 1e308
+    near = np.abs(d) < 0.2 * half
+    v = np.where(near, -0.5 * d / np.where(near, half, 1.0), 0.0)  # (y - x)/(y + x)
     s = -d * v
-    ej = 2 * y * v
+    ej = y * (2 * v)  # (2 y) would overflow for y > 9e307
     v2 = v * v
     for j in range(1, 40):  # |v| < 0.1: 1e-16 after ~8 terms; stop when nothing moves
         ej = ej * v2
@@ -90,12 +91,16 @@ def bd0(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
         if np.array_equal(nxt, s):
             break
         s = nxt
-    return np.where(near, s, y * _log_ratio(y, x, d) + d)
+    return np.where(near, s, y * log_ratio(y, x, d) + d)
 
 
-def _log_ratio(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
+def log_ratio(y: np.ndarray, x: np.ndarray, d: np.ndarray) -> np.ndarray:
     """``log(y/x)`` with ``d = x - y``: ``log1p(-d/x)`` near 1, ``log`` of the rounded ratio
-    away from it, the logs' difference where the ratio would be subnormal."""
+    away from it, the logs' difference where the ratio would be subnormal (elementwise).
+
+    >>> float(log_ratio(np.array([1.0]), np.array([2.0]), np.array([1.0]))[0]) == math.log(0.5)
+    True
+    """
     with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
         near = np.log1p(-np.where(np.abs(d) < 0.5 * x, d, 0.0) / x)
         ratio = y / x  # rounded once: log keeps 1e-16 absolute, unless it is subnormal
@@ -135,9 +140,34 @@ def log_phi_diff(N: int, c: int, log_px: float, k: np.ndarray) -> np.ndarray:
         kf = np.array([float(v) for v in ints]).reshape(kk.shape)
         d = np.array([float(v - c) for v in ints]).reshape(kk.shape)
         y = np.array([float(N + 1 - v) for v in ints]).reshape(kk.shape)
-    x = float(N + 1 - c)
+    return log_phi_diff_real(c, log_px, float(N + 1 - c), kf, d, y)
+
+
+def log_phi_diff_real(c: int, log_px: float, x: float, k: np.ndarray, d: np.ndarray,
+                      y: np.ndarray) -> np.ndarray:
+    """``log Phi(k) - log Phi(c)`` at *real* ``1 <= k <= N`` (``Phi`` continued by Gamma
+    functions, for quadrature), given ``k``, ``d = k - c`` and ``y = N + 1 - k`` each to float
+    relative accuracy (the caller forms the differences without cancellation) and
+    ``x = N + 1 - c``; the same formula and error as :func:`log_phi_diff`.
+
+    >>> import numpy as np
+    >>> from math import lgamma, log
+    >>> N, p, c, k = 10**6, 2e-6, 500_000, 500_000.5
+    >>> got = log_phi_diff_real(c, log(p * (N + 1 - c)), N + 1.0 - c, np.array([k]),
+    ...                         np.array([k - c]), np.array([N + 1 - k]))
+    >>> want = (k - c) * log(p) + lgamma(N + 1 - c) - lgamma(N + 1 - k) - log(k / c)
+    >>> bool(abs(got[0] - want) < 1e-6)
+    True
+    """
+    kf = np.asarray(k, dtype=float)
+    d = np.asarray(d, dtype=float)
+    y = np.asarray(y, dtype=float)
     xs = np.full_like(y, x)
-    out = d * log_px - bd0(y, xs, d) + 0.5 * _log_ratio(y, xs, d) \
+    near = np.abs(d) < 0.5 * c  # log(k/c) = log1p(d/c): no rounding of log(k) ~ 700 at 1e300
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_kc = np.where(near, np.log1p(np.where(near, d, 0.0) / c),
+                          np.log(kf) - math.log(c))
+    out = d * log_px - bd0(y, xs, d) + 0.5 * log_ratio(y, xs, d) \
         + (stirling_remainder(np.array([x]))[0] - stirling_remainder(np.maximum(y, 1.0))) \
-        - (np.log(kf) - math.log(c))
+        - log_kc
     return np.where(d == 0, 0.0, out)

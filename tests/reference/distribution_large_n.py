@@ -111,3 +111,53 @@ def log_lower_sum_geometric(N: int, p: Fraction, k: int, dps: int) -> mpmath.mpf
             if t < eps * total:
                 break
     return log_phi(N, p, k, dps) + mpmath.log(total)
+
+
+def log_upper_sum_walk(N: int, p: Fraction, k: int, dps: int) -> mpmath.mpf:
+    """``log sum_{j > k} Phi(j)`` for a ``k`` beyond the hump where the terms fall fast
+    (ratio ``p (N - j) j/(j + 1)`` well below 1): walked *up* from ``k + 1`` by the exact ratio
+    until they drop below ``10**-(dps+10)`` of the sum (and :func:`log_phi` for the first)."""
+    with mpmath.workdps(dps + 20):
+        pm = mpmath.mpf(p.numerator) / p.denominator
+        total, t, j = mpmath.mpf(1), mpmath.mpf(1), k + 1  # relative to Phi(k + 1)
+        eps = mpmath.mpf(10) ** -(dps + 10)
+        while j < N:
+            t = t * pm * (N - j) * j / (j + 1)  # Phi(j+1)/Phi(k+1)
+            total += t
+            j += 1
+            if t < eps * total:
+                break
+    return log_phi(N, p, k + 1, dps) + mpmath.log(total)
+
+
+def log_series_tails(N: int, p: Fraction, k: int, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """``(log P(X <= k), log P(X > k))`` from the log-series law ``P(X = j) ~ x**j / j``,
+    ``x = N p < 1``: ``Phi(j) = x**j/j prod_{i<j} (1 - i/N)``, and the product is 1 to
+    ``j**2/N``, below ``10**-dps`` for every term that matters when ``N >= 10**(dps + 14)`` and
+    ``k <= 10**6`` (the terms past ``j ~ 10**6`` are below ``x**j``).  The upper tail is
+    ``x**(k+1) lerchphi(x, 1, k + 1)``, the whole sum ``-log(1 - x)``."""
+    with mpmath.workdps(dps + 20):
+        x = mpmath.mpf(p.numerator) * N / p.denominator
+        total = -mpmath.log1p(-x)
+        log_up = (k + 1) * mpmath.log(x) + mpmath.log(mpmath.lerchphi(x, 1, k + 1))
+        up = mpmath.exp(log_up)
+        log_lo = mpmath.log(total - up) if up < total / 2 else \
+            mpmath.log(mpmath.fsum(x**j / j for j in range(1, k + 1)))
+        return log_lo - mpmath.log(total), log_up - mpmath.log(total)
+
+
+def log_poisson_side_tails(N: int, p: Fraction, k: int, dps: int, jmax: int
+                           ) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """``(log P(X <= k), log P(X > k))`` summed from the top, ``j = N - i``:
+    ``Phi(N - j)/Phi(N) = lam**j/j! N/(N - j)``, ``lam = 1/p`` (exact for every N; the
+    terms beyond ``jmax`` must be negligible), for ``N - jmax <= k < N``."""
+    with mpmath.workdps(dps + 20):
+        lam = 1 / (mpmath.mpf(p.numerator) / p.denominator)
+        ws, t = [], mpmath.mpf(1)
+        for j in range(0, min(jmax, N - 1) + 1):
+            ws.append(t * N / (N - j))
+            t = t * lam / (j + 1)
+        J = N - k  # X > k  <=>  j < J
+        up, lo = mpmath.fsum(ws[:J]), mpmath.fsum(ws[J:])
+        tot = up + lo
+        return mpmath.log(lo / tot), mpmath.log(up / tot)
