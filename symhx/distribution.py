@@ -840,10 +840,24 @@ class SimpleDistribution(Distribution):
                 or self._range_engine(lo, hi, dps) is not eng:
             return None
         ctx = mp()
+        rlo, rhi = (hi + 1, self.N) if lo == 1 else (1, lo - 1)
+        reng = self._range_engine(rlo, rhi, dps)
         with ctx.workdps(eng.W):
             part = _partial_sum(eng, lo, hi)
-            rest = _partial_sum(eng, hi + 1, self.N) if lo == 1 else \
-                _partial_sum(eng, 1, lo - 1)
+            if reng is eng:
+                rest = _partial_sum(eng, rlo, rhi)
+            else:  # the complement lies far in the other tail: it needs the digits of its
+                # |log Phi| (summed by its own engine; same reference c), unless its bound
+                # (largest term times length) is already below the sum's error
+                with ctx.workprec(64 + reng.abs_bits(rlo, rhi)):
+                    ub = reng.log_max(rlo, rhi) + ctx.log(rhi - rlo + 1)
+                    light = ub < ctx.log(part) - (eng.R * _LN10 + 10)
+                if light:
+                    rest = ctx.mpf(0)
+                else:
+                    with ctx.workdps(reng.W):
+                        rest_w = export(_partial_sum(reng, rlo, rhi))
+                    rest = local(rest_w)
             total = eng.__dict__.setdefault("_total", part + rest)
             return export(part / total), eng.W
 
@@ -994,13 +1008,13 @@ class SimpleDistribution(Distribution):
         """``(c, log(p (N + 1 - c)), log sum_k Phi(k)/Phi(c))`` of the 17-digit engine: what
         the vectorised float64 pmf needs besides ``k``."""
         eng = self._float_engine
-        eng._mp_moments  # noqa: B018 - the one pass that gives the normaliser
+        ls0 = eng._mp_norm[1]  # the one pass that gives the normaliser (weight 1)
         c = eng._engine().c
         fr = eng._fr_work
         ctx = mp()
         with ctx.workdps(30):
             lpx = ctx.log(ctx.mpf(fr.numerator) * (self.N + 1 - c)) - ctx.log(fr.denominator)
-            return c, float(lpx), float(local(eng._mp_extra[1]))
+            return c, float(lpx), float(local(ls0))
 
     def mean(self) -> Any:
         """``E[X]``: a Fraction when exact, an mpf to ``dps`` digits, or a float."""
@@ -1319,12 +1333,17 @@ def _partial_sum(eng: SimpleSums, lo: int, hi: int) -> Any:
         else:  # the same right end: [lo, a) / [a, lo)
             grow, stretch = (lo < a), ((lo, a - 1) if lo < a else (a, lo - 1))
         ctx = mp()
-        light = False
-        if not grow:  # removing: only when the stretch is provably under half the sum
-            with ctx.workprec(64 + eng.abs_bits(*stretch)):
-                bound = eng.log_max(*stretch) + ctx.log(stretch[1] - stretch[0] + 1)
-                light = bound < ctx.log(v) - 1
-        if grow or light:
+        with ctx.workprec(64 + eng.abs_bits(*stretch)):
+            lm = eng.log_max(*stretch)
+            bound = lm + ctx.log(stretch[1] - stretch[0] + 1)  # >= the stretch's sum
+            lv = ctx.log(v)
+            # the digits of |log Phi| the stretch's terms need beyond the engine's
+            short = abs(lm) >= 10 and int(ctx.mag(abs(lm)) * 0.30103) + 2 > eng.W - eng.R
+            negligible = bound < lv - (eng.R * _LN10 + 10)
+            light = bound < lv - 1  # removing: only when provably under half the sum
+        if negligible:  # far in a tail (its terms may need digits this engine lacks)
+            total = v
+        elif not short and (grow or light):
             d = eng.sums(*stretch, (0,))[0]
             if grow:
                 total = v + d

@@ -1044,6 +1044,8 @@ class SimpleSums:
             Xs = A
         else:
             Xs = B
+        if Xs < 2 * A:  # s = log x pays only over a factor 2 in x; on a short stretch at large
+            Xs = A      # x its panels are ~1e-36 wide and a 64-bit sector bound moves x by 1e25
         panels: list[tuple[str, Any, Any, int]] = []
         pieces = []  # exact ends at the working precision; the plan runs at low precision
         if Xs > A:

@@ -117,3 +117,42 @@ def test_pmf_where_its_log_is_1e40_keeps_relative_accuracy(offset: int) -> None:
         want = mpmath.exp(log_phi(N, p, k, 80)
                           - symhx.distribution_of(N, p, dps=145).log_normaliser)
         assert abs(d.pmf(k) / want - 1) <= mpmath.mpf(10) ** -29
+
+
+def _agree(lo, hi, dps: int, log: bool = False) -> None:
+    with mpmath.workdps(2 * dps + 20):
+        err = abs(lo - hi) if log else abs(lo - hi) / abs(hi)
+        assert err <= mpmath.mpf(10) ** -dps * (max(1, abs(hi)) if log else 1), (lo, hi)
+
+
+@pytest.mark.parametrize(("e", "ratio", "calls", "dps"), [
+    # a short run at x ~ 1e40 below the jump (its log x panels were 1e-36 wide: "quadrature
+    # panels do not converge" after 25 s)
+    (50, Fraction(999, 1000), ("sf(10**40)", "logsf(10**40)", "mean()"), 20),
+    (300, Fraction(1001, 1000), ("mean()", "cdf(N // 10**150)", "logcdf(N // 10**150)"), 20),
+    # a step of a cached partial sum into the far tail (the stretch [N - 1, N - 1] at
+    # |log Phi| ~ 8e100 without the digits: OverflowError)
+    (100, Fraction(1, 1000), ("logcdf(N - 2)", "logcdf(N - 1)", "logsf(N - 2)"), 20),
+])
+def test_far_tails_and_short_runs_at_huge_N_against_twice_the_digits(e, ratio, calls,
+                                                                      dps) -> None:
+    N = 10**e
+    p = critical_p(N) * ratio
+    lo, hi = symhx.distribution_of(N, p, dps=dps), symhx.distribution_of(N, p, dps=2 * dps)
+    for call in calls:
+        a = eval("lo." + call, {"lo": lo, "N": N})
+        b = eval("hi." + call, {"hi": hi, "N": N})
+        _agree(a, b, dps, log=call.startswith("log"))
+
+
+def test_a_tail_whose_complement_lies_far_in_the_other_tail() -> None:
+    """sf(k) before any full pass sums [k + 1, N] and its complement [1, k]; at N = 1e100,
+    p = 2 p_c (a 60-digit mpf) and k 1e83 below the mode the complement's terms have
+    |log Phi| ~ 1e65 and need those digits (at 17 digits two offsets of a run 1e43 long at
+    1e83 from the reference rounded to the same number: ZeroDivisionError)."""
+    N = 10**100
+    p = 2 * symhx.critical_point(N, dps=60).p
+    k = N // 2 - 10**51
+    lo, hi = symhx.distribution_of(N, p, dps=17), symhx.distribution_of(N, p, dps=34)
+    _agree(lo.sf(k), hi.sf(k), 17)
+    _agree(lo.logcdf(k), hi.logcdf(k), 17, log=True)
