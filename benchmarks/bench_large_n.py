@@ -18,6 +18,7 @@ normaliser), errors against dps = 100.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from fractions import Fraction
@@ -86,12 +87,17 @@ def main() -> None:
                 for stat in ("mean", "var", "cdf"):
                     if warm and stat == "mean":
                         continue
-                    cold()
-                    if warm:
-                        symhx.distribution_of(N, p, dps=DPS).mean()
-                    d = symhx.distribution_of(N, p, dps=DPS)
-                    call = (lambda d=d, k=k: d.cdf(k)) if stat == "cdf" else getattr(d, stat)
-                    val, t = timed(call)
+                    best = math.inf
+                    for _ in range(3):  # best of three cold calls (process-wide caches, such
+                        cold()          # as Gauss-Legendre nodes per precision, stay warm)
+                        if warm:
+                            symhx.distribution_of(N, p, dps=DPS).mean()
+                        d = symhx.distribution_of(N, p, dps=DPS)
+                        call = (lambda d=d, k=k: d.cdf(k)) if stat == "cdf" else \
+                            getattr(d, stat)
+                        val, t1 = timed(call)
+                        best = min(best, t1)
+                    t = best
                     want = ref.cdf(k) if stat == "cdf" else getattr(ref, stat)()
                     rows.append({"N": f"1e{e}", "case": label,
                                  "stat": stat + (" after mean" if warm else ""), "time_s": t,
