@@ -1086,7 +1086,13 @@ class SimpleSums:
         corr = [ctx.mpf(0) for _ in kinds]
         for x0, sign in ((A, -1), (B, 1)):
             with ctx.workprec(64):
+                # the Cauchy radius at this end, as for M above: f decays like
+                # exp(D'(x0) t), so max|f| on a disc of radius 2/|D'(x0)| stays within e**2
+                # of f(x0) (a radius of sigma alone let a steep end take one term)
                 lr0 = ctx.log(ctx.mpf(x0) / 2)
+                s0 = abs(self.dD(x0))
+                if s0:
+                    lr0 = min(lr0, -ctx.log(s0 / 2))
                 if top:
                     lr0 = min(lr0, ctx.log(max(1, self._sigma_at(top))))
             Mx = 1

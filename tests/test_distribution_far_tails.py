@@ -156,3 +156,18 @@ def test_a_tail_whose_complement_lies_far_in_the_other_tail() -> None:
     lo, hi = symhx.distribution_of(N, p, dps=17), symhx.distribution_of(N, p, dps=34)
     _agree(lo.sf(k), hi.sf(k), 17)
     _agree(lo.logcdf(k), hi.logcdf(k), 17, log=True)
+
+
+@pytest.mark.parametrize(("ratio", "call", "dps"), [
+    (Fraction(11, 10), "sf(105 * 10**47)", 50),
+    (Fraction(1001, 1000), "cdf(44320000 * 10**39)", 20),
+])
+def test_euler_maclaurin_ends_where_the_terms_fall_steeply(ratio, call, dps) -> None:
+    """A tail that starts where the terms fall by ~2% per step (N = 1e50, beyond the hump):
+    its Euler-Maclaurin end took the Cauchy radius of the hump's width, so one correction
+    term, and kept 15 of 50 digits (4.8e-16); against twice the digits."""
+    N = 10**50
+    p = critical_p(N) * ratio
+    lo = eval("d." + call, {"d": symhx.distribution_of(N, p, dps=dps)})
+    hi = eval("d." + call, {"d": symhx.distribution_of(N, p, dps=2 * dps + 5)})
+    _agree(lo, hi, dps)

@@ -297,3 +297,80 @@ def test_float_path_refuses_an_N_beyond_the_float64_range() -> None:
     for method in (d.mean, d.var, d.entropy):
         assert_refuses(method, arg="N", value="N=10**1000", allowed="float64")
     assert symhx.distribution_of(10**300, 0.5, dps=None).mean() == 1e300
+
+
+def _random_cases(seed: int, n: int) -> list[tuple[int, str, int, str, object]]:
+    """(N, p/p_c, dps, method, argument) drawn over N = 10**2 ... 10**1000 (and N = 10**e + 1,
+    + 7), p/p_c = 1e-6 ... 1e6 and p of order 1, dps 15 ... 50, k in the head, around the mode
+    and over the whole support, q in the bulk and far out."""
+    import random
+
+    rng = random.Random(seed)
+    out = []
+    for _ in range(n):
+        e = rng.choice([2, 3, 5, 8, 12, 20, 50, 100, 300, 1000])
+        N = 10**e + (rng.choice([0, 0, 1, 7]) if e < 1000 else 0)
+        r = rng.choice(["1e-6", "1e-3", "0.5", "0.999", "0.99999", "1.00001", "1.001", "1.1",
+                        "2", "10", "1e3", "1e6", "p=1/2", "p=3"])
+        dps = rng.choice([15, 17, 20, 30, 50])
+        meth = rng.choice(["pmf", "cdf", "sf", "logcdf", "logsf", "logpmf", "mean", "var",
+                           "entropy", "ppf", "isf"])
+        if meth in ("ppf", "isf") and e > 300:  # the reference would need ~530 digits
+            meth = "cdf"
+        if meth in ("ppf", "isf"):
+            arg: object = rng.choice([Fraction(1, 2), Fraction(1, 10**rng.randint(1, 40)),
+                                      1 - Fraction(1, 10**rng.randint(1, 12))])
+        else:
+            u = rng.random()
+            arg = (rng.randint(1, 10**6), "mode", rng.randint(-10**(e // 2 + 1),
+                                                                10**(e // 2 + 1)),
+                   u ** rng.choice([1, 3, 10]))[rng.randrange(3)]
+            if arg == "mode":
+                arg = ("mode", rng.randint(-10**(e // 2 + 1), 10**(e // 2 + 1)))
+            elif isinstance(arg, int) and not 1 <= arg:
+                arg = 1
+        out.append((N, r, dps, meth, arg))
+    return out
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", _random_cases(2026, 200), ids=lambda c: f"{c[3]}-{c[1]}-{c[2]}")
+def test_random_cases_against_twice_the_digits(case) -> None:
+    """Every method on seeded random (N, p, dps, k or q) against a run at 2 dps + 5; a quantile
+    against the cdf at twice the digits (the smallest k that reaches the resolved q)."""
+    N, r, dps, meth, arg = case
+    with mpmath.workdps(2 * len(str(N)) + 120):
+        p = mpmath.mpf(r[2:]) if r.startswith("p=") else \
+            mpmath.mpf(critical_p(N).numerator) / critical_p(N).denominator * mpmath.mpf(r)
+    lo = symhx.distribution_of(N, p, dps=dps)
+    hi = symhx.distribution_of(N, p, dps=2 * dps + 5)
+    if isinstance(arg, tuple):
+        arg = min(max(lo.mode() + arg[1], 1), N)
+    if meth in ("mean", "var", "entropy"):
+        a, b = getattr(lo, meth)(), getattr(hi, meth)()
+    elif meth in ("ppf", "isf"):
+        k = getattr(lo, meth)(arg)
+        q = arg * (1 - Fraction(10) ** (1 - dps)) if meth == "ppf" else \
+            arg * (1 + Fraction(10) ** (1 - dps))
+        # one unit of k moves the cdf by ~1/sqrt(N) of it: the reference resolves that
+        ref_dps = dps + len(str(N)) // 2 + 30
+        hi = symhx.distribution_of(N, p, dps=ref_dps)
+        with mpmath.workdps(ref_dps + 20):
+            qm = mpmath.mpf(q.numerator) / q.denominator
+            if meth == "ppf":
+                assert hi.cdf(k) >= qm and (k == 1 or hi.cdf(k - 1) < qm)
+            else:
+                assert hi.sf(k) <= qm and (k == 1 or hi.sf(k - 1) > qm)
+        return
+    else:
+        if isinstance(arg, float):
+            arg = max(1, min(N, int(mpmath.mpf(N) * mpmath.mpf(arg))))
+        a, b = getattr(lo, meth)(arg), getattr(hi, meth)(arg)
+    with mpmath.workdps(3 * dps + 40):
+        if meth.startswith("log") or meth == "entropy":
+            if mpmath.isinf(b):
+                assert a == b
+            else:
+                assert abs(a - b) <= mpmath.mpf(10) ** -dps * max(1, abs(b)), (a, b)
+        else:
+            assert abs(a - b) <= mpmath.mpf(10) ** (1 - dps) * abs(b), (a, b)
