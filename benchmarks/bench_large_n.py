@@ -155,6 +155,25 @@ def float_rows(N: int, p, k: int, ref, t_cp: float, e: int, label: str) -> list[
     err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want, strict=True))
     out.append({"N": f"1e{e}", "case": label, "stat": "pmf x1001 (gammaln)", "time_s": t,
                 "rel_err": err, "critical_point_s": t_cp, "ratio_to_critical_point": t / t_cp})
+    # the cdf at the same 1001 points: vectorised (symhx.float_sums, after the one normaliser
+    # pass) against one 17-digit partial sum per k (the mpmath path walked per point)
+    want_c = [ref.cdf(int(kk)) for kk in pick]
+    cold()
+    val, t = timed(lambda: symhx.cdf(N, pf, ks, dps=None))
+    got = dict(zip([int(v) for v in ks], val.tolist(), strict=True))
+    err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want_c, strict=True))
+    out.append({"N": f"1e{e}", "case": label, "stat": "cdf x1001 (float64)", "time_s": t,
+                "rel_err": err, "critical_point_s": t_cp, "ratio_to_critical_point": t / t_cp})
+    cold()
+    d17 = symhx.distribution_of(N, pf, dps=17)
+    few = ks[:: max(1, len(ks) // 100)]  # ~101 of the points (the same per-point cost)
+    val, t = timed(lambda: [d17.cdf(int(kk)) for kk in few])
+    got = dict(zip([int(v) for v in few], val, strict=True))
+    err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want_c, strict=True)
+              if int(kk) in got)
+    out.append({"N": f"1e{e}", "case": label, "stat": "cdf per k (17 digits)",
+                "points": len(few), "time_s": t, "rel_err": err, "critical_point_s": t_cp,
+                "ratio_to_critical_point": t / t_cp})
     for r in out:
         print(r, flush=True)
     return out
@@ -169,7 +188,8 @@ def plot(rows: list[dict]) -> None:
     fig, ax = plt.subplots(figsize=(7.6, 4.4))
     marks = {"mean": "o", "var": "s", "cdf": "^", "var after mean": "D",
              "cdf after mean": "v", "mean (direct sum)": "x", "pmf x1001 (float64)": "P",
-             "pmf x1001 (gammaln)": "*"}
+             "pmf x1001 (gammaln)": "*", "cdf x1001 (float64)": "h",
+             "cdf per k (17 digits)": "X"}
     colours = {f"1e{e}": c for e, c in zip(NS, plt.cm.viridis([i / (len(NS) - 1)
                                                                for i in range(len(NS))]),
                                            strict=True)}
@@ -177,7 +197,9 @@ def plot(rows: list[dict]) -> None:
         ax.scatter(r["rel_err"], r["time_s"], marker=marks[r["stat"]], color=colours[r["N"]],
                    s=60 if r["stat"] in ("mean (direct sum)", "pmf x1001 (gammaln)") else 36)
     shown = {"pmf x1001 (float64)": "pmf ×1001, float64 (dps=None)",
-             "pmf x1001 (gammaln)": "pmf ×1001, gammaln formula\n(no digit right: at 10)"}
+             "pmf x1001 (gammaln)": "pmf ×1001, gammaln formula\n(no digit right: at 10)",
+             "cdf x1001 (float64)": "cdf ×1001, float64 (dps=None)",
+             "cdf per k (17 digits)": "cdf ×~100, one 17-digit\npartial sum per k"}
     for name, m in marks.items():
         ax.scatter([], [], marker=m, color="grey", label=shown.get(name, name))
     for n, c in colours.items():
@@ -186,7 +208,7 @@ def plot(rows: list[dict]) -> None:
     ax.set_yscale("log")
     ax.set_xlabel("relative error against dps = 100 (no difference: plotted at 1e-70)")
     ax.set_ylabel("time per call [s]")
-    ax.set_title("simple-space statistics at dps = 50 (and float64 pmf)")
+    ax.set_title("simple-space statistics at dps = 50 (and float64 pmf, cdf)")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.tight_layout()
     fig.savefig(RESULTS / "large_n.png", dpi=120)

@@ -147,7 +147,7 @@ EXACT_WORK_LIMIT = 500_000
 EXACT_QUANTILE_WORK_LIMIT = 200_000
 #: largest N for the sums of the mpmath path (moments, ``pmf``, ``cdf``, ``sf``, logs,
 #: ``entropy``; :mod:`symhx.simple_sums`): the cost grows with the digits of N (Arb balls of
-#: ``log2 N`` bits at every quadrature node), 5-29 ms per pass at N = 10**100 and 0.01-0.26 s
+#: ``log2 N`` bits at every quadrature node), 9-13 ms per pass at N = 10**100 and 0.14-0.18 s
 #: at 10**1000 (dps = 50), whatever p, and roughly like dps**2.5 beyond: 0.5-0.8 s at dps 300,
 #: 2-4 s at dps 1000, 11-15 s at dps 2000 (N = 10**100 ... 10**1000); ``mode`` and ``modes``
 #: take any N.
