@@ -893,7 +893,7 @@ class SimpleDistribution(Distribution):
         moments' pass leaves it out: a log per directly summed term and the bounds of ``log``
         weights roughly double that pass), which also sums the normaliser if no pass has."""
         if self.dps is None:
-            if self.N > FLOAT_N_LIMIT:
+            if self._beyond_table:
                 return float(self._float_engine.entropy())
             return super().entropy()
         self._engine()  # the cap
@@ -915,7 +915,7 @@ class SimpleDistribution(Distribution):
     def log_normaliser(self) -> Any:
         """``log Gamma_{N,p}``."""
         if self.dps is None:
-            if self.N > FLOAT_N_LIMIT:
+            if self._beyond_table:
                 return float(self._float_engine.log_normaliser)
             return float(self._ftab["lognorm"])
         if self.exact:
@@ -952,6 +952,12 @@ class SimpleDistribution(Distribution):
         return [(k, self._pmf1(k)) for k in range(1, self.N + 1)]
 
     # ----------------------------------------------------------------- float64 beyond the table
+    @property
+    def _beyond_table(self) -> bool:
+        """The float64 path (``dps=None``) above ``FLOAT_N_LIMIT``: no table of the support;
+        moments and quantiles from the 17-digit engine, the rest vectorised."""
+        return self.dps is None and self.N > FLOAT_N_LIMIT
+
     @cached_property
     def _float_engine(self) -> SimpleDistribution:
         """For ``dps=None`` and ``N > FLOAT_N_LIMIT``: the summation engine at 17 digits, its
@@ -973,7 +979,7 @@ class SimpleDistribution(Distribution):
         rounding, each keeping its relative accuracy in its own tail), and the log forms as
         ``-log1p`` of the other tail's ratio near 0.  ``k < 1`` and ``k >= N`` (``> N`` for
         pmf) give ``below`` and ``above``."""
-        if self.N <= FLOAT_N_LIMIT:
+        if not self._beyond_table:
             return super()._ftake(name, kk, below, above)
         edge = self.N if name in ("pmf", "logpmf") else self.N - 1
         inside = (kk >= 1) & (kk <= edge)
@@ -1018,26 +1024,26 @@ class SimpleDistribution(Distribution):
 
     def mean(self) -> Any:
         """``E[X]``: a Fraction when exact, an mpf to ``dps`` digits, or a float."""
-        if self.dps is None and self.N > FLOAT_N_LIMIT:
+        if self._beyond_table:
             return float(self._float_engine.mean())
         return super().mean()
 
     def var(self) -> Any:
         """``Var[X]`` (one pass of central sums on the mpmath path: no cancellation)."""
-        if self.dps is None and self.N > FLOAT_N_LIMIT:
+        if self._beyond_table:
             return float(self._float_engine.var())
         return super().var()
 
     # ----------------------------------------------------------------- quantiles (mpmath)
     def _ppf1(self, q: Fraction) -> int:
-        if self.dps is None and self.N > FLOAT_N_LIMIT and 0 < q < 1:
+        if self._beyond_table and 0 < q < 1:
             return int(self._float_engine._ppf1(q))
         if self.dps is None or q in (0, 1) or (self.exact and self._exact_quantiles_ok()):
             return super()._ppf1(q)
         return self._quantile_mp(q * (1 - Fraction(10) ** (1 - self.dps)), upper=False)
 
     def _isf1(self, q: Fraction) -> int:
-        if self.dps is None and self.N > FLOAT_N_LIMIT and 0 < q < 1:
+        if self._beyond_table and 0 < q < 1:
             return int(self._float_engine._isf1(q))
         if self.dps is None or q in (0, 1) or (self.exact and self._exact_quantiles_ok()):
             return super()._isf1(q)
@@ -1210,6 +1216,20 @@ class SimpleDistribution(Distribution):
                 total = _engine_total(base)
             return export(s / local(total)), min(eng.R, base.R)
 
+    def _light_head_hump(self) -> tuple[int, Any] | None:
+        """``(top, sigma)`` of the hump (the width at its top, 64 bits) when the head is
+        provably light (its terms times their number below ``e**-5`` of the top's height
+        times the width), else None."""
+        top = self.mode()
+        eng = self._engine()
+        if top <= 1 or eng.c != top:
+            return None
+        ctx = mp()
+        with ctx.workprec(64 + eng.abs_bits(1, top)):
+            sig = eng._sigma_at(top)
+            head = eng.D(1) + ctx.log(eng.valley())
+            return (top, sig) if head < ctx.log(sig) - 5 else None
+
     def _quantile_guess(self, qq: Fraction, upper: bool) -> int:
         """A start for the Newton iteration: the normal approximation around the hump's top
         with its width (no pass) when the head is provably light (its terms times their number
@@ -1218,14 +1238,10 @@ class SimpleDistribution(Distribution):
 
         ctx = mp()
         top = self.mode()
-        eng = self._engine()
         mu = var = None
-        if top > 1 and eng.c == top and "_mp_moments" not in self.__dict__:
-            with ctx.workprec(64 + eng.abs_bits(1, top)):
-                sig = eng._sigma_at(top)
-                head = eng.D(1) + ctx.log(eng.valley())
-                if head < ctx.log(sig) - 5:
-                    mu, var = top, sig * sig
+        hump = self._light_head_hump() if "_mp_moments" not in self.__dict__ else None
+        if hump is not None:
+            mu, var = hump[0], hump[1] ** 2
         if mu is None:
             mu, var = self._mp_moments[1], self._mp_moments[2]
             if top > 1:  # the hump's top is exact; the mean is only dps digits of ~N
