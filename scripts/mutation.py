@@ -742,6 +742,12 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
             dst = workdir / "mutants" / src.relative_to(ROOT)
             if dst.parent.is_dir() and not dst.with_name(dst.name + ".meta").exists():
                 shutil.copy2(src, dst)
+                # and the work directory's own copy, which mutmut copies into mutants/ again
+                # when it starts (a rerun would otherwise test against the modules as they
+                # were at the first run)
+                own = workdir / src.relative_to(ROOT)
+                if own.parent.is_dir():
+                    shutil.copy2(src, own)
         # new tests are only run for a mutant once mutmut has re-collected which tests
         # execute which function
         (workdir / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)

@@ -19,6 +19,11 @@ from symhx.distribution import SimpleDistribution
 from tests.harness.errors import assert_refuses
 from tests.reference.distribution import ExactTable, fraction_of
 
+#: the cost tests of the quantile search and of the shared passes also pin behaviour of
+#: symhx/distribution.py: its mutation runs take them too (scripts/mutation.py)
+MUTATION_ALSO = ("tests/perf/test_distribution_quantile_cost.py",
+                 "tests/perf/test_distribution_shared_pass.py")
+
 
 def test_mpmath_quantiles_resolve_q_to_dps_digits() -> None:
     """A q within a relative 10**(1 - dps) of cdf(k) counts as equal to it (documented), and
