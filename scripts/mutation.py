@@ -498,7 +498,9 @@ class CWorkspace:
         if len(built) != 1:  # the extension is optional: a compile error leaves no .so
             return None
         so = built[0]
-        if so.stat().st_mtime_ns < written:
+        # setuptools copies the built file in place with its time cut to whole seconds, so a
+        # build within the second of the write looks older: compare whole seconds
+        if so.stat().st_mtime_ns < written - written % 10**9:
             raise RuntimeError(f"stale build of {self.module}: {so} is older than the source")
         return so
 
