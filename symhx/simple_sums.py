@@ -394,8 +394,7 @@ class SimpleSums:
         out = [self.D(x0, d0), self.dD(x0, d0)]
         if order < 2:
             return out
-        v = self.u - d0
-        lg = self._lgamma_series(v if isinstance(v, int) else ctx.mpf(v), order)
+        lg = self._lgamma_series(self.u - d0, order)  # an int, or an mpf for a real x0
         x0 = ctx.mpf(x0)
         xp = x0
         for n in range(2, order + 1):
@@ -874,6 +873,16 @@ class SimpleSums:
                 return self._direct_mpf(A, B, kinds, limit)
         return [ctx.ldexp(ctx.mpf(v), -shift) for v in sums]
 
+    def _log_radius(self, x: int) -> float:
+        """``log min(x/2, 2/|D'(x)|)`` (64 bits): the radius of the Cauchy discs around ``x`` on
+        which ``max|f|`` stays within ``e**2`` of ``f(x)`` (``f`` decays at most like
+        ``exp(D'(x) t)`` there, and has a pole at 0)."""
+        ctx = mp()
+        with ctx.workprec(64):
+            lr = float(ctx.log(ctx.mpf(x) / 2))
+            s = abs(self.dD(x))
+            return min(lr, -float(ctx.log(s / 2))) if s else lr
+
     def _negligible_end(self, x0: int, lr: float, M: int, kinds: tuple[int, ...],
                         targets: list[Any]) -> bool:
         """Whether the Euler-Maclaurin terms at the end ``x0``, ``F(x0)/2 + sum_{m<=M}
@@ -942,18 +951,12 @@ class SimpleSums:
         if B - A + 1 <= self.direct_terms:
             return self._direct(A, B, kinds, limit)
         K0 = max(A, 16 * self.R)
-        ctx = mp()
-        rmin = 0.45 * self.R + 3  # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
-        with ctx.workprec(64):
-            # Euler-Maclaurin needs f smooth on a disc of radius min(x/2, 2/|D'(x)|) >= rmin
-            # at both ends (where f decays like exp(D'(x) t))
-            def radius(x: int) -> Any:
-                s = abs(self.dD(x))
-                return min(ctx.mpf(x) / 2, 2 / s) if s else ctx.mpf(x) / 2
-
-            while K0 < B and radius(K0) < rmin and K0 < 64 * self.R:
-                K0 = min(B, 2 * K0)
-            smooth = radius(K0) >= rmin and radius(B) >= rmin
+        # Euler-Maclaurin needs f smooth on a disc of radius >= rmin at both ends, rmin the
+        # Cauchy radius for e**(-2 pi r) below 10**-(dps+guard)
+        lrmin = math.log(0.45 * self.R + 3)
+        while K0 < B and self._log_radius(K0) < lrmin and K0 < 64 * self.R:
+            K0 = min(B, 2 * K0)
+        smooth = self._log_radius(K0) >= lrmin and self._log_radius(B) >= lrmin
         if B - K0 + 1 <= self.direct_terms or K0 >= B or not smooth:
             return self._direct(A, B, kinds)
         head = self._direct(A, K0 - 1, kinds) if K0 > A else [mp().mpf(0) for _ in kinds]
@@ -1073,32 +1076,23 @@ class SimpleSums:
         self.last_panels = panels
         total = self._integral(panels, kinds)
         # endpoint terms: (F(A) + F(B))/2 + sum_m B_2m/(2m)! (F^(2m-1)(B) - F^(2m-1)(A))
-        # Cauchy discs of radius r around [A, B]: r = min(A/2, 2/|D'(A)|) keeps
-        # max|f| on them within e**2 of f at the centre near A (f decays at most like
-        # exp(D'(A) x) there); in the hump r ~ sigma
-        with ctx.workprec(64):
-            slope = abs(self.dD(A))
-            lrA = min(math.log(A) - math.log(2),
-                      -float(ctx.log(slope / 2)) if slope else math.inf)
+        # on Cauchy discs of radius r around [A, B] (in the hump r ~ sigma)
+        lrA = self._log_radius(A)
         M = 1
         while em_remainder_factor(M, lrA) + 2 > eps_log - 5 and M < 200:
             M += 1
         corr = [ctx.mpf(0) for _ in kinds]
         for x0, sign in ((A, -1), (B, 1)):
-            with ctx.workprec(64):
-                # the Cauchy radius at this end, as for M above: f decays like
-                # exp(D'(x0) t), so max|f| on a disc of radius 2/|D'(x0)| stays within e**2
-                # of f(x0) (a radius of sigma alone let a steep end take one term)
-                lr0 = ctx.log(ctx.mpf(x0) / 2)
-                s0 = abs(self.dD(x0))
-                if s0:
-                    lr0 = min(lr0, -ctx.log(s0 / 2))
-                if top:
-                    lr0 = min(lr0, ctx.log(max(1, self._sigma_at(top))))
+            # the Cauchy radius at this end, as for M above (a radius of sigma alone let a
+            # steep end take one term), and at most the hump's width
+            lr0 = self._log_radius(x0)
+            if top:
+                with ctx.workprec(64):
+                    lr0 = min(lr0, float(ctx.log(max(1, self._sigma_at(top)))))
             Mx = 1
-            while em_remainder_factor(Mx, float(lr0)) > eps_log - 5 and Mx < M:
+            while em_remainder_factor(Mx, lr0) > eps_log - 5 and Mx < M:
                 Mx += 1
-            if self._negligible_end(x0, float(lr0) - math.log(4), Mx, kinds,
+            if self._negligible_end(x0, lr0 - math.log(4), Mx, kinds,
                                     [eps_log + low + sc - math.log(4) for sc in scales]):
                 continue
             order = 2 * Mx
