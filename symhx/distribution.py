@@ -849,10 +849,7 @@ class SimpleDistribution(Distribution):
             else:  # the complement lies far in the other tail: it needs the digits of its
                 # |log Phi| (summed by its own engine; same reference c), unless its bound
                 # (largest term times length) is already below the sum's error
-                with ctx.workprec(64 + reng.abs_bits(rlo, rhi)):
-                    ub = reng.log_max(rlo, rhi) + ctx.log(rhi - rlo + 1)
-                    light = ub < ctx.log(part) - (eng.R * _LN10 + 10)
-                if light:
+                if _below_error(reng, rlo, rhi, part, eng.R):
                     rest = ctx.mpf(0)
                 else:
                     with ctx.workdps(reng.W):
@@ -1195,8 +1192,7 @@ class SimpleDistribution(Distribution):
         d = self.dps if dps is None else dps
         assert d is not None
         eng = self._engine(d)
-        lm = abs(eng.log_max(lo, hi))
-        extra = 0 if lm < 10 else int(mp().mag(lm) * 0.30103) + 2
+        extra = _extra_digits(eng.log_max(lo, hi))
         return eng if extra == 0 else self._engine(d, extra)
 
     def _range_sum(self, lo: int, hi: int, dps: int | None = None) -> tuple[Any, int]:
@@ -1348,16 +1344,10 @@ def _partial_sum(eng: SimpleSums, lo: int, hi: int) -> Any:
             grow, stretch = (hi > b), ((b + 1, hi) if hi > b else (hi + 1, b))
         else:  # the same right end: [lo, a) / [a, lo)
             grow, stretch = (lo < a), ((lo, a - 1) if lo < a else (a, lo - 1))
-        ctx = mp()
-        with ctx.workprec(64 + eng.abs_bits(*stretch)):
-            lm = eng.log_max(*stretch)
-            bound = lm + ctx.log(stretch[1] - stretch[0] + 1)  # >= the stretch's sum
-            lv = ctx.log(v)
-            # the digits of |log Phi| the stretch's terms need beyond the engine's
-            short = abs(lm) >= 10 and int(ctx.mag(abs(lm)) * 0.30103) + 2 > eng.W - eng.R
-            negligible = bound < lv - (eng.R * _LN10 + 10)
-            light = bound < lv - 1  # removing: only when provably under half the sum
-        if negligible:  # far in a tail (its terms may need digits this engine lacks)
+        # the digits of |log Phi| the stretch's terms need beyond the engine's
+        short = _extra_digits(eng.log_max(*stretch)) > eng.W - eng.R
+        light = _log_sum_bound(eng, *stretch) < mp().log(v) - 1  # provably under half the sum
+        if _below_error(eng, *stretch, v, eng.R):  # far in a tail, perhaps beyond its digits
             total = v
         elif not short and (grow or light):
             d = eng.sums(*stretch, (0,))[0]
@@ -1371,6 +1361,29 @@ def _partial_sum(eng: SimpleSums, lo: int, hi: int) -> Any:
         cache.clear()
     cache[(lo, hi)] = total
     return total
+
+
+def _extra_digits(log_max: Any) -> int:
+    """The digits beyond ``dps`` that a sum whose largest term is ``exp(log_max)`` relative to
+    ``Phi(c)`` needs (``log Phi`` to absolute accuracy: the digits of ``|log_max|``)."""
+    lm = abs(log_max)
+    return 0 if lm < 10 else int(mp().mag(lm) * 0.30103) + 2
+
+
+def _log_sum_bound(eng: SimpleSums, lo: int, hi: int) -> Any:
+    """An upper bound of ``log sum_{k=lo}^{hi} Phi(k)/Phi(c)``: the largest term times the
+    number of terms."""
+    ctx = mp()
+    with ctx.workprec(64 + eng.abs_bits(lo, hi)):
+        return eng.log_max(lo, hi) + ctx.log(hi - lo + 1)
+
+
+def _below_error(eng: SimpleSums, lo: int, hi: int, against: Any, R: int) -> bool:
+    """Whether the whole of ``sum_{k=lo}^{hi}`` is provably below ``10**-R e**-10`` of
+    ``against`` (a sum of the same reference): it can be left out of it."""
+    ctx = mp()
+    with ctx.workprec(64 + eng.abs_bits(lo, hi)):
+        return _log_sum_bound(eng, lo, hi) < ctx.log(against) - (R * _LN10 + 10)
 
 
 def _engine_total(eng: SimpleSums) -> Any:
