@@ -135,13 +135,22 @@ def float_rows(N: int, p, k: int, ref, t_cp: float, e: int, label: str) -> list[
                   dtype=np.int64 if N < 2**62 else object)
     pick = ks[:: max(1, len(ks) // 20)]
     want = [ref.pmf(int(kk)) for kk in pick]
+    want_c = [ref.cdf(int(kk)) for kk in pick]
     out = []
+
+    def row(stat: str, fn, at, reference, **extra) -> None:
+        """Time ``fn`` (values at the points ``at``), its worst error at the picked points it
+        has against ``reference``, as a row."""
+        val, t = timed(fn)
+        got = dict(zip([int(v) for v in at], list(val), strict=True))
+        err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, reference, strict=True)
+                  if int(kk) in got)
+        out.append({"N": f"1e{e}", "case": label, "stat": stat, **extra, "time_s": t,
+                    "rel_err": err, "critical_point_s": t_cp,
+                    "ratio_to_critical_point": t / t_cp})
+
     cold()
-    val, t = timed(lambda: symhx.pmf(N, pf, ks, dps=None))
-    got = dict(zip([int(v) for v in ks], val.tolist(), strict=True))
-    err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want, strict=True))
-    out.append({"N": f"1e{e}", "case": label, "stat": "pmf x1001 (float64)", "time_s": t,
-                "rel_err": err, "critical_point_s": t_cp, "ratio_to_critical_point": t / t_cp})
+    row("pmf x1001 (float64)", lambda: symhx.pmf(N, pf, ks, dps=None), ks, want)
     lz = float(ref.log_normaliser)
 
     def naive():
@@ -150,30 +159,16 @@ def float_rows(N: int, p, k: int, ref, t_cp: float, e: int, label: str) -> list[
             return np.exp(kf * np.log(pf) + gammaln(N + 1.0) - gammaln(N - kf + 1.0) - np.log(kf)
                           - lz)
 
-    val, t = timed(naive)
-    got = dict(zip([int(v) for v in ks], val.tolist(), strict=True))
-    err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want, strict=True))
-    out.append({"N": f"1e{e}", "case": label, "stat": "pmf x1001 (gammaln)", "time_s": t,
-                "rel_err": err, "critical_point_s": t_cp, "ratio_to_critical_point": t / t_cp})
+    row("pmf x1001 (gammaln)", naive, ks, want)
     # the cdf at the same 1001 points: vectorised (symhx.float_sums, after the one normaliser
     # pass) against one 17-digit partial sum per k (the mpmath path walked per point)
-    want_c = [ref.cdf(int(kk)) for kk in pick]
     cold()
-    val, t = timed(lambda: symhx.cdf(N, pf, ks, dps=None))
-    got = dict(zip([int(v) for v in ks], val.tolist(), strict=True))
-    err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want_c, strict=True))
-    out.append({"N": f"1e{e}", "case": label, "stat": "cdf x1001 (float64)", "time_s": t,
-                "rel_err": err, "critical_point_s": t_cp, "ratio_to_critical_point": t / t_cp})
+    row("cdf x1001 (float64)", lambda: symhx.cdf(N, pf, ks, dps=None), ks, want_c)
     cold()
     d17 = symhx.distribution_of(N, pf, dps=17)
     few = ks[:: max(1, len(ks) // 100)]  # ~101 of the points (the same per-point cost)
-    val, t = timed(lambda: [d17.cdf(int(kk)) for kk in few])
-    got = dict(zip([int(v) for v in few], val, strict=True))
-    err = max(rel_err(got[int(kk)], w) for kk, w in zip(pick, want_c, strict=True)
-              if int(kk) in got)
-    out.append({"N": f"1e{e}", "case": label, "stat": "cdf per k (17 digits)",
-                "points": len(few), "time_s": t, "rel_err": err, "critical_point_s": t_cp,
-                "ratio_to_critical_point": t / t_cp})
+    row("cdf per k (17 digits)", lambda: [d17.cdf(int(kk)) for kk in few], few, want_c,
+        points=len(few))
     for r in out:
         print(r, flush=True)
     return out
