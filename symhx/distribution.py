@@ -556,10 +556,14 @@ class Distribution:
         else:
             self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 - Fraction(10) ** (1 - self.dps))
+        # the dps-digit cdf is within a relative 10**-dps of the cdf: the decision allows for
+        # that, so a cdf(k) equal to (or just above) the resolved q gives k, never k + 1 by the
+        # sign of a rounding error
+        slack = 1 if self.exact else 1 + Fraction(10) ** -self.dps
         lo, hi = 1, self.N
         while lo < hi:
             mid = (lo + hi) // 2
-            if _exact_value(self._cdf1(mid)) >= qq:
+            if _exact_value(self._cdf1(mid)) * slack >= qq:
                 hi = mid
             else:
                 lo = mid + 1
@@ -579,10 +583,11 @@ class Distribution:
         else:
             self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         qq = q if self.exact else q * (1 + Fraction(10) ** (1 - self.dps))
+        slack = 1 if self.exact else 1 - Fraction(10) ** -self.dps  # as in _ppf1
         lo, hi = 1, self.N
         while lo < hi:
             mid = (lo + hi) // 2
-            if _exact_value(self._sf1(mid)) <= qq:
+            if _exact_value(self._sf1(mid)) * slack <= qq:
                 hi = mid
             else:
                 lo = mid + 1
@@ -1065,7 +1070,8 @@ class SimpleDistribution(Distribution):
         is checked against the sums' relative error bound; a margin inside it repeats the
         decision at once with the digits that resolve one unit of ``k`` there (``dps`` plus
         those of ``C/pmf``; at least 20 more, up to ``dps + digits(N) + 40``), so rounding never
-        decides the integer.  About 5-15 partial sums per quantile."""
+        decides the integer: a ``C(k)`` still within ``10**(4 - W)`` of the target with those
+        digits is a tie (``q`` built from the exact cdf), which reaches it: ``k``.  About 5-15 partial sums per quantile."""
         self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         N = self.N
         ctx = mp()
@@ -1151,8 +1157,13 @@ class SimpleDistribution(Distribution):
             k = min(max(k, lo + 1), hi - 1)
             okv, step, certain, need = ok_of(k)
             if not certain:  # within rounding of the target: more digits, same k; at once
-                if work_dps >= top:  # those that resolve one unit of k (~digits(N)/2 above
-                    return k if okv else k + 1  # the jump), not a ladder of full passes
+                # those that resolve one unit of k (~digits(N)/2 above the jump), not a ladder
+                # of full passes.  Still within 10**(4 - W) of the target there: a tie (only a
+                # q built from the exact cdf makes one), and a tie reaches the target, so k
+                # (k - 1 is a whole pmf(k) away, far beyond those digits); never a coin toss of
+                # the rounding
+                if work_dps >= top:
+                    return k
                 work_dps = min(top, max(work_dps + 20 + work_dps // 2, need))
                 continue
             if okv:

@@ -41,6 +41,39 @@ def test_mpmath_quantiles_resolve_q_to_dps_digits() -> None:
         assert d.isf(s * (1 + Fraction(1, 10**15))) == k
 
 
+@pytest.mark.parametrize("N, pf, dps", [(300, 0.02, 30), (120, 0.3, 20), (200, 0.011, 17)])
+def test_mpmath_quantile_at_an_exact_tie_is_k(N: int, pf: float, dps: int) -> None:
+    """q built so that the resolved target q (1 -+ 10**(1 - dps)) equals cdf(k) / sf(k)
+    exactly: k reaches it (``cdf(k) >= target``), whatever the rounding of the sums at any
+    number of digits.  (The search used to settle such a tie by the sign of the rounding
+    error and gave k + 1 at N = 300.)"""
+    t = ExactTable.simple(N, Fraction(pf))
+    d = symhx.distribution_of(N, pf, dps=dps)
+    eps = Fraction(10) ** (1 - dps)
+    m = d.median()
+    for k in (m - 3, m, m + 2):
+        assert d.ppf(t.cdf(k) / (1 - eps)) == k
+        assert d.isf(t.sf(k) / (1 + eps)) == k
+
+
+@pytest.mark.parametrize("space, N, pf, dps", [("excess<=1", 40, 0.05, 20),
+                                                ("eq41", 60, 0.03, 30)])
+def test_space_quantile_at_an_exact_tie_is_k(space: str, N: int, pf: float, dps: int) -> None:
+    """The same for a sample space's distribution (the search over its dps-digit cdf): a
+    resolved target equal to cdf(k) / sf(k) gives k (the rounding of the cdf's last digit used
+    to give k + 1 for about half the k), and one resolution step beyond it gives k + 1.
+    Reference: the distribution at the exact binary value of p (exact cdf)."""
+    exact = symhx.distribution_of(N, Fraction(pf), space=space)
+    d = symhx.distribution_of(N, pf, dps=dps, space=space)
+    eps = Fraction(10) ** (1 - dps)
+    m = d.median()
+    for k in range(m - 4, m + 5):
+        c, s = exact.cdf(k), exact.sf(k)
+        assert isinstance(c, Fraction)
+        assert d.ppf(c / (1 - eps)) == k and d.isf(s / (1 + eps)) == k
+        assert d.ppf(c * (1 + 2 * eps)) == k + 1 and d.isf(s * (1 - 2 * eps)) == k + 1
+
+
 @pytest.mark.parametrize("dps", [20, 30])
 def test_mpmath_quantile_resolution_is_exactly_ten_to_one_minus_dps(dps: int) -> None:
     """The documented resolution: ppf gives k when q <= cdf(k) (1 + 10**(1 - dps)) and isf

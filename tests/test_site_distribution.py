@@ -118,3 +118,21 @@ def test_refusals_name_the_limit():
     assert_refuses(SitesDistribution, 4, [0.5] * 4, exc=TypeError, arg="classes",
                    value="[0.5, 0.5", allowed="SiteClasses")
     assert EXACT_TABLE_BITS_LIMIT > 0
+
+
+@pytest.mark.parametrize("dps", [20, 30])
+def test_quantiles_at_an_exact_tie_are_k(dps: int) -> None:
+    """The mpmath path resolves q to dps digits (``ppf``: the smallest k with
+    ``cdf(k) >= q (1 - 10**(1 - dps))``): a q whose resolved target equals cdf(k) / sf(k)
+    exactly gives k, whatever the rounding of the cdf's last digit (it gave k + 1 for about
+    half the k), and one resolution step beyond gives k + 1.  Reference: the exact
+    distribution at the floats' binary values."""
+    N = 30
+    exact = SitesDistribution(N, SiteClasses((10, 20), (Fraction(0.05), Fraction(0.12))))
+    d = SitesDistribution(N, SiteClasses((10, 20), (0.05, 0.12)), dps=dps)
+    eps = Fraction(10) ** (1 - dps)
+    m = d.median()
+    for k in range(m - 4, m + 5):
+        c, s = exact.cdf(k), exact.sf(k)
+        assert d.ppf(c / (1 - eps)) == k and d.isf(s / (1 + eps)) == k
+        assert d.ppf(c * (1 + 2 * eps)) == k + 1 and d.isf(s * (1 - 2 * eps)) == k + 1

@@ -23,6 +23,10 @@ from tests.harness.twins import check_twins
 
 pytestmark = pytest.mark.skipif(not available(), reason="C extension not built")
 
+# the C engine's event rules are also run, against the Python port, by the rules' and twins'
+# tests of engine.py: mutation testing of _fast.c runs them too (scripts/mutation.py)
+MUTATION_ALSO = ("tests/impact/test_engine_rules.py", "tests/impact/test_engine_twin.py")
+
 
 def _table(h):
     return np.column_stack([h.times, h.sites, h.kinds, h.u_before, h.u_after, h.aux])
