@@ -1071,7 +1071,8 @@ class SimpleDistribution(Distribution):
         decision at once with the digits that resolve one unit of ``k`` there (``dps`` plus
         those of ``C/pmf``; at least 20 more, up to ``dps + digits(N) + 40``), so rounding never
         decides the integer: a ``C(k)`` still within ``10**(4 - W)`` of the target with those
-        digits is a tie (``q`` built from the exact cdf), which reaches it: ``k``.  About 5-15 partial sums per quantile."""
+        digits is a tie (``q`` built from the exact cdf), which reaches it: ``k``.  About 5-15
+        partial sums per quantile."""
         self._check_mp_cap("a quantile", MP_QUANTILE_N_LIMIT, "MP_QUANTILE_N_LIMIT")
         N = self.N
         ctx = mp()

@@ -33,3 +33,12 @@ settings.register_profile("fresh", max_examples=60, deadline=None, derandomize=F
                           database=None, print_blob=True)
 settings.load_profile("fresh" if os.environ.get(FRESH_ENV, "") not in ("", "0") else
                       "deterministic")
+
+
+def pytest_sessionstart(session):
+    """A session that tests a mutant (``MUTANT_UNDER_TEST``, set by mutmut in a process forked
+    after its clean run) starts from empty caches: see :mod:`tests.harness.caches`."""
+    if os.environ.get("MUTANT_UNDER_TEST", "") not in ("", "stats", "fail"):
+        from tests.harness.caches import clear_caches
+
+        clear_caches()

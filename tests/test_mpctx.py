@@ -45,6 +45,7 @@ def test_export_and_local_keep_the_bits():
     assert export((x, [x], {"a": x}, 7)) == (g, [g], {"a": g}, 7)
     z = mpmath.mpc(1, 2)
     assert type(local(z)) is ctx.mpc and export(local(z)) == z
+    assert type(export(local(z))) is mpmath.mpc
     assert local("text") == "text" and make_mpf(x._mpf_) == g
 
 
@@ -57,6 +58,13 @@ def test_export_rounds_like_workdps(dps):
         ref = +mpmath.mp.make_mpf(x._mpf_)
     assert export(x, dps)._mpf_ == ref._mpf_
     assert prec_of_dps(dps) == mpmath.libmp.dps_to_prec(dps)
+    # a complex value: both parts rounded once, as +z inside workdps(dps) rounds them
+    with ctx.workdps(dps + 30):
+        z = ctx.mpc(x, ctx.e() / 3)
+    with mpmath.workdps(dps):
+        zref = +mpmath.mp.make_mpc(z._mpc_)
+    got = export(z, dps)
+    assert type(got) is mpmath.mpc and got._mpc_ == zref._mpc_
 
 
 def test_is_mpf_of_every_context_and_nothing_else():

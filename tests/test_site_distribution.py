@@ -136,3 +136,23 @@ def test_quantiles_at_an_exact_tie_are_k(dps: int) -> None:
         c, s = exact.cdf(k), exact.sf(k)
         assert d.ppf(c / (1 - eps)) == k and d.isf(s / (1 + eps)) == k
         assert d.ppf(c * (1 + 2 * eps)) == k + 1 and d.isf(s * (1 - 2 * eps)) == k + 1
+
+
+@pytest.mark.parametrize("dps", [None, 25, "exact"])
+def test_table_lists_every_k_and_sums_to_one(dps) -> None:
+    """``table()`` is ``[(k, P(X = k)) for k = 1..N]`` in every arithmetic: N rows, the pmf of
+    each k, a total of 1 (exactly for exact probabilities)."""
+    N = 9
+    if dps == "exact":
+        d = SitesDistribution(N, SiteClasses((4, 5), (Fraction(1, 7), Fraction(2, 9))))
+    else:
+        d = SitesDistribution(N, SiteClasses((4, 5), (1 / 7, 2 / 9)), dps=dps)
+    t = d.table()
+    assert [k for k, _ in t] == list(range(1, N + 1))
+    assert all(v == d.pmf(k) for k, v in t)
+    with mpmath.workdps(40):
+        total = sum(v for _, v in t)
+    if dps == "exact":
+        assert total == 1
+    else:
+        assert abs(total - 1) < (1e-14 if dps is None else mpmath.mpf(10) ** (1 - dps))

@@ -34,6 +34,14 @@ def test_huge_sizes_are_exact_and_shown_readably():
     assert repr(SiteClasses((10**100,), (1,))) == shown
 
 
+def test_long_probabilities_are_shown_in_at_most_60_characters():
+    long = Fraction(1, 3**200)
+    r = repr(SiteClasses((1, 2), (long, "1/2")))
+    start = r.index("probabilities=(") + len("probabilities=(")
+    shown, after = r[start:start + 60], r[start + 60:]
+    assert shown == repr(long)[:57] + "..." and after.startswith(", '1/2')")
+
+
 def test_equality_and_hash_follow_values_kinds_and_names():
     a = SiteClasses((2, 3), ("1/2", "0.25"))
     assert a == SiteClasses([2, 3], [Fraction(1, 2), Fraction(1, 4)])
@@ -118,6 +126,8 @@ def test_irrational_probabilities_are_refused():
     sympy = pytest.importorskip("sympy")
     assert_refuses(SiteClasses, (1, 2), (1, sympy.sqrt(2) / 10), exc=TypeError,
                    arg="probabilities[1]", value="sqrt(2)/10", allowed="rational, float or mpf")
+    assert_refuses(SiteClasses.from_sites, [0.5, sympy.sqrt(2) / 10], exc=TypeError,
+                   arg="sites[1]", value="sqrt(2)/10", allowed="rational, float or mpf")
 
 
 def test_site_sequences_are_refused_clearly():

@@ -29,6 +29,34 @@ def test_gauss_legendre_is_exact_for_degree_2n_minus_1() -> None:
                 assert abs(s - ctx.mpf(2) / (deg + 1)) < ctx.mpf(10) ** -55
 
 
+def test_gauss_legendre_rules_carry_the_contexts_full_precision() -> None:
+    """At a working precision that is a multiple of the cache's 128-bit step (the rule is
+    shared by the precisions up to it), every bit of it is right: x**(2n-2) integrates to
+    2/(2n-1) within a few units of 2**-prec."""
+    ctx = mp()
+    for prec in (256, 512):
+        for n in (8, 40):
+            with ctx.workprec(prec):
+                nodes = gauss_legendre(ctx, n)
+            with ctx.workprec(2 * prec):
+                s = ctx.fsum(w * x ** (2 * n - 2) for x, w in nodes)
+                err = abs(s - ctx.mpf(2) / (2 * n - 1))
+            assert err < ctx.mpf(2) ** (8 - prec), (prec, n)
+
+
+def test_euler_maclaurin_remainder_factor_bounds_zeta() -> None:
+    """The factor is an upper bound: log(2 zeta(2M) (2M)! / (2 pi r)**(2M)) with the exact zeta,
+    M = 1 (zeta(2) = 1.64...) up to 60, at r = 0.5, 1 and 7."""
+    for M in range(1, 61):
+        for lr in (math.log(0.5), 0.0, math.log(7)):
+            with mpmath.workdps(30):
+                exact = (mpmath.log(2 * mpmath.zeta(2 * M)) + mpmath.loggamma(2 * M + 1)
+                         - 2 * M * (mpmath.log(2 * mpmath.pi) + lr))
+            # (a float64 bound: up to its own rounding)
+            slack = 1e-13 * max(1.0, abs(float(exact)))
+            assert em_remainder_factor(M, lr) >= float(exact) - slack, (M, lr)
+
+
 def test_gauss_legendre_error_stays_below_its_bound() -> None:
     """e**(4x) on [-1, 1]: analytic everywhere; the bound with rho = 4 (M = e**(4 a))."""
     ctx = mp()
@@ -60,6 +88,7 @@ def test_exp_series_and_product() -> None:
         e = exp_series(ctx, [0, ctx.mpf(1)], 8)  # exp(t)
         assert all(abs(v - 1 / ctx.factorial(n)) < ctx.mpf(10) ** -28 for n, v in enumerate(e))
         sq = series_mul(ctx, e, e, 6)  # exp(2t)
+        assert len(sq) == 7  # coefficients 0..order
         assert all(abs(v - ctx.mpf(2) ** n / ctx.factorial(n)) < ctx.mpf(10) ** -27
                    for n, v in enumerate(sq))
     assert mpmath.mp.dps == 15

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from symhx.impact.engine import Engine, EventLog, FloatContext, default_v_stick
+from symhx.impact.engine import STICK, Engine, EventLog, FloatContext, default_v_stick
 from symhx.impact.history import History
 from symhx.impact.model import PipeRow, SimulationError
 
@@ -87,8 +87,10 @@ def count_impacts(row: PipeRow, t_end: float, t_from: float, *, v_stick: float |
                   max_events: int | None = None) -> tuple[np.ndarray, int]:
     """Impacts (including chatter that ends in sticking) per site ``0..n`` with ``t >= t_from``.
 
-    Returns ``(counts, n_events)`` where ``n_events`` counts every event of the run.  Raises
-    :class:`~symhx.impact.SimulationError` if the run cannot proceed.
+    Returns ``(counts, n_events)`` where ``n_events`` counts the events the run resolved
+    (impacts, grazes and releases, as ``max_events`` counts them): a stick that ends an impact
+    or a touch is part of that event, though a :class:`~symhx.impact.History` records it on a
+    row of its own.  Raises :class:`~symhx.impact.SimulationError` if the run cannot proceed.
 
     >>> row = PipeRow(1, restitution=1, alpha=[[0.0]], beta=[[0.0]], x0=[1.0], v0=[2.0])
     >>> counts, total = count_impacts(row, 10.0, 5.0)
@@ -98,6 +100,6 @@ def count_impacts(row: PipeRow, t_end: float, t_from: float, *, v_stick: float |
     vs = default_v_stick(row, None) if v_stick is None else float(v_stick)
     if _fast is None:
         h = simulate_python(row, t_end, v_stick=vs, max_events=max_events)
-        return h.impacts_per_site(t_from), len(h)
+        return h.impacts_per_site(t_from), len(h) - int(np.count_nonzero(h.kinds == STICK))
     _, (counts, _, _, nev, _) = _call(row, float(t_end), float(t_from), vs, False, max_events)
     return np.frombuffer(counts, dtype=np.int64).copy(), int(nev)

@@ -181,6 +181,15 @@ def test_lattice_classes_and_their_thresholds():
     pts = lattice_site_probabilities(2, "0.3", pitch=1, diameter=0, dps=30)
     assert rel_err(pts["diagonal"], pts["wall"], 40) < 1e-29
     assert lattice_site_probabilities(1, 0.2, pitch=1, diameter="0.5").names == ("wall",)
+    # log=True: log p per class, in float64 and in mpmath alike; a threshold as a float
+    for dps in (None, 30):
+        lg = lattice_site_probabilities(5, "0.2", pitch="1.5", diameter=1, log=True, dps=dps)
+        pl = lattice_site_probabilities(5, "0.2", pitch="1.5", diameter=1, dps=dps)
+        for name in pl.names:
+            with mpmath.workdps(40):
+                ref = mpmath.log(pl[name])
+            assert rel_err(lg[name], ref, 40) < (1e-14 if dps is None else 1e-29)
+    assert abs(float(sp.thresholds[2]) - (math.sqrt(2) * 1.5 - 1)) < 1e-15
 
 
 @pytest.mark.parametrize(("sigma", "n"), [(0.15, 30), (0.25, 30), (0.5, 12)])

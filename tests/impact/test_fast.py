@@ -258,6 +258,26 @@ def test_count_impacts_matches_history():
     assert counts.tolist() == np.bincount(h.sites[sel], minlength=31).tolist()
 
 
+@pytest.mark.parametrize("v_stick", [None, 0.05])
+def test_count_impacts_takes_v_stick_and_falls_back_to_the_python_engine(v_stick, monkeypatch):
+    # a chattering row whose counts depend on v_stick (63 impacts by default, 32 at 0.05): the
+    # counts are those of simulate() with the same v_stick, from the C kernel and, without the
+    # extension, from the Python engine; the events are the history's rows but the sticks
+    # (a stick is part of the impact it ends: it used to count twice without the extension)
+    row = PipeRow.random(6, 0.5, seed=6, restitution=0.5, Omega=(0.37, 2.1))
+    h = simulate(row, 30.0, v_stick=v_stick)
+    assert np.any(h.kinds == STICK)
+    sel = np.isin(h.kinds, (IMPACT, STICK)) & (h.times >= 5.0)
+    want = (np.bincount(h.sites[sel], minlength=7).tolist(), int(np.sum(h.kinds != STICK)))
+    counts, nev = count_impacts(row, 30.0, 5.0, v_stick=v_stick)
+    assert (counts.tolist(), nev) == want
+    monkeypatch.setattr(fast_mod, "_fast", None)
+    counts, nev = count_impacts(row, 30.0, 5.0, v_stick=v_stick)
+    assert (counts.tolist(), nev) == want
+    assert sum(count_impacts(row, 30.0, 0.0)[0]) != sum(count_impacts(row, 30.0, 0.0,
+                                                                      v_stick=0.05)[0])
+
+
 def test_max_events_guard():
     row = PipeRow.random(20, 0.4, seed=1, restitution=1.0)
     with pytest.raises(RuntimeError, match="max_events"):

@@ -153,3 +153,17 @@ def test_bad_state_time():
     assert_refuses(hm.states, [0.5, 3.0], arg="times", value="3.0", allowed="[0, t_end]")
     assert_refuses(hm.states, [-0.5], arg="times", value="-0.5", allowed="[0, t_end]")
     assert_refuses(hm.states, "0.5", exc=TypeError, arg="times", value="'0.5'")
+
+
+@pytest.mark.parametrize("t_from", [0.0, 7.5, 19.0, 25.0])
+def test_impacts_per_site_counts_the_events_of_those_kinds_from_t_from(t_from):
+    # against a plain loop over the event table: impacts and sticks (the default kinds), or
+    # impacts alone, at or after t_from, per site 0..n
+    row = PipeRow.random(6, 0.5, seed=3, restitution=0.0, Omega=(0.37, 2.1))
+    h = simulate(row, 20.0)
+    assert np.any(h.kinds == STICK) and np.any(h.kinds == IMPACT)
+    for kinds in ((IMPACT, STICK), (IMPACT,)):
+        want = [sum(1 for t, s, k in zip(h.times, h.sites, h.kinds, strict=True)
+                    if s == site and k in kinds and float(t) >= t_from) for site in range(7)]
+        got = h.impacts_per_site(t_from, kinds)
+        assert got.tolist() == want and len(got) == row.n + 1

@@ -66,7 +66,7 @@ def test_v_stick_zero_and_huge():
     row = _chatter_row()
     assert_refuses(simulate, row, 10.0, v_stick=0, arg="v_stick", value="0", allowed="> 0")
     assert_refuses(simulate, row, 10.0, v_stick=10**1000, arg="v_stick",
-                   allowed="float64 range")                # beyond float64: no OverflowError
+                   allowed=["float64 range", "positive float64 number"])  # no OverflowError
     h = simulate(row, 10.0, v_stick=10**1000, dps=15)  # exact in mpmath: the first contact sticks
     assert [int(k) for k in h.kinds] == [STICK]
 
@@ -98,6 +98,23 @@ def test_horizon_and_event_caps():
     assert_refuses(simulate, row, 1.0, max_events=MAX_EVENTS + 1, arg="max_events",
                    value=str(MAX_EVENTS + 1), allowed="MAX_EVENTS")
     assert_refuses(simulate, row, 1.0, max_events=10**1000, arg="max_events")
+
+
+@pytest.mark.parametrize("engine", ["python", "c"])
+def test_the_event_cap_applies_by_default(engine, monkeypatch):
+    # without max_events the documented default cap MAX_EVENTS holds on the common float64
+    # call too (a cap of 5 here: the run has more events)
+    import importlib
+
+    simulate_mod = importlib.import_module("symhx.impact.simulate")  # (the package's
+    # attribute of that name is the function)
+    if engine == "c" and not fast_mod.available():
+        pytest.skip("C extension not built")
+    row = PipeRow.random(4, 2.0, seed=3, restitution=0.8)
+    assert len(simulate(row, 10.0, engine=engine)) > 5
+    monkeypatch.setattr(simulate_mod, "MAX_EVENTS", 5)
+    with pytest.raises(SimulationError, match="max_events=5"):
+        simulate(row, 10.0, engine=engine)
 
 
 @pytest.mark.parametrize("dps", [None, 20])

@@ -49,3 +49,17 @@ def test_printed_formulas_recovered_and_boundaries():
     assert [r["true"] for r in rows] == [7, 7, 7, 42]
     assert [r["correction"] for r in rows] == [sp.Rational(7, 2), sp.Rational(14, 3),
                                                sp.Rational(21, 4), sp.Rational(21, 2)]
+    # the symbolic table: the same rows as expressions in N alone (the boundary length
+    # substituted), equal to the exact table at every N tried
+    sym = boundary_table()
+    assert [r["eq"] for r in sym] == [r["eq"] for r in rows] == ["35", "38", "39", "40"]
+    for r in sym:
+        assert {s.name for s in r["formula"].free_symbols} == {"N"}
+    for N in (7, 12, 30):
+        exact = boundary_table(N)
+        for r, e in zip(sym, exact, strict=True):
+            (Ns,) = r["formula"].free_symbols
+            assert (r["class"], r["length"]) == (e["class"], e["length"])
+            assert r["formula"].subs(Ns, N) == e["formula"]
+            assert r["true"].subs(Ns, N) == e["true"]
+            assert r["correction"].subs(Ns, N) == e["correction"]

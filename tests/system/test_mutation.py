@@ -178,3 +178,36 @@ def test_report_weights_each_module_rate_by_its_mutants():
     }, {}, {})
     assert rep["totals"]["kill_rate_weighted_by_module_size"] == 0.95
     assert rep["totals"]["kill_rate"] == round(905 / 910, 4)
+
+
+def test_every_module_level_cache_is_emptied_for_each_mutant():
+    """A module-level dict or list that is empty after a fresh import is a cache filled on
+    demand (a thread-local store too): each is listed in tests/harness/caches.py, so a mutant's
+    test run (forked by mutmut after its clean run) starts without them."""
+    import subprocess
+
+    code = (
+        "import importlib, pkgutil, threading, json, symhx\n"
+        "out = []\n"
+        "for m in pkgutil.walk_packages(symhx.__path__, 'symhx.'):\n"
+        "    mod = importlib.import_module(m.name)\n"
+        "    for k, v in vars(mod).items():\n"
+        "        if (isinstance(v, (dict, list)) and not v) or isinstance(v, threading.local):\n"
+        "            out.append([m.name, k])\n"
+        "print(json.dumps(out))\n")
+    found = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True,
+                                      text=True, check=True, cwd=ROOT).stdout)
+    from tests.harness.caches import CACHES, clear_caches
+
+    # the per-thread mpmath contexts hold no values: not a cache
+    missing = [(m, k) for m, k in found if k not in CACHES.get(m, ()) and
+               (m, k) != ("symhx._mpctx", "_tls")]
+    assert not missing, missing
+    # and clearing empties them (and the functools caches)
+    import symhx
+
+    symhx.mean(101, "0.02", dps=20)
+    assert clear_caches() >= len(CACHES)
+    from symhx import summation
+
+    assert not summation._NODES
