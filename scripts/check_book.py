@@ -14,7 +14,8 @@ fails (exit status 1, one line per problem) unless, for every page:
   many ``<mjx-container>`` elements after MathJax ran, no MathJax error (``mjx-merror``), and no
   raw TeX left in the visible text (``$$``, ``\\(``, ``\\)``, ``\\[``, ``\\]``, ``\\begin{``,
   a TeX control word such as ``\\frac`` or ``\\tilde``, a ``$...$`` pair outside code, or
-  pseudo-LaTeX typed as text: ``Phi_{N,p}``, ``k_- <= k_+``);
+  pseudo-LaTeX typed as text: ``Phi_{N,p}``, ``k_- <= k_+``), nor a MyST role left as text
+  (``{py:func}``, ``{ref}``: a doubled role renders the first one literally);
 * **nothing is clipped** (measured in the laid-out page: headless Chromium driven by Selenium and
   Debian's ``chromedriver``, windows 1280 and 800 px wide): no display equation or table is
   wider than the article's column (``scrollWidth > clientWidth``, or sticking out of the column)
@@ -110,6 +111,9 @@ RAW_TEX = [
     (re.compile(r"[\w)+-](?<!excess)\s*(<=|>=)\s*[\w(+-]"), "<= or >= (pseudo-LaTeX)"),
     (re.compile(r"(?<![\w$])\$[^$\s][^$\n]{0,80}?(?<=\S)\$(?![\w$])"), "$...$"),
 ]
+#: a MyST role left as text (a doubled ``{py:func}{py:func}`x``` renders the first one
+#: literally before the link)
+RAW_ROLE = re.compile(r"\{(?:py:[a-z]+|ref|doc|numref|eq|term|download|math|cite)\}")
 #: pseudo-LaTeX patterns: checked in the chapters, not in the reference pages, where docstrings
 #: and --help texts write maths in plain ASCII (``k <= N``) as they do in a terminal
 PSEUDO_TEX = {"x_{...} (pseudo-LaTeX)", "<= or >= (pseudo-LaTeX)"}
@@ -417,6 +421,11 @@ def check_page(page: Path, root: Path, chromium: str, css_cache: dict[Path, list
         if m:
             context = text[max(0, m.start() - 40): m.end() + 40].replace("\n", " ")
             problems.append(f"{rel}: raw TeX {name!r} in the rendered text: ...{context}...")
+    m = RAW_ROLE.search(text)
+    if m:
+        context = text[max(0, m.start() - 40): m.end() + 40].replace("\n", " ")
+        problems.append(f"{rel}: unrendered MyST role {m.group(0)!r} in the rendered text: "
+                        f"...{context}...")
     stats = {"page": rel, "math": source.math_elements, "mjx": dom.mjx_containers,
              "images": len(dom.images), "figures": source.figures}
     return problems, stats

@@ -66,6 +66,11 @@ def test_raw_tex_patterns_flag_leftover_tex_only():
     assert r"\(" in hits(r"oops \(x\)")
 
 
+def test_a_myst_role_left_as_text_is_flagged():
+    assert check_book.RAW_ROLE.search("see {py:func}symhx.phi() and {ref}here")
+    assert not check_book.RAW_ROLE.search("sets {N} and {k: k <= N} and f{x}")
+
+
 def test_missing_build_dir_is_a_setup_error(tmp_path):
     assert check_book.main([str(tmp_path / "nothing")]) == 2
 
