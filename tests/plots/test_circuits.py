@@ -31,8 +31,10 @@ def test_circuit_counts_plot_phi_over_the_total_for_every_length(N):
 def test_circuit_counts_linear_axis_and_fractions_sum_to_one():
     fig = plots.plot_circuit_counts(8, log=False)
     assert fig.axes[0].get_yscale() == "linear"
-    _, fracs = plots.circuit_fractions(8)
+    ks, fracs = plots.circuit_fractions(8)
     assert abs(fracs.sum() - 1) < 1e-15
+    assert ks.tolist() == list(range(1, 9))  # k = 1..N, one fraction each
+    assert len(fracs) == 8
 
 
 def test_circuit_fractions_below_float64_range_are_dropped_from_the_log_plot():

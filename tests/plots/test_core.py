@@ -38,6 +38,8 @@ def test_figure5_has_a_blow_up_and_the_mode_of_each_step():
             if x1 - x0 > 1e-9:
                 pmf = pmf_table(N, Fraction((x0 + x1) / 2))
                 assert y == 1 + max(range(N), key=lambda i: pmf[i]), (x0, x1, y)
+        # the path ends flat at the right edge, with the mode of its last step
+        assert ys[-1] == ys[-2] and xs[-1] > xs[-2]
 
 
 def test_figure6_same_colour_for_same_p_and_a_legend_on_each_panel():
@@ -62,3 +64,33 @@ def test_figure6_same_colour_for_same_p_and_a_legend_on_each_panel():
             continue
         p = float(ln.get_label().rsplit("=", 1)[1].strip(" $"))
         assert (max(y[1:]) > 0) == (p > float(cp.p)), ln.get_label()
+
+
+def test_figure6_marks_the_roots_of_f_and_draws_f_and_phi():
+    """Each row's dots on the f panel sit on the real roots of f_{N,p}(k) = -p k**2 + (N p - 1) k
+    - 1 (eq. 10) at that row's p (read back from the drawn parabola), and the right panel is
+    log Phi(k) - log Phi(1) from exact factorials."""
+    import math
+
+    N = 101
+    fig = plots.plot_jump_mechanism(N)
+    axes = fig.axes
+    counts = []
+    for row in range(4):
+        af, ap = axes[2 * row], axes[2 * row + 1]
+        k, fk = af.lines[0].get_data()
+        # p from the drawn curve: (f(k) + 1)/k + 1 = p (N - k)
+        p = ((fk[-1] + 1) / k[-1] + 1) / (N - k[-1])
+        dots = [ln for ln in af.lines[1:] if ln.get_marker() == "o"]
+        for ln in dots:
+            (r,), (y,) = ln.get_data()
+            assert y == 0.0
+            assert abs(-p * r * r + (N * p - 1) * r - 1) < 1e-9 * max(1.0, N * p * r)
+        counts.append(len(dots))
+        kk, lphi = ap.lines[0].get_data()
+        for ki, v in zip(kk[:20], lphi[:20], strict=True):
+            ref = (ki - 1) * math.log(p) + math.lgamma(N + 1) - math.log(ki) \
+                - math.lgamma(N - ki + 1) - math.lgamma(N + 1) + math.lgamma(N)
+            assert abs(v - ref) < 1e-9 * max(1.0, abs(ref)), (row, ki)
+    # (a) no real root, (b) the double root k_d, (c) and (d) two roots
+    assert counts[0] == 0 and counts[1] >= 1 and counts[2] == counts[3] == 2

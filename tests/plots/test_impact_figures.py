@@ -34,6 +34,10 @@ def test_figures_have_legends_and_nonnegative_error_bars(res):
     mode, err = plots.impact._yerr(res, "pipes", "mode")
     ok = np.isfinite(mode)
     assert np.all(mode[ok] - err[0][ok] >= 0) and np.all(err[:, ok] >= 0)
+    # the bars span exactly the stored 95 % interval
+    ci = res.column("pipes", "mode_ci")
+    assert np.allclose((mode - err[0])[ok], ci[ok, 0], rtol=0, atol=1e-12)
+    assert np.allclose((mode + err[1])[ok], ci[ok, 1], rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("stat", ["mode", "mean"])
