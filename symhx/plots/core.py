@@ -92,7 +92,7 @@ def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.
         ax.set_title(f"Distribution of $X$, $N={N}$ ({N - 1} pipes)")
         if logy:
             ax.set_yscale("log")
-        ax.legend(fontsize="small")
+        ax.legend()
     else:
         fig.suptitle(f"Distribution of $X$ (eq. 7), $N = {N}$ ({N - 1} pipes)")
     return fig
@@ -183,7 +183,8 @@ def plot_f_and_phi(N: int = 101, *, ps: Sequence[float] | None = None, axes: Any
     if ps is None:
         ps = (0.0, pd, (pd + pc) / 2, pc * 1.05)
     if axes is None:
-        fig, axes = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True)
+        fig, axes = plt.subplots(2, 1, figsize=(COLUMN_WIDTH, 6.4), sharex=True,
+                                 layout="constrained")
     else:
         fig = axes[0].figure
     k = np.linspace(0.5, N, 400)
@@ -201,12 +202,12 @@ def plot_f_and_phi(N: int = 101, *, ps: Sequence[float] | None = None, axes: Any
             axes[1].plot([], [], color=colour, label=label + r" ($\Phi(k) = 0$, $k \geq 2$)")
     axes[0].axhline(0, color="k", lw=0.5)
     axes[0].set_ylabel("$f_{N,p}(k)$")
-    axes[0].legend(fontsize="small")
+    axes[0].legend()
     axes[1].axhline(0, color="k", lw=0.5)
     axes[1].set_ylabel(r"$\log \Phi_{N,p}(k) - \log \Phi_{N,p}(1)$")
     axes[1].set_xlabel("$k$")
     axes[1].set_ylim(-30, 10)
-    axes[1].legend(fontsize="small", loc="lower left")
+    axes[1].legend(loc="lower left")
     axes[0].set_title(f"$N={N}$: $p_d={pd:.5g}$, $p_c={pc:.5g}$")
     return fig
 

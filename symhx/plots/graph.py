@@ -50,7 +50,7 @@ def impact_labels(n: int) -> list[str]:
 
 def _new_axes(ax, figsize):
     if ax is None:
-        fig, ax = plt.subplots(figsize=figsize)
+        fig, ax = plt.subplots(figsize=figsize, layout="constrained")
     else:
         fig = ax.figure
     return fig, ax

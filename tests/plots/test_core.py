@@ -7,6 +7,7 @@ from fractions import Fraction
 
 import symhx
 import symhx.plots as plots
+from tests.harness.figures import assert_fits_the_column
 from tests.reference.distribution import pmf_table
 
 
@@ -94,3 +95,9 @@ def test_figure6_marks_the_roots_of_f_and_draws_f_and_phi():
             assert abs(v - ref) < 1e-9 * max(1.0, abs(ref)), (row, ki)
     # (a) no real root, (b) the double root k_d, (c) and (d) two roots
     assert counts[0] == 0 and counts[1] >= 1 and counts[2] == counts[3] == 2
+
+
+def test_figures_4_to_6_fit_the_column():
+    for fig in (plots.plot_distributions(31, (0.01, 0.02, 0.05)), plots.plot_mode_path(21),
+                plots.plot_f_and_phi(101), plots.plot_jump_mechanism(101)):
+        assert_fits_the_column(fig)

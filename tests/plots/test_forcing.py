@@ -13,6 +13,7 @@ import pytest
 
 import symhx.plots as plots
 from tests.harness.errors import assert_refuses
+from tests.harness.figures import assert_fits_the_column
 from tests.reference.distribution import moments_of, pmf_table
 from tests.reference.forcing import eq27_p
 
@@ -75,3 +76,8 @@ def test_figure10_against_sigma_and_a_simulation_overlay():
 def test_figure10_refuses_an_unknown_axis():
     assert_refuses(plots.plot_theory_mean_vs_p, np.array([0.2]), N=11, against="time",
                    arg="against", value="time", allowed="'p' or 'sigma'")
+
+
+def test_figures_9_and_10_fit_the_column():
+    assert_fits_the_column(plots.plot_p_sigma(np.array([0.05, 0.3, 1.0]), omega=1.0, d=1.0))
+    assert_fits_the_column(plots.plot_theory_mean_vs_p(np.array([0.1, 0.3, 1.0]), N=31))

@@ -9,6 +9,7 @@ from matplotlib.figure import Figure
 import symhx
 import symhx.plots as plots
 from tests.harness.errors import assert_refuses
+from tests.harness.figures import assert_fits_the_column
 
 
 def _gids(fig):
@@ -53,3 +54,10 @@ def test_impact_graph_has_N_vertices_and_N2_edges(n):
 def test_impact_graph_refuses_a_wrong_number_of_labels():
     assert_refuses(plots.plot_impact_graph, 3, labels=["a", "b"], arg="labels", value="2",
                    allowed="4")
+
+
+@pytest.mark.parametrize("n", [1, 7])
+def test_graph_figures_fit_the_column(n):
+    # narrower than the column for a short row
+    assert_fits_the_column(plots.plot_pipe_row(n), full_width=False)
+    assert_fits_the_column(plots.plot_impact_graph(n), full_width=False)

@@ -14,6 +14,7 @@ from symhx.plots.higher_order import (
     plot_mean_vs_p_spaces,
     plot_simple_vs_higher,
 )
+from tests.harness.figures import assert_fits_the_column
 from tests.reference.distribution import pmf_table
 
 
@@ -63,3 +64,13 @@ def test_figure13_theory_lines_are_the_mean_of_each_space_on_the_plotted_grid(N)
             else:
                 ref = float(symhx.mean(N, float(x), space=sp, dps=30))
             assert y == pytest.approx(ref, rel=1e-13), (sp, x)
+
+
+def test_figures_11_to_13_fit_the_column():
+    from symhx.plots.higher_order import plot_class_panels, plot_simple_vs_higher_panels
+
+    for fig in (plot_class_decomposition(30, 0.03, kmax=20), plot_simple_vs_higher(30, 0.04),
+                plot_mean_vs_p_spaces(30, points=5),
+                plot_class_panels(30, ((0.01, None), (0.03, 12))),
+                plot_simple_vs_higher_panels(30, (0.02, 0.04))):
+        assert_fits_the_column(fig)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from symhx.impact.ensemble import ensemble
+from tests.harness.figures import assert_fits_the_column
 
 mpl = pytest.importorskip("matplotlib")
 mpl.use("Agg")
@@ -66,3 +67,13 @@ def test_figures_7_and_8_mark_sigmas_with_few_runs_apart(res, stat):
     assert not [ln for ln in fig.axes[0].lines if ln.get_label().startswith("fewer than")]
     assert np.array_equal(fig.axes[0].lines[0].get_xdata(), res.sigmas)
     plt.close(fig)
+
+
+def test_ensemble_figures_fit_the_column(res):
+    from symhx import plots
+
+    for f in (plots.plot_mode_vs_sigma, plots.plot_mean_vs_sigma, plots.plot_theory_vs_simulation):
+        assert_fits_the_column(f(res))
+    from symhx.impact import PipeRow, simulate
+
+    assert_fits_the_column(plots.plot_gaps(simulate(PipeRow.random(4, 0.5, seed=1), 10.0)))
