@@ -186,16 +186,6 @@ def cmd_ensemble(args: argparse.Namespace) -> int:
     return 0
 
 
-def stored_ensemble() -> Any:
-    """The stored ensemble of figures 7 and 8 as an :class:`symhx.impact.EnsembleResult`."""
-    from importlib import resources
-
-    from symhx.impact import EnsembleResult
-
-    text = resources.files("symhx").joinpath("data/ensemble_fig7_8.json").read_text()
-    return EnsembleResult.from_dict(json.loads(text))
-
-
 def paper(out: Path, full: bool) -> list[str]:
     """Simulation part of ``symhx paper``: ensemble JSON/CSV and figures 7, 8, 10 and 13.
 
@@ -205,7 +195,7 @@ def paper(out: Path, full: bool) -> list[str]:
     smoke check.  ``full=True``: the paper grid is recomputed with :data:`FULL_RUNS` runs per
     sigma (minutes on 2 cores, tqdm progress on a terminal) and the figures are drawn from it.
     """
-    from symhx.plots.paper import save_paper_figure
+    from symhx.plots.paper import save_paper_figure, stored_ensemble
 
     t0 = time.perf_counter()
     sigmas = PAPER_SIGMAS if full else QUICK_SIGMAS

@@ -162,7 +162,8 @@ def test_circuits_counts_match_the_api(capsys):
 def test_circuits_prints_json_only_with_the_flag(capsys):
     rc, out = run(capsys, "circuits", "5")
     assert rc == 0 and not out.lstrip().startswith("{") and "phi_N(k)" in out
-    assert "89" in out.splitlines()[-1]  # total 5 + 10 + 20 + 30 + 24 (brute-force sum)
+    # the last row: the total 5 + 10 + 20 + 30 + 24 (brute-force sum), labelled
+    assert out.splitlines()[-1].split() == ["total", "89"]
     rc, out = run(capsys, "circuits", "5", "--json")
     assert json.loads(out)["total"] == 89
     # the text table: a header, then "k phi_N(k)" rows equal to N!/((N-k)! k) (eq. 5)
@@ -203,3 +204,21 @@ def test_core_paper_section_writes_its_files(tmp_path):
     for name in ("critical_N101.json", "critical_table.csv", "mode_path_N101.csv",
                  "fig4_distributions.png", "fig5_mode_path.png", "fig6_f_and_phi.png"):
         assert (tmp_path / name).stat().st_size > 0
+    # the table's columns against the closed forms: N p_d - 1 = 2 (1 + sqrt(N + 1))/N
+    # (eq. 16), N p_c - 1 from p_c, k_after from the API
+    import csv
+
+    with open(tmp_path / "critical_table.csv", newline="") as fh:
+        table = list(csv.DictReader(fh))
+    assert len(table) >= 3
+    for row in table:
+        N = int(Decimal(row["N"]))  # 17-digit cells: 1e+30 is exact for these N
+        qd = 2 * (1 + math.sqrt(N + 1)) / N
+        assert abs(float(row["N_p_d_minus_1"]) - qd) <= 1e-15 * qd
+        assert abs(float(row["p_d"]) - (1 + qd) / N) <= 1e-15 * (1 + qd) / N
+        assert abs(float(row["N_p_c_minus_1"]) - (N * float(row["p_c"]) - 1)) <= 1e-12
+        k_after = symhx.critical_point(N, dps=20).k_after
+        assert abs(Decimal(row["k_after"]) - k_after) <= Decimal(k_after) / 2**52  # a float64
+    # the last line: N = 10**100, N p_d - 1 = 2 (1 + sqrt(N + 1))/N = 2.0e-50 (to 20 digits)
+    big = next(line for line in lines if line.startswith("N = 10**100"))
+    assert "N p_d - 1 = 2.0000000000000000000e-50" in big

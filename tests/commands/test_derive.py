@@ -44,3 +44,10 @@ def test_derive_paper_section_verifies_every_derivation(tmp_path):
     assert all(d["verified"] for d in data)
     assert (tmp_path / "asymptotic_errors.csv").exists()
     assert lines and "verified" in lines[0]
+
+
+def test_derive_verify_text_ends_with_the_count_verified(capsys):
+    assert main(["derive", "13", "38", "--verify"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[-1] == "2/2 derivations verified"
+    assert sum("[ok  ]" in line for line in out) >= 2 and not any("FAIL" in x for x in out)

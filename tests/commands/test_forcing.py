@@ -81,3 +81,44 @@ def test_cli_p_sigma(tmp_path, capsys):
     assert main(["p-sigma", "-1"]) == 2
     assert "sigma must be > 0" in capsys.readouterr().err
     assert main(["p-sigma", "0.1", "--Omega", "1.0"]) == 2  # resonance
+
+
+def test_csv_that_cannot_be_written_is_a_usage_error_naming_the_path(tmp_path, capsys):
+    from symhx.cli import main
+
+    where = tmp_path / "no-such-folder" / "grid.csv"
+    assert main(["p-sigma", "0.1", "--csv", str(where)]) == 2
+    err = capsys.readouterr().err
+    assert "--csv" in err and str(where) in err and "Traceback" not in err
+
+
+def test_forcing_paper_section_writes_figure_9_data_from_eq27(tmp_path):
+    """The CSV of figure 9: sigma on a log grid over [0.01, 100], p and 1 - p adding to 1, their
+    logs, p against the closed form of eq. (27); the summary's sigma for p = 1e-10 gives it."""
+    import csv
+    import math
+
+    from symhx.commands.forcing import paper
+    from tests.reference.forcing import eq27_p
+
+    lines = paper(tmp_path, False)
+    with open(tmp_path / "fig9_p_sigma.csv", newline="") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == ["sigma", "p", "one_minus_p", "log_p", "log_one_minus_p"]
+    body = [[float(v) for v in r] for r in rows[1:]]
+    assert len(body) == 161 and body[0][0] == 0.01 and abs(body[-1][0] - 100) < 1e-12
+    for s, p, q, lp, lq in body[::20]:
+        assert abs(p + q - 1) < 1e-15
+        # each log from the smaller of p and 1 - p (log1p near 1; a p that underflows at small
+        # sigma keeps its log, checked against eq. 27 below)
+        want_lq = math.log1p(-p) if p < 0.5 else math.log(q)
+        assert abs(lq - want_lq) <= 1e-14 * abs(lq)
+        assert p < 1e-300 or abs(lp - (math.log(p) if p < 0.5 else math.log1p(-q))) \
+            <= 1e-14 * abs(lp)
+        with mpmath.workdps(40):
+            sm = mpmath.mpf(s)
+            ref = eq27_p(sm, sm, 1, mpmath.sqrt(2), 1)
+            assert rel_err(lp, mpmath.log(ref), 40) < 1e-13
+    s_1e10 = mpmath.mpf(next(ln for ln in lines if "p = 1e-10" in ln).split("sigma = ")[1]
+                        .split(";")[0])
+    assert rel_err(F.impact_probability(s_1e10, dps=20), mpmath.mpf("1e-10"), 20) < 1e-12

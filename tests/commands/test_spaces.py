@@ -33,3 +33,44 @@ def test_convergence_caps_refused_up_front(capsys):
         err = capsys.readouterr().err
         assert err.count("error:") == 1 and "<=" in err
     assert time.monotonic() - t < 1
+
+
+def test_convergence_text_table_has_a_header_and_the_api_values(capsys):
+    import symhx
+
+    assert main(["convergence", "20", "--max-m", "1", "--p", "0.05"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1].split() == ["space", "p_c", "k", "0.05"]
+    row = lines[2].split()
+    assert row[0] == "excess<=0"
+    mean = symhx.mean(20, "0.05", space="excess<=0", dps=20)
+    assert abs(float(row[3]) - float(mean)) <= 5e-5 * float(mean)
+
+
+def test_spaces_paper_section_against_the_api(tmp_path):
+    """``symhx paper``'s section 8: the critical points it summarises (simple, eq41 and
+    excess<=6 at N = 100, 101; eq41 at N = 10**6) are the API's, and figures 11-13 and their
+    data are written."""
+    import mpmath
+
+    import symhx
+    from symhx.commands.spaces import paper
+
+    lines = paper(tmp_path, False)
+    for N, line in ((100, lines[0]), (101, lines[1])):
+        for space, label in (("excess<=0", "simple"), ("eq41", "eq41"),
+                             ("excess<=6", "excess<=6")):
+            cp = symhx.critical_point(N, space=space, dps=20)
+            assert f"{label} {mpmath.nstr(cp.p, 8)}" in line, (N, space, line)
+            if label != "simple":
+                assert f"(jump to {cp.k_after})" in line
+    cp6 = symhx.critical_point(10**6, space="eq41", dps=20)
+    assert f"p_c = {mpmath.nstr(cp6.p, 15)}, jump 1 -> {cp6.k_after}" in lines[2]
+    for name in ("fig11_classes.png", "fig12_simple_vs_higher.png", "fig13_theory.png",
+                 "convergence_N101.json", "section8_boundary.json"):
+        assert (tmp_path / name).stat().st_size > 0
+    rows = json.loads((tmp_path / "convergence_N101.json").read_text())
+    assert rows[0]["space"] == "excess<=0" and rows[0]["k_after"] == 20
+    with mpmath.workdps(30):
+        assert abs(mpmath.mpf(rows[0]["means"]["0.05"]) - symhx.mean(101, "0.05", dps=25)) \
+            < mpmath.mpf(10) ** -18

@@ -72,7 +72,7 @@ def test_figure13_theory_line_of_each_space_is_its_mean_at_n_plus_one(small_ense
 
 
 def test_figure10_of_the_stored_ensemble_is_the_paper_row_N_101():
-    from symhx.commands.impact import stored_ensemble
+    from symhx.plots import stored_ensemble
 
     res = stored_ensemble()
     fig = plot_theory_vs_simulation(res, p_grid=[0.005, 0.0128, 0.05])
