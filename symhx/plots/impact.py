@@ -21,12 +21,6 @@ def _ax(ax: Any) -> tuple[Any, Any]:
     return ax.figure, ax
 
 
-def _title(res: Any, what: str) -> str:
-    p = res.params
-    return (f"{what}: n = {p['n']} pipes, {p['runs']} runs/σ, r = {p['restitution']}, "
-            f"window [{p['t_transient']:g}, {p['t_transient'] + p['t_window']:g}]")
-
-
 def _short_title(res: Any, what: str) -> str:
     p = res.params
     return f"{what}: n = {p['n']} pipes, {p['runs']} runs per σ, r = {p['restitution']}"

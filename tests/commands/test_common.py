@@ -38,3 +38,17 @@ def test_csv_num_round_trips_float64():
         with mpmath.workdps(40):
             v = mpmath.mpf(x.numerator) / x.denominator if isinstance(x, (int, Fraction)) else x
             assert float(cell) == float(v)
+
+
+@pytest.mark.parametrize("digits", [8, 30])
+def test_mpstr_switches_to_an_exponent_below_1e_5_at_any_number_of_digits(digits):
+    from symhx._mpctx import mp
+    from symhx.commands._common import mpstr
+
+    ctx = mp()
+    with ctx.workdps(50):
+        small, fixed = ctx.mpf("1.5e-7"), ctx.mpf("0.00015")
+    assert mpstr(small, digits) == "1.5" + "0" * (digits - 2) + "e-7"
+    assert mpstr(fixed, digits).startswith("0.00015")
+    # a Fraction: the decimal and the exact value
+    assert mpstr(Fraction(1, 8), digits).endswith("(exact 1/8)")

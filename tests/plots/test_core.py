@@ -101,3 +101,18 @@ def test_figures_4_to_6_fit_the_column():
     for fig in (plots.plot_distributions(31, (0.01, 0.02, 0.05)), plots.plot_mode_path(21),
                 plots.plot_f_and_phi(101), plots.plot_jump_mechanism(101)):
         assert_fits_the_column(fig)
+
+
+def test_figure4_draws_into_given_axes_and_refuses_too_few():
+    import matplotlib.pyplot as plt
+    import pytest
+
+    from tests.harness.errors import assert_refuses
+
+    fig, grid = plt.subplots(2, 2)
+    assert plots.plot_distributions(31, (0.01, 0.02, 0.05), axes=grid) is fig
+    assert [len(ax.lines) > 0 for ax in grid.ravel()] == [True, True, True, False]
+    with pytest.raises(ValueError):
+        plots.plot_distributions(31, (0.01, 0.02, 0.05), axes=grid[0])
+    assert_refuses(plots.plot_distributions, 31, (0.01, 0.02, 0.05), axes=grid[0],
+                   arg="axes", value="got 2", allowed="need 3")

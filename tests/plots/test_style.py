@@ -44,3 +44,5 @@ def test_sample_spaces_have_distinct_styles_and_the_printed_eq41_is_on_top():
     assert len({o["color"] for o in others}) == len(others)
     assert {o["color"] for o in others}.isdisjoint({simple["color"], eq41["color"],
                                                    printed["color"]})
+    # the 4th to 6th space of the paper's figure keep the colours they always had
+    assert [o["color"] for o in others[:3]] == ["C7", "C8", "C9"]
