@@ -53,3 +53,21 @@ def test_cli_table_beyond_the_row_limit_names_the_option(capsys) -> None:
     assert main(["distribution", str(MAX_EXACT_TABLE_N + 1), "1/1000", "--table"]) == 2
     assert "MAX_EXACT_TABLE_N" in capsys.readouterr().err
     assert time.monotonic() - t < 2
+
+
+def test_the_float_table_limit_is_inclusive(monkeypatch) -> None:
+    """``N <= FLOAT_N_LIMIT`` has the float64 table (read at call time: a lowered limit here);
+    one more is answered without it, to the same float64 values."""
+    import symhx.distribution as dist
+
+    monkeypatch.setattr(dist, "FLOAT_N_LIMIT", 1000)
+    at = symhx.distribution_of(1000, 0.01, dps=None)
+    assert len(at.table()) == 1000
+    above = symhx.distribution_of(1001, 0.01, dps=None)
+    assert_refuses(above.table, arg="N", value="N=", allowed="FLOAT_N_LIMIT")
+    ref = symhx.distribution_of(1001, 0.01, dps=30)
+    for d, r in ((at, symhx.distribution_of(1000, 0.01, dps=30)), (above, ref)):
+        assert abs(d.mean() - float(r.mean())) <= 1e-12 * float(r.mean())
+        assert abs(d.var() - float(r.var())) <= 1e-11 * float(r.var())
+        assert abs(d.entropy() - float(r.entropy())) <= 1e-12 * float(r.entropy())
+        assert d.isf(0.25) == r.isf(0.25) and d.ppf(0.25) == r.ppf(0.25)
