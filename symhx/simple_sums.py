@@ -35,7 +35,7 @@ Algorithm (one pass, for ``sum_{k=A}^{B} f(k) w(k)`` with ``w`` in ``1, k - c, (
    Euler-Maclaurin on ``[K0, B]``: the integral by Gauss-Legendre panels (in ``s = log x`` near
    the pole of ``f`` at 0, in ``x`` elsewhere), each panel's node count chosen from its
    Bernstein-ellipse bound ``(64/15) l M rho**(-2n)/(rho**2 - 1)`` with ``M`` from the two facts
-   above (panels that need more than 1024 nodes are halved), and the endpoint corrections
+   above (panels that need more than 512 nodes are halved), and the endpoint corrections
    from the Taylor coefficients of ``D`` (``psi`` and its derivatives from Arb's power series
    of ``lgamma``, each to the working precision relative to itself, and ``1/x**n``); an end
    whose terms are provably negligible by Cauchy's estimate on a disc around it (a run cut at
