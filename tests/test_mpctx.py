@@ -58,6 +58,9 @@ def test_export_rounds_like_workdps(dps):
         ref = +mpmath.mp.make_mpf(x._mpf_)
     assert export(x, dps)._mpf_ == ref._mpf_
     assert prec_of_dps(dps) == mpmath.libmp.dps_to_prec(dps)
+    # containers element-wise, each value rounded once
+    got = export({"a": x, "b": [x, (x,)]}, dps)
+    assert got["a"]._mpf_ == got["b"][0]._mpf_ == got["b"][1][0]._mpf_ == ref._mpf_
     # a complex value: both parts rounded once, as +z inside workdps(dps) rounds them
     with ctx.workdps(dps + 30):
         z = ctx.mpc(x, ctx.e() / 3)

@@ -156,3 +156,8 @@ def test_table_lists_every_k_and_sums_to_one(dps) -> None:
         assert total == 1
     else:
         assert abs(total - 1) < (1e-14 if dps is None else mpmath.mpf(10) ** (1 - dps))
+
+
+def test_N_below_one_is_refused_by_name() -> None:
+    assert_refuses(SitesDistribution, 0, SiteClasses((1,), (0.5,)), arg="N", value="0",
+                   allowed=">= 1")

@@ -16,6 +16,10 @@ from symhx._mpctx import mp as thread_mp
 from symhx.forcing import RayleighSum
 from symhx.forcing import inversion as inv
 
+#: the inversion's users: RayleighSum of three or more scales in float64 (its contract on
+#: random scale sets and a straight-contour reference); mutation runs of inversion.py take them
+MUTATION_ALSO = ("tests/forcing/test_rayleigh_many_scales.py",)
+
 EPS = float(np.finfo(float).eps)
 
 

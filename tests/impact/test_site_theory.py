@@ -84,6 +84,13 @@ def test_simulated_threshold_is_where_the_mode_stays_above_one():
     hists[2] = 0
     hists[2, 2] = 10
     assert SimulatedX(sim.sigmas, hists, np.ones(4), 3).threshold() == 0.2
+    # above 1 at every sigma: the first sigma; never above 1 at the last: NaN
+    hists[:] = 0
+    hists[:, 3] = 10
+    assert SimulatedX(sim.sigmas, hists, np.ones(4), 3).threshold() == 0.1
+    hists[3] = 0
+    hists[3, 1] = 10
+    assert math.isnan(SimulatedX(sim.sigmas, hists, np.ones(4), 3).threshold())
 
 
 def test_fitted_scale_minimises_the_mean_distance():

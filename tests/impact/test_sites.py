@@ -90,6 +90,25 @@ def test_the_ratio_error_agrees_with_the_bootstrap():
     assert 0.85 < np.std(boots) / se < 1.15
 
 
+def test_the_ratio_error_is_the_delta_method_over_the_runs():
+    """rate_ratio's error from per-run arrays and numpy's moments: var(W/I) ~ (var W / mI**2 +
+    var I mW**2 / mI**4 - 2 cov(W, I) mW / mI**3) / (R - 1), W = walls hit / 2, I = interior
+    sites hit / (n - 1); a table with a strong (negative) correlation, so the covariance term
+    matters."""
+    joint = np.array([[0, 1, 6, 9], [2, 8, 3, 0], [7, 2, 0, 0]])  # walls 0-2 x interior 0-3
+    table = SiteHitTable(0.3, joint, np.zeros(5))
+    rows, cols = np.nonzero(joint)
+    W = np.repeat(rows / 2.0, joint[rows, cols])
+    interior = np.repeat(cols / 3.0, joint[rows, cols])
+    R = len(W)
+    mw, mi = W.mean(), interior.mean()
+    cov = np.cov(W, interior, bias=True)
+    var = (cov[0, 0] / mi**2 + cov[1, 1] * mw**2 / mi**4 - 2 * cov[0, 1] * mw / mi**3) / (R - 1)
+    r, se = table.rate_ratio()
+    assert abs(r - mw / mi) < 1e-12 and abs(se - math.sqrt(var)) < 1e-12 * math.sqrt(var)
+    assert abs(table.wall_rate()[1] - math.sqrt(cov[0, 0] / (R - 1))) < 1e-12
+
+
 def test_rates_by_position_pool_the_mirror_sites():
     hits = np.array([4, 9, 7, 8, 10, 8, 6, 9, 5])    # n = 8
     r = SiteRates(0.3, 10, hits)
