@@ -132,10 +132,6 @@ class PatternSpace:
 SIMPLE = PatternSpace("simple", ((),), "length")
 
 
-def _is_simple(space: Any) -> bool:
-    return tuple(space.shapes) == ((),)
-
-
 def _multiset_factorials(parts: Sequence[int]) -> int:
     out = 1
     for c in Counter(parts).values():
@@ -271,10 +267,6 @@ def _falling(n: int, r: int) -> int:
     for i in range(r):
         out *= n - i
     return out
-
-
-def _removed(classes: Classes, r: tuple[int, ...]) -> Classes:
-    return [(n - ri, q) for (n, q), ri in zip(classes, r, strict=True)]
 
 
 def _class_list(sc: SiteClasses) -> Classes:

@@ -61,11 +61,6 @@ def show_int(n: int) -> str:
     return f"~{lead}"
 
 
-def _show_values(values: Sequence[Any]) -> str:
-    shown = ", ".join(repr(v) if not isinstance(v, Fraction) else str(v) for v in values)
-    return f"({shown}{',' if len(values) == 1 else ''})"
-
-
 def _dyadic_mpf(fr: Fraction) -> Any:
     """An mpf holding the exact value of a dyadic rational (denominator a power of two), or the
     value rounded to 256 bits otherwise (only :meth:`SiteClasses.scaled` of an exact factor and

@@ -263,16 +263,6 @@ def _rel_log_mgf(theta: np.ndarray, c: np.ndarray, scales: np.ndarray, mult: np.
     return bt[..., 0] == 1, np.sum(rel * mult, axis=-1)
 
 
-def _logaddexp_c(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``log(e^a + e^b)`` for complex arrays, by the one with the larger real part."""
-    swap = b.real > a.real
-    hi = np.where(swap, b, a)
-    lo = np.where(swap, a, b)
-    with np.errstate(under="ignore", invalid="ignore", over="ignore"):
-        d = np.exp(lo - hi)
-    return hi + np.log1p(d)
-
-
 # =========================================================================== the real axis
 def _unit_laplace_real(z: np.ndarray) -> np.ndarray:
     """``L(z)`` for real ``z >= 0`` (to ~1e-13 relative: the planning accuracy)."""
