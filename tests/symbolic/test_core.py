@@ -78,3 +78,26 @@ def test_all_exact_refuses_anything_inexact():
     assert not all_exact([(sp.sqrt(2), 1)])
     assert all_exact([(sp.sqrt(4) / 2, 1)])  # an exact number that simplifies to a rational
     assert rhs(Derivation("x", "x", N + 1)) == N + 1
+
+
+def test_a_derivation_with_extra_equations_prints_them_after_a_quad():
+    from symhx.symbolic import derivation
+
+    d = derivation("8")
+    text = d.latex()
+    parts = text.split(r",\quad ")
+    assert len(parts) == 2 and parts[0].startswith(r"\Phi_{N,p}") and parts[1].startswith(r"\Gamma")
+
+
+def test_exp_of_a_compound_argument_is_printed_as_exp():
+    """e^{x} and e^{-x} stay superscripts; a compound argument (a fraction, a product of more
+    than a sign and an atom) is printed \\exp(...), readable at the book's size."""
+    import sympy as sp
+
+    from symhx.symbolic._core import latex
+
+    x, y = sp.symbols("x y")
+    assert latex(sp.exp(x)) == "e^{x}" and latex(sp.exp(-x)) == "e^{- x}"
+    assert latex(sp.exp(x / y)) == r"\exp\left(\frac{x}{y}\right)"
+    assert latex(sp.exp(-x * y)) == r"\exp\left(- x y\right)"
+    assert latex(sp.exp(2 * x)) == r"\exp\left(2 x\right)"
