@@ -141,3 +141,14 @@ def test_python_dash_m_symhx_cli_runs_a_command():
     out = subprocess.run([sys.executable, "-m", "symhx.cli", "critical", "5", "--json"],
                          capture_output=True, text=True, check=True).stdout
     assert json.loads(out)["argmins"] == [2, 3]
+
+
+def test_a_long_error_is_one_line_of_at_most_2000_characters():
+    from symhx.cli import _one_line
+
+    long = ValueError("x:\n" + "word " * 1000)
+    text = _one_line(long)
+    assert len(text) == 2000 and text.endswith("...") and "\n" not in text
+    assert text[:-3] == " ".join(str(long).split())[:1997]
+    assert _one_line(ValueError("short  one\n")) == "short one"
+    assert _one_line(ValueError("")) == "ValueError"

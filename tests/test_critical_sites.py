@@ -210,3 +210,12 @@ def test_refusals():
                    arg="directions[0]", value="3", allowed="pair")
     assert_refuses(critical_curve, 10, (4, 6), directions=[], arg="directions", value="empty",
                    allowed="at least one")
+
+
+def test_as_dict_of_a_direction_without_p_d_holds_the_bounds_of_p_c():
+    cp = direction_critical_point(30, SiteClasses((10, 20), (1, 3)), dps=30)
+    assert cp.p_d is None
+    d = cp.as_dict()
+    assert d["p_c_lo"] == cp.p_bounds[0] and d["p_c_hi"] == cp.p_bounds[1]
+    assert d["p_c_lo"] <= d["p_c"] <= d["p_c_hi"] and d["sizes"] == [10, 20]
+    assert d["t_c_e1_minus_1"] == cp.q and "N_p_c_minus_1" not in d

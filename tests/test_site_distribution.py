@@ -161,3 +161,9 @@ def test_table_lists_every_k_and_sums_to_one(dps) -> None:
 def test_N_below_one_is_refused_by_name() -> None:
     assert_refuses(SitesDistribution, 0, SiteClasses((1,), (0.5,)), arg="N", value="0",
                    allowed=">= 1")
+
+
+def test_the_distribution_keeps_its_classes_as_p() -> None:
+    classes = SiteClasses((4, 5), (Fraction(1, 7), Fraction(2, 9)))
+    d = SitesDistribution(9, classes)
+    assert d.p is classes and d.N == 9

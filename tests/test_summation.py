@@ -92,3 +92,11 @@ def test_exp_series_and_product() -> None:
         assert all(abs(v - ctx.mpf(2) ** n / ctx.factorial(n)) < ctx.mpf(10) ** -27
                    for n, v in enumerate(sq))
     assert mpmath.mp.dps == 15
+
+
+def test_series_product_of_short_series_keeps_every_coefficient() -> None:
+    ctx = mp()
+    with ctx.workdps(20):
+        one_plus_t = [ctx.mpf(1), ctx.mpf(1)]
+        assert series_mul(ctx, one_plus_t, one_plus_t, 3) == [1, 2, 1, 0]  # (1 + t)**2
+        assert series_mul(ctx, [ctx.mpf(2)], [ctx.mpf(3), ctx.mpf(5)], 2) == [6, 10, 0]

@@ -52,3 +52,10 @@ def test_mpstr_switches_to_an_exponent_below_1e_5_at_any_number_of_digits(digits
     assert mpstr(fixed, digits).startswith("0.00015")
     # a Fraction: the decimal and the exact value
     assert mpstr(Fraction(1, 8), digits).endswith("(exact 1/8)")
+
+
+def test_jsonable_rounds_numpy_scalars_to_the_digits():
+    import numpy as np
+
+    assert jsonable(np.float64(1) / 3, 5) == jsonable(1 / 3, 5) == 0.33333
+    assert jsonable(np.int64(7), 5) == 7

@@ -154,9 +154,10 @@ def test_distribution_float_huge_N_refused_quickly(capsys):
 def test_circuits_counts_match_the_api(capsys):
     _rc, out = run(capsys, "circuits", "7", "--visits", "2,1,1", "--json")
     assert json.loads(out)["count"] == symhx.circuit_count(7, (2, 1, 1))
+    assert json.loads(out)["length"] == 4 and json.loads(out)["visits"] == [2, 1, 1]
     _rc, out = run(capsys, "circuits", "4", "--length", "3", "--json")
     data = json.loads(out)
-    assert data["total"] == sum(data["by_pattern"].values())
+    assert data["total"] == sum(data["by_pattern"].values()) and data["length"] == 3
 
 
 def test_circuits_prints_json_only_with_the_flag(capsys):
@@ -222,3 +223,21 @@ def test_core_paper_section_writes_its_files(tmp_path):
     # the last line: N = 10**100, N p_d - 1 = 2 (1 + sqrt(N + 1))/N = 2.0e-50 (to 20 digits)
     big = next(line for line in lines if line.startswith("N = 10**100"))
     assert "N p_d - 1 = 2.0000000000000000000e-50" in big
+
+
+def test_a_paper_section_reports_its_lines_or_its_failure(tmp_path, monkeypatch):
+    """``symhx paper`` runs each module's section in a worker: its summary lines and time, or,
+    when the section raises, one FAILED line naming the error (never an exception)."""
+    import symhx.commands.derive as derive_mod
+    from symhx.commands.core import _paper_section
+
+    lines, seconds, failed = _paper_section("symhx.commands.derive", tmp_path, False)
+    assert not failed and seconds > 0 and (tmp_path / "derivations.json").exists()
+    assert lines == derive_mod.paper(tmp_path, False)
+
+    def broken(out, full):
+        raise ArithmeticError("no\nconvergence")
+
+    monkeypatch.setattr(derive_mod, "paper", broken)
+    lines, _, failed = _paper_section("symhx.commands.derive", tmp_path, False)
+    assert failed and lines == ["FAILED: ArithmeticError: no convergence"]

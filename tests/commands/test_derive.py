@@ -51,3 +51,21 @@ def test_derive_verify_text_ends_with_the_count_verified(capsys):
     out = capsys.readouterr().out.splitlines()
     assert out[-1] == "2/2 derivations verified"
     assert sum("[ok  ]" in line for line in out) >= 2 and not any("FAIL" in x for x in out)
+
+
+def test_derive_verify_counts_and_names_a_failed_derivation(capsys, monkeypatch):
+    # a derivation whose result is tampered with fails its checks: exit 1, the count of those
+    # verified and the label of the failed one on the last line
+    import symhx.symbolic as symbolic
+
+    real = symbolic.derivation
+
+    def tampered(label):
+        d = real(label)
+        return d.with_result(d.result.func(d.result.lhs, d.result.rhs + 1)) if label == "38" \
+            else d
+
+    monkeypatch.setattr(symbolic, "derivation", tampered)
+    assert main(["derive", "13", "38", "--verify"]) == 1
+    assert capsys.readouterr().out.splitlines()[-1] == \
+        "1/2 derivations verified; failed: 38"

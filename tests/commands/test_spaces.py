@@ -69,6 +69,10 @@ def test_spaces_paper_section_against_the_api(tmp_path):
     for name in ("fig11_classes.png", "fig12_simple_vs_higher.png", "fig13_theory.png",
                  "convergence_N101.json", "section8_boundary.json"):
         assert (tmp_path / name).stat().st_size > 0
+    # figure 11's data: per k the class decomposition, as in the API
+    f11 = json.loads((tmp_path / "fig11_classes_eq41_p0.05.json").read_text())
+    assert f11["columns"][0] == "k" and len(f11["rows"]) == 101
+    assert [r[0] for r in f11["rows"]] == list(range(1, 102))
     rows = json.loads((tmp_path / "convergence_N101.json").read_text())
     assert rows[0]["space"] == "excess<=0" and rows[0]["k_after"] == 20
     with mpmath.workdps(30):

@@ -267,3 +267,9 @@ def test_refusals_name_the_argument_the_value_and_what_is_allowed():
                    allowed=">= 1")
     assert_refuses(lattice_site_probabilities, 2, 0.1, pitch=1, diameter=0, log=1,
                    exc=TypeError, arg="log", value="1")
+
+
+def test_a_rational_threshold_is_exact_with_dps_and_a_float_without():
+    th = Threshold(Fraction(3, 4), Fraction(0))
+    assert th.value(30) == Fraction(3, 4) and isinstance(th.value(30), Fraction)
+    assert th.value(None) == 0.75 and isinstance(th.value(None), float) and float(th) == 0.75

@@ -188,3 +188,16 @@ def test_scale_invariance_and_scale_cap():
         assert np.allclose(np.asarray(h.times, float), np.asarray(ref.times, float), rtol=1e-9)
     for k in (MAX_SCALE * 10, 1 / MAX_SCALE / 10):
         assert_refuses(PipeRow.random, 3, 1.0 * k, d=k, seed=3, arg="d", allowed="MAX_SCALE")
+
+
+def test_engine_python_never_runs_the_c_kernel(monkeypatch):
+    # engine="python" is honoured when the C extension is there: the C entry point is not called
+    def no_c(*args, **kwargs):
+        raise AssertionError("the C engine ran")
+
+    monkeypatch.setattr(fast_mod, "simulate_c", no_c)
+    row = PipeRow.random(3, 0.3, seed=2)
+    assert len(simulate(row, 5.0, engine="python")) >= 0
+    if fast_mod.available():
+        with pytest.raises(AssertionError, match="the C engine ran"):
+            simulate(row, 5.0)

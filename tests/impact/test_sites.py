@@ -178,3 +178,9 @@ def test_refusals_name_the_argument():
                    value="(2, 3)", allowed="(3, n)")
     assert_refuses(SiteHitTable.from_histories, [1], exc=TypeError, arg="histories")
     assert_refuses(SiteRates.from_stats, 1, exc=TypeError, arg="stats", value="int")
+
+
+def test_site_rates_take_any_sequence_of_counts():
+    r = SiteRates(0.2, 10, [2, 6, 8, 6, 3])  # a list: stored as an int64 array
+    assert isinstance(r.site_hits, np.ndarray) and r.site_hits.dtype == np.int64
+    assert r.rate.tolist() == [0.2, 0.6, 0.8, 0.6, 0.3] and r.n == 4

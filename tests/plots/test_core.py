@@ -83,10 +83,14 @@ def test_figure6_marks_the_roots_of_f_and_draws_f_and_phi():
         # p from the drawn curve: (f(k) + 1)/k + 1 = p (N - k)
         p = ((fk[-1] + 1) / k[-1] + 1) / (N - k[-1])
         dots = [ln for ln in af.lines[1:] if ln.get_marker() == "o"]
+        roots = []
         for ln in dots:
             (r,), (y,) = ln.get_data()
             assert y == 0.0
             assert abs(-p * r * r + (N * p - 1) * r - 1) < 1e-9 * max(1.0, N * p * r)
+            roots.append(r)
+        if len(roots) == 2:  # both roots (Vieta: their product is 1/p), not one twice
+            assert abs(roots[0] * roots[1] * p - 1) < 1e-9
         counts.append(len(dots))
         kk, lphi = ap.lines[0].get_data()
         for ki, v in zip(kk[:20], lphi[:20], strict=True):
@@ -116,3 +120,8 @@ def test_figure4_draws_into_given_axes_and_refuses_too_few():
         plots.plot_distributions(31, (0.01, 0.02, 0.05), axes=grid[0])
     assert_refuses(plots.plot_distributions, 31, (0.01, 0.02, 0.05), axes=grid[0],
                    arg="axes", value="got 2", allowed="need 3")
+
+
+def test_figure4_with_one_panel():
+    fig = plots.plot_distributions(31, (0.02,))
+    assert len(fig.axes) == 1 and fig.axes[0].get_title().startswith("(a)")

@@ -62,6 +62,9 @@ def test_figures_7_and_8_mark_sigmas_with_few_runs_apart(res, stat):
     assert len(marked) == 1
     assert np.array_equal(marked[0].get_xdata(), res.sigmas[few])
     assert np.array_equal(marked[0].get_ydata(), values[few], equal_nan=True)
+    # marked by open circles, not joined by a line
+    assert marked[0].get_marker() == "o" and marked[0].get_linestyle() == "None"
+    assert marked[0].get_markerfacecolor() == "none"
     plt.close(fig)
     fig = f(res, min_count=0)               # nothing marked: one curve through every sigma
     assert not [ln for ln in fig.axes[0].lines if ln.get_label().startswith("fewer than")]
@@ -77,3 +80,31 @@ def test_ensemble_figures_fit_the_column(res):
     from symhx.impact import PipeRow, simulate
 
     assert_fits_the_column(plots.plot_gaps(simulate(PipeRow.random(4, 0.5, seed=1), 10.0)))
+
+
+def test_theory_means_default_to_the_simple_space(res):
+    from symhx import mean
+    from symhx.plots.impact import theory_means
+
+    got = theory_means([0.01, 0.02], 21)
+    assert got.tolist() == [float(mean(21, 0.01, dps=20)), float(mean(21, 0.02, dps=20))]
+
+
+def test_paper_figures_are_saved_at_200_dpi_from_the_given_ensemble_and_closed(res, tmp_path):
+    import matplotlib.pyplot as plt
+    from matplotlib.image import imread
+
+    from symhx.plots.paper import paper_figure, save_paper_figure
+
+    before = plt.get_fignums()
+    path = save_paper_figure(8, tmp_path / "fig8.png", ensemble=res)
+    assert plt.get_fignums() == before  # closed
+    height, width = imread(path).shape[:2]
+    drawn = paper_figure(8, ensemble=res)
+    w_in, h_in = drawn.get_size_inches()
+    # 200 dpi, cropped to the content by bbox_inches="tight" (plus its 0.1 in padding)
+    assert 0.85 * 200 * w_in < width <= 200 * (w_in + 0.2) + 2
+    assert height <= 200 * (h_in + 0.2) + 2
+    # the figure of the given ensemble, not of the stored one (its sigmas)
+    xs = np.concatenate([ln.get_xdata() for ln in drawn.axes[0].lines])
+    assert xs.size and set(xs.tolist()) == set(res.sigmas.tolist())
