@@ -758,7 +758,9 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
             _copy_repo(workdir)
         # a rerun takes the current mirror files too (test files added since the first run)
         _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
-        cmd = [sys.executable, "-m", "mutmut", "run", "--max-children", str(args.max_children),
+        # mutmut, also mutating functions with symhx's decorators (scripts/mutmut_decorated.py)
+        cmd = [sys.executable, str(ROOT / "scripts" / "mutmut_decorated.py"), "run",
+               "--max-children", str(args.max_children),
                *(args.rerun or [])]
         if not args.no_nice:
             cmd = ["nice", "-n", "19", *cmd]

@@ -211,3 +211,47 @@ def test_every_module_level_cache_is_emptied_for_each_mutant():
     from symhx import summation
 
     assert not summation._NODES
+
+
+def test_functions_with_symhx_decorators_are_mutated_and_keep_their_decorators():
+    """scripts/mutmut_decorated.py: a function under allowed decorators gets mutants; its
+    trampoline carries the decorators (outside mutmut's own), the copies it calls are plain;
+    a function under another decorator is still skipped, and decorator arguments are never
+    mutated."""
+    spec2 = importlib.util.spec_from_file_location("mutmut_decorated",
+                                                   ROOT / "scripts" / "mutmut_decorated.py")
+    md = importlib.util.module_from_spec(spec2)
+    spec2.loader.exec_module(md)
+    md.patch()
+    from mutmut.mutation.file_mutation import mutate_file_contents
+
+    src = (
+        "import functools\n"
+        "def styled(f):\n    return f\n"
+        "def other(f):\n    return f\n"
+        "@styled\n"
+        "def draw(x):\n    return x + 1\n"
+        "@functools.lru_cache(maxsize=8)\n"
+        "def cached(x):\n    return x * 2\n"
+        "@other\n"
+        "def skipped(x):\n    return x - 1\n"
+        "class A:\n"
+        "    @property\n"
+        "    def value(self):\n        return 3 + 4\n"
+    )
+    res = mutate_file_contents("m.py", src)
+    names = res.mutant_names
+    assert any(n.startswith("x_draw__mutmut_") for n in names)
+    assert any(n.startswith("x_cached__mutmut_") for n in names)
+    assert any("value__mutmut_" in n for n in names)
+    assert not any("skipped" in n for n in names)
+    code = res.code
+    assert "@styled\n@_mutmut_mutated(mutants_x_draw__mutmut)\ndef draw(" in code
+    assert "@functools.lru_cache(maxsize=8)\n@_mutmut_mutated" in code  # maxsize kept
+    assert "\ndef x_draw__mutmut_orig(" in code and "@styled\ndef x_draw__mutmut_orig" not in code
+    assert "@property\n    @_mutmut_mutated" in code
+    # and the mutated module runs: the decorators wrap the trampoline, which calls the copies
+    namespace: dict = {}
+    exec(compile(code, "m.py", "exec"), namespace)
+    assert namespace["draw"](1) == 2 and namespace["cached"](2) == 4
+    assert namespace["A"]().value == 7
