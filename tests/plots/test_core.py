@@ -51,6 +51,9 @@ def test_figure6_same_colour_for_same_p_and_a_legend_on_each_panel():
                   ln.get_label().startswith("_")}
     legend_labels = [t.get_text() for t in bottom.get_legend().get_texts()]
     assert len(legend_labels) == len(top_colour) == 4
+    # the four p: 0, p_d, halfway to p_c, and above p_c
+    names = [lab.split("=")[1].strip(" $") for lab in top_colour]
+    assert names == ["0", "p_d", "(p_d + p_c)/2", r"1.05\,p_c"], names
     for ln in bottom.lines:
         lab = ln.get_label()
         if lab.startswith("_"):
@@ -125,3 +128,8 @@ def test_figure4_draws_into_given_axes_and_refuses_too_few():
 def test_figure4_with_one_panel():
     fig = plots.plot_distributions(31, (0.02,))
     assert len(fig.axes) == 1 and fig.axes[0].get_title().startswith("(a)")
+
+
+def test_figure6_jump_mechanism_defaults_to_the_papers_row():
+    fig = plots.plot_jump_mechanism()
+    assert "$N = 101$" in fig.axes[1].get_title(loc="right")

@@ -53,3 +53,12 @@ def test_pmf_lambdified_equals_distribution(n, a, b, data):
                                                                         exact.denominator)
         want = mpmath.mpf(exact.numerator) / exact.denominator
         assert abs(got - want) <= mpmath.mpf(10) ** -35 * abs(want)
+
+
+def test_eq8_carries_the_papers_printed_form():
+    from symhx.symbolic import sym_equal
+
+    d = derivation("8")
+    assert d.paper is not None
+    assert sym_equal(d.paper, p**k * sp.factorial(N) / (k * sp.factorial(N - k)))
+    assert sym_equal(d.result.rhs, d.paper)
