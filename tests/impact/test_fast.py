@@ -25,7 +25,8 @@ pytestmark = pytest.mark.skipif(not available(), reason="C extension not built")
 
 # the C engine's event rules are also run, against the Python port, by the rules' and twins'
 # tests of engine.py: mutation testing of _fast.c runs them too (scripts/mutation.py)
-MUTATION_ALSO = ("tests/impact/test_engine_rules.py", "tests/impact/test_engine_twin.py")
+MUTATION_ALSO = ("tests/impact/test_engine_rules.py", "tests/impact/test_engine_twin.py",
+                 "tests/impact/test_simulate.py")
 
 
 def _table(h):
