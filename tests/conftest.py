@@ -42,3 +42,14 @@ def pytest_sessionstart(session):
         from tests.harness.caches import clear_caches
 
         clear_caches()
+
+
+def pytest_runtest_setup(item):
+    """While mutmut records which tests run which function (``MUTANT_UNDER_TEST=stats``), every
+    test starts from empty caches: otherwise only the first test to build a cached value (a
+    derivation, a Gauss-Legendre rule) is recorded as running its builder, and a mutant of the
+    builder is tested by that test alone."""
+    if os.environ.get("MUTANT_UNDER_TEST", "") == "stats":
+        from tests.harness.caches import clear_caches
+
+        clear_caches()
