@@ -152,3 +152,20 @@ def test_a_long_error_is_one_line_of_at_most_2000_characters():
     assert text[:-3] == " ".join(str(long).split())[:1997]
     assert _one_line(ValueError("short  one\n")) == "short one"
     assert _one_line(ValueError("")) == "ValueError"
+
+
+def test_help_states_each_default_once():
+    """An option whose help already states its default gets no second "(default: ...)"; one
+    without gets it appended."""
+    import contextlib
+    import io
+
+    from symhx.cli import main
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf), contextlib.suppress(SystemExit):
+        main(["convergence", "--help"])
+    text = " ".join(buf.getvalue().split())
+    p_help = text.split("--p P impact", 1)[1].split("--dps DPS", 1)[0]
+    assert "default: the paper's figure values" in p_help and "(default:" not in p_help
+    assert "significant decimal digits of the results (default: 50)" in text

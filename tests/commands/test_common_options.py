@@ -59,3 +59,11 @@ def test_rational_show_is_a_decimal_when_short_else_a_ratio():
     assert rational_show(Fraction(-7, 4)) == "-1.75"
     assert rational_show(Fraction(1, 3)) == "1/3"
     assert rational_show(Fraction(1, 2**31)) == f"1/{2**31}"  # over 30 decimal places
+
+
+def test_a_bad_dps_is_a_usage_error_naming_the_allowed_range(capsys):
+    from symhx.cli import main
+
+    assert main(["critical", "101", "--dps", "0"]) == 2
+    err = capsys.readouterr().err
+    assert "--dps" in err and "got 0" in err and "between 1 and" in err

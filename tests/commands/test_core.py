@@ -241,3 +241,10 @@ def test_a_paper_section_reports_its_lines_or_its_failure(tmp_path, monkeypatch)
     monkeypatch.setattr(derive_mod, "paper", broken)
     lines, _, failed = _paper_section("symhx.commands.derive", tmp_path, False)
     assert failed and lines == ["FAILED: ArithmeticError: no convergence"]
+
+
+def test_critical_text_names_the_number_of_pipes(capsys):
+    _rc, out = run(capsys, "critical", "1000", "--dps", "20")
+    assert out.splitlines()[0].startswith("N = 1000 vertices (999 pipes)")
+    _rc, out = run(capsys, "critical", "10**30", "--dps", "20")
+    assert "(N - 1 pipes)" in out.splitlines()[0]

@@ -74,3 +74,14 @@ def test_figures_11_to_13_fit_the_column():
                 plot_class_panels(30, ((0.01, None), (0.03, 12))),
                 plot_simple_vs_higher_panels(30, (0.02, 0.04))):
         assert_fits_the_column(fig)
+
+
+def test_figure11_total_is_drawn_over_k():
+    fig = plot_class_decomposition(30, 0.03, kmax=20)
+    total = next(ln for ln in fig.axes[0].lines if ln.get_label() == "$P(X=k)$")
+    ks, ys = total.get_data()
+    assert list(ks) == list(range(1, len(ks) + 1))
+    # the class decomposition adds up to the pmf of its space (eq. 41 by default)
+    ref = [float(symhx.pmf(30, 0.03, int(k), space="eq41", dps=20)) for k in ks]
+    assert len(ks) >= 10 and all(abs(y - r) <= 1e-12 * r for y, r in zip(ys, ref, strict=True))
+    assert "(log scale)" in fig.axes[0].get_ylabel()

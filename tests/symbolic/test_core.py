@@ -101,3 +101,12 @@ def test_exp_of_a_compound_argument_is_printed_as_exp():
     assert latex(sp.exp(x / y)) == r"\exp\left(\frac{x}{y}\right)"
     assert latex(sp.exp(-x * y)) == r"\exp\left(- x y\right)"
     assert latex(sp.exp(2 * x)) == r"\exp\left(2 x\right)"
+
+
+def test_as_dict_names_label_section_and_result():
+    from symhx.symbolic import derivation
+
+    d = derivation("12")
+    out = d.as_dict()
+    assert out["label"] == "12" and out["section"] == d.section and out["latex"] == d.latex()
+    assert set(out) >= {"label", "section", "description", "text", "result", "latex", "kinds"}
