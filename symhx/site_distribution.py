@@ -218,13 +218,19 @@ class SitesDistribution(Distribution):
 
     # ----------------------------------------------------------------- float64 path
     def _float_logw(self) -> np.ndarray:
+        return self._float_logw_top[0]
+
+    @cached_property
+    def _float_logw_top(self) -> tuple[np.ndarray, float]:
+        """``(log W(k) - top, top)`` in float64, ``top`` the largest ``log W(k)``: the logs
+        relative to the largest weight, subtracted before rounding to float64 (an absolute log
+        of size L would carry L * 2**-53 of error into every probability); the normaliser adds
+        ``top`` back."""
         balls = ball_weights(self.classes, self.sample_space, prec=60)
         with arb_prec(80):
-            # logs relative to the largest weight, subtracted before rounding to float64: an
-            # absolute log of size L would carry L * 2**-53 of error into every probability
             logs = [x.log() for x in balls]
             top = max(logs, key=lambda y: y.mid()).mid()
-            return np.array([float((y - top).mid()) for y in logs])
+            return np.array([float((y - top).mid()) for y in logs]), float(top)
 
     # ----------------------------------------------------------------- per-k values
     def _pmf1(self, k: int) -> Any:
@@ -251,7 +257,8 @@ class SitesDistribution(Distribution):
         """``sum_k W(k)``: eq. (8)'s ``Gamma_{N,p}`` with per-site probabilities (float for
         ``dps=None``; may overflow there: see :attr:`log_normaliser`)."""
         if self.dps is None:
-            return float(np.exp(self._ftab["lognorm"]))
+            with np.errstate(over="ignore"):  # inf beyond float64, as documented
+                return float(np.exp(self.log_normaliser))
         if self.exact:
             return self._exact_moments[0]
         return self._rounded(self._mp_moments[0])
@@ -259,8 +266,8 @@ class SitesDistribution(Distribution):
     @property
     def log_normaliser(self) -> Any:
         """``log`` of :attr:`normaliser`."""
-        if self.dps is None:
-            return float(self._ftab["lognorm"])
+        if self.dps is None:  # the table's logs are relative to the largest weight
+            return float(self._ftab["lognorm"]) + self._float_logw_top[1]
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
         ctx = mp()

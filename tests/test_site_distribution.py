@@ -4,6 +4,7 @@ certified modes with exact ties."""
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -167,3 +168,17 @@ def test_the_distribution_keeps_its_classes_as_p() -> None:
     classes = SiteClasses((4, 5), (Fraction(1, 7), Fraction(2, 9)))
     d = SitesDistribution(9, classes)
     assert d.p is classes and d.N == 9
+
+
+def test_the_float_normaliser_is_the_exact_one_rounded() -> None:
+    classes = ((4, 5), (Fraction(1, 7), Fraction(2, 9)))
+    exact = SitesDistribution(9, SiteClasses(*classes)).normaliser
+    fl = SitesDistribution(9, SiteClasses(classes[0], (1 / 7, 2 / 9)), dps=None).normaliser
+    assert isinstance(fl, float) and abs(fl - float(exact)) <= 1e-14 * float(exact)
+    # and its log far beyond float64's range (the table keeps logs relative to the largest
+    # weight; the normaliser used to stay relative too: 3.69 instead of 6.20 above)
+    big = SiteClasses((1000, 2000), (0.3, 0.6))
+    ref = SitesDistribution(3000, big, dps=30).log_normaliser
+    got = SitesDistribution(3000, big, dps=None)
+    assert abs(got.log_normaliser - float(ref)) <= 1e-12 * float(ref)
+    assert got.normaliser == math.inf
