@@ -44,3 +44,17 @@ def test_unknown_label_is_refused_with_the_known_ones():
     msg = str(info.value)
     assert "'99'" in msg and "16-spurious" in msg and "pc-lambert" in msg
     assert derivation(16) is derivation("16")  # the label is read as a string
+
+
+def test_the_mapping_of_derivations_names_an_unknown_label_and_counts_built_ones():
+    from tests.harness.caches import clear_caches
+
+    clear_caches()  # no derivation built yet
+    ds = derivations()
+    with pytest.raises(KeyError) as info:
+        ds["no-such-label"]
+    assert info.value.args == ("no-such-label",)
+    n = len(ds)
+    assert repr(ds) == f"<Derivations: {n} labels, 0 built>"
+    ds["12"]
+    assert repr(ds) == f"<Derivations: {n} labels, 1 built>"
