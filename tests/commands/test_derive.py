@@ -42,7 +42,11 @@ def test_derive_paper_section_verifies_every_derivation(tmp_path):
     lines = paper(tmp_path, False)
     data = json.loads((tmp_path / "derivations.json").read_text())
     assert all(d["verified"] for d in data)
-    assert (tmp_path / "asymptotic_errors.csv").exists()
+    import csv
+
+    with open(tmp_path / "asymptotic_errors.csv", newline="") as fh:
+        header = next(csv.reader(fh))
+    assert header == ["N", "formula", "quantity", "rel_error", "k", "k_exact", "decay"]
     assert lines and "verified" in lines[0]
 
 

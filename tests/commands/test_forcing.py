@@ -119,6 +119,10 @@ def test_forcing_paper_section_writes_figure_9_data_from_eq27(tmp_path):
             sm = mpmath.mpf(s)
             ref = eq27_p(sm, sm, 1, mpmath.sqrt(2), 1)
             assert rel_err(lp, mpmath.log(ref), 40) < 1e-13
+    meta = json.loads((tmp_path / "fig9_p_sigma.json").read_text())
+    assert meta["parameters"] == {"sigma1": "sigma", "omega": 1, "Omega": "sqrt(2)", "d": 1}
+    # the thresholds at 30 digits in the JSON
+    assert len(meta["sigma_at_p_1e-10"].replace(".", "").lstrip("0").split("e")[0]) >= 30
     s_1e10 = mpmath.mpf(next(ln for ln in lines if "p = 1e-10" in ln).split("sigma = ")[1]
                         .split(";")[0])
     assert rel_err(F.impact_probability(s_1e10, dps=20), mpmath.mpf("1e-10"), 20) < 1e-12

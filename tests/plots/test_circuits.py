@@ -44,3 +44,10 @@ def test_circuit_fractions_below_float64_range_are_dropped_from_the_log_plot():
     fig = plots.plot_circuit_counts(200)
     xs, ys = fig.axes[0].lines[0].get_data()
     assert (ys > 0).all() and len(xs) == int((fracs > 0).sum())
+
+
+def test_tick_steps_are_1_2_5_times_a_power_of_ten():
+    from symhx.plots.circuits import _nice_step
+
+    assert [_nice_step(t) for t in (0.5, 1, 1.5, 2, 3, 5, 7, 10, 11, 40, 99, 101, 4000)] == \
+        [1, 1, 2, 2, 5, 5, 10, 10, 20, 50, 100, 200, 5000]
