@@ -14,11 +14,11 @@ from typing import Any
 
 import numpy as np
 
-from symhx.plots._style import PNG_DPI, styled
+from symhx.plots._style import COLUMN_WIDTH, PNG_DPI, styled
 from symhx.validation import InputError
 
-__all__ = ["PAPER_FIGURES", "PAPER_N", "PNG_DPI", "paper_figure", "save_paper_figure",
-           "stored_ensemble"]
+__all__ = ["COLUMN_WIDTH", "PAPER_FIGURES", "PAPER_N", "PNG_DPI", "paper_figure",
+           "save_paper_figure", "stored_ensemble"]
 
 #: the paper's row: 100 pipes, so N = 101 possible impacts
 PAPER_N = 101

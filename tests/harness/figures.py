@@ -8,7 +8,7 @@ from typing import Any
 
 from matplotlib.layout_engine import ConstrainedLayoutEngine
 
-from symhx.plots._style import COLUMN_WIDTH
+from symhx.plots import COLUMN_WIDTH
 
 
 def _inside(inner: Any, outer: Any) -> bool:
