@@ -332,8 +332,10 @@ class Distribution:
         probability is within ``dps + guard`` digits of the largest one in ``[lo, hi]``."""
         raise NotImplementedError
 
-    def _float_logw(self) -> np.ndarray:  # pragma: no cover - interface
-        """float64 unnormalised ``log W(k)``, ``k = 1..N``."""
+    def _float_logw(self) -> tuple[np.ndarray, float]:  # pragma: no cover - interface
+        """``(log W(k) - shift, shift)``: float64 unnormalised logs, ``k = 1..N``, less a
+        constant ``shift`` (a subclass may subtract its largest log before rounding to float64,
+        for accuracy); the table adds it back to its log-normaliser."""
         raise NotImplementedError
 
     def _pmf1(self, k: int) -> Any:  # pragma: no cover - interface
@@ -433,7 +435,7 @@ class Distribution:
                 f"memory.")
         from scipy.special import logsumexp
 
-        lw = self._float_logw()
+        lw, shift = self._float_logw()
         lp = lw - logsumexp(lw)
         cum = np.minimum(np.logaddexp.accumulate(lp), 0.0)
         logsf_incl = np.minimum(np.logaddexp.accumulate(lp[::-1])[::-1], 0.0)
@@ -444,7 +446,7 @@ class Distribution:
             logcdf = np.where(cum > -_LN2, np.log1p(-np.exp(tail)), cum)
             logsf = np.where(tail > -_LN2, np.log1p(-np.exp(cum)), tail)
         return {"logpmf": lp, "pmf": np.exp(lp), "logcdf": logcdf, "cdf": np.exp(logcdf),
-                "logsf": logsf, "sf": np.exp(logsf), "lognorm": np.array(logsumexp(lw))}
+                "logsf": logsf, "sf": np.exp(logsf), "lognorm": np.array(logsumexp(lw) + shift)}
 
     def _ftake(self, name: str, kk: np.ndarray, below: float, above: float) -> np.ndarray:
         tab = self._ftab[name]
@@ -771,13 +773,13 @@ class SimpleDistribution(Distribution):
         return self.fr**k * math.perm(self.N, k) / k
 
     # ----------------------------------------------------------------- float64 path
-    def _float_logw(self) -> np.ndarray:
+    def _float_logw(self) -> tuple[np.ndarray, float]:
         from scipy.special import gammaln
 
         N = self.N
         ks = np.arange(1, N + 1, dtype=float)
         return ks * _logp_float(self.p, self.fr) + (gammaln(N + 1.0) - gammaln(N - ks + 1.0)) \
-            - np.log(ks)
+            - np.log(ks), 0.0
 
     # ----------------------------------------------------------------- mpmath path
     @cached_property

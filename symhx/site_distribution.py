@@ -217,15 +217,10 @@ class SitesDistribution(Distribution):
             return export(ctx.mpf(x))
 
     # ----------------------------------------------------------------- float64 path
-    def _float_logw(self) -> np.ndarray:
-        return self._float_logw_top[0]
-
-    @cached_property
-    def _float_logw_top(self) -> tuple[np.ndarray, float]:
-        """``(log W(k) - top, top)`` in float64, ``top`` the largest ``log W(k)``: the logs
-        relative to the largest weight, subtracted before rounding to float64 (an absolute log
-        of size L would carry L * 2**-53 of error into every probability); the normaliser adds
-        ``top`` back."""
+    def _float_logw(self) -> tuple[np.ndarray, float]:
+        """``(log W(k) - top, top)``, ``top`` the largest ``log W(k)``: the logs relative to the
+        largest weight, subtracted before rounding to float64 (an absolute log of size L would
+        carry L * 2**-53 of error into every probability)."""
         balls = ball_weights(self.classes, self.sample_space, prec=60)
         with arb_prec(80):
             logs = [x.log() for x in balls]
@@ -266,8 +261,8 @@ class SitesDistribution(Distribution):
     @property
     def log_normaliser(self) -> Any:
         """``log`` of :attr:`normaliser`."""
-        if self.dps is None:  # the table's logs are relative to the largest weight
-            return float(self._ftab["lognorm"]) + self._float_logw_top[1]
+        if self.dps is None:
+            return float(self._ftab["lognorm"])
         if self.exact:
             return self._log_fraction(self._exact_moments[0])
         ctx = mp()

@@ -456,8 +456,8 @@ class SpaceDistribution(Distribution):
             var = ctx.fsum((k - mu) ** 2 * w for k, w in terms.items()) / s0
             return export((ctx.log(s0), mu, var))
 
-    def _float_logw(self) -> np.ndarray:
-        return log_W_float(self.sample_space, self.N, self._logp())
+    def _float_logw(self) -> tuple[np.ndarray, float]:
+        return log_W_float(self.sample_space, self.N, self._logp()), 0.0
 
     def _mp_weight(self, k: int) -> mpmath.mpf:
         """``W(k)`` in this thread's context at the working precision (set by the caller)."""
