@@ -55,8 +55,9 @@ _arrange = fm.function_trampoline_arrangement
 
 
 def _skip_node_and_children(self: Any, node: cst.CSTNode) -> bool:
-    if not (_skip(self, node) and allowed(node)):
-        return _skip(self, node)
+    skip = _skip(self, node)
+    if not (skip and allowed(node)):
+        return skip
     # skipped for its decorators: keep mutmut's other reasons (pragmas, names never mutated)
     position = self.get_metadata(PositionProvider, node, None)
     if position and position.start.line in self._ignored_node_lines:
