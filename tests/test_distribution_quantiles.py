@@ -16,6 +16,7 @@ import pytest
 
 import symhx
 from symhx.distribution import SimpleDistribution
+from tests.harness.discrete import check_quantiles_at_exact_ties
 from tests.harness.errors import assert_refuses
 from tests.reference.distribution import ExactTable, fraction_of
 
@@ -47,13 +48,9 @@ def test_mpmath_quantile_at_an_exact_tie_is_k(N: int, pf: float, dps: int) -> No
     exactly: k reaches it (``cdf(k) >= target``), whatever the rounding of the sums at any
     number of digits.  (The search used to settle such a tie by the sign of the rounding
     error and gave k + 1 at N = 300.)"""
-    t = ExactTable.simple(N, Fraction(pf))
     d = symhx.distribution_of(N, pf, dps=dps)
-    eps = Fraction(10) ** (1 - dps)
     m = d.median()
-    for k in (m - 3, m, m + 2):
-        assert d.ppf(t.cdf(k) / (1 - eps)) == k
-        assert d.isf(t.sf(k) / (1 + eps)) == k
+    check_quantiles_at_exact_ties(d, ExactTable.simple(N, Fraction(pf)), dps, (m - 3, m, m + 2))
 
 
 @pytest.mark.parametrize("space, N, pf, dps", [("excess<=1", 40, 0.05, 20),
@@ -65,13 +62,8 @@ def test_space_quantile_at_an_exact_tie_is_k(space: str, N: int, pf: float, dps:
     Reference: the distribution at the exact binary value of p (exact cdf)."""
     exact = symhx.distribution_of(N, Fraction(pf), space=space)
     d = symhx.distribution_of(N, pf, dps=dps, space=space)
-    eps = Fraction(10) ** (1 - dps)
     m = d.median()
-    for k in range(m - 4, m + 5):
-        c, s = exact.cdf(k), exact.sf(k)
-        assert isinstance(c, Fraction)
-        assert d.ppf(c / (1 - eps)) == k and d.isf(s / (1 + eps)) == k
-        assert d.ppf(c * (1 + 2 * eps)) == k + 1 and d.isf(s * (1 - 2 * eps)) == k + 1
+    check_quantiles_at_exact_ties(d, exact, dps, range(m - 4, m + 5))
 
 
 @pytest.mark.parametrize("dps", [20, 30])

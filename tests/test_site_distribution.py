@@ -15,6 +15,7 @@ from symhx.site_distribution import SitesDistribution, site_modes
 from symhx.site_weights import BALL_TABLE_N_LIMIT, EXACT_TABLE_BITS_LIMIT
 from symhx.sites import SiteClasses
 from symhx.spaces import parse_space
+from tests.harness.discrete import check_quantiles_at_exact_ties
 from tests.harness.errors import assert_refuses
 from tests.reference.mp import assert_mp_close
 from tests.reference.sites import brute_weights, expand, mode_weights, site_pmf
@@ -131,12 +132,8 @@ def test_quantiles_at_an_exact_tie_are_k(dps: int) -> None:
     N = 30
     exact = SitesDistribution(N, SiteClasses((10, 20), (Fraction(0.05), Fraction(0.12))))
     d = SitesDistribution(N, SiteClasses((10, 20), (0.05, 0.12)), dps=dps)
-    eps = Fraction(10) ** (1 - dps)
     m = d.median()
-    for k in range(m - 4, m + 5):
-        c, s = exact.cdf(k), exact.sf(k)
-        assert d.ppf(c / (1 - eps)) == k and d.isf(s / (1 + eps)) == k
-        assert d.ppf(c * (1 + 2 * eps)) == k + 1 and d.isf(s * (1 - 2 * eps)) == k + 1
+    check_quantiles_at_exact_ties(d, exact, dps, range(m - 4, m + 5))
 
 
 @pytest.mark.parametrize("dps", [None, 25, "exact"])

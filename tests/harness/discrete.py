@@ -318,6 +318,19 @@ def check_quantiles_at_midpoints(d: Any, ref: ExactTable, dps: int) -> None:
             assert d.isf((lo + hi) / 2) == k, ("isf", k)
 
 
+def check_quantiles_at_exact_ties(d: Any, exact: Any, dps: int, ks: Iterable[int]) -> None:
+    """mpmath path: a ``q`` whose resolved target (``q (1 -+ 10**(1 - dps))``) equals
+    ``cdf(k)`` (``sf(k)``) exactly gives k whatever the rounding of the sums (a tie reaches the
+    target), and one resolution step beyond it gives k + 1.  ``exact`` has the exact ``cdf``
+    and ``sf`` (an :class:`ExactTable` or an exact frozen distribution)."""
+    eps = Fraction(10) ** (1 - dps)
+    for k in ks:
+        c, s = exact.cdf(k), exact.sf(k)
+        assert isinstance(c, Fraction) and isinstance(s, Fraction)
+        assert d.ppf(c / (1 - eps)) == k and d.isf(s / (1 + eps)) == k, ("tie", k)
+        assert d.ppf(c * (1 + 2 * eps)) == k + 1 and d.isf(s * (1 - 2 * eps)) == k + 1, ("step", k)
+
+
 def check_ppf_inverts_cdf(d: Any, ref: ExactTable, dps: int | None) -> None:
     """``ppf(cdf(k)) == k`` and ``isf(sf(k)) == k`` for every k; at ``dps`` digits (``None``:
     exact) except where ``cdf(k - 1)`` and ``cdf(k)`` coincide at that precision
