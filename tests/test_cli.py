@@ -11,18 +11,19 @@ import sys
 
 import pytest
 
-from symhx.cli import build_parser, main
+from symhx.cli import HelpFormatter, build_parser, main
 from symhx.validation import DEFAULT_DPS
 
 COMMANDS_WITH_DPS = ("critical", "distribution", "mode-path", "spaces", "asymptotics")
-DOCUMENTED_COMMANDS = ("critical", "distribution", "circuits", "mode-path", "paper", "spaces",
-                       "convergence", "derive", "asymptotics")
 
 
 def _subparsers() -> dict[str, argparse.ArgumentParser]:
     parser = build_parser()
     (action,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
     return action.choices
+
+
+COMMANDS = tuple(_subparsers())
 
 
 class _exit_code:
@@ -102,7 +103,7 @@ def test_internal_error_is_exit_1_with_a_request_to_report(monkeypatch, capsys):
     assert err.count("\n") == 1 and "kaboom" in err and "please report" in err
 
 
-@pytest.mark.parametrize("cmd", DOCUMENTED_COMMANDS)
+@pytest.mark.parametrize("cmd", COMMANDS)
 def test_every_option_has_help_and_shows_its_default(cmd):
     sub = _subparsers()[cmd]
     text = sub.format_help()
@@ -114,10 +115,12 @@ def test_every_option_has_help_and_shows_its_default(cmd):
             assert f"(default: {action.default})" in " ".join(text.split()), (cmd, action.dest)
 
 
-def test_every_command_uses_the_defaults_formatter():
+def test_every_command_uses_the_symhx_help_formatter():
+    # argparse's own defaults formatter would print "(default: None)" and "(default: False)"
     for name, sub in _subparsers().items():
-        assert "ArgumentDefaults" in type(sub.formatter_class).__mro__.__repr__() or issubclass(
-            sub.formatter_class, argparse.ArgumentDefaultsHelpFormatter), name
+        assert sub.formatter_class is HelpFormatter, name
+        text = " ".join(sub.format_help().split())
+        assert "(default: None)" not in text and "(default: False)" not in text, name
 
 
 def test_options_without_help_text_still_show_their_default():
@@ -169,3 +172,18 @@ def test_help_states_each_default_once():
     p_help = text.split("--p P impact", 1)[1].split("--dps DPS", 1)[0]
     assert "default: the paper's figure values" in p_help and "(default:" not in p_help
     assert "significant decimal digits of the results (default: 50)" in text
+
+
+def test_no_option_states_its_default_twice():
+    # an option whose own help text already names its default (p-sigma's --omega and --d say
+    # "(default: 1)") must not get the formatter's "(default: ...)" on top
+    stated = 0
+    for name, sub in _subparsers().items():
+        formatter = sub._get_formatter()
+        for action in sub._actions:
+            if not action.option_strings or isinstance(action, argparse._HelpAction):
+                continue
+            shown = formatter._expand_help(action) if action.help else ""  # as --help shows it
+            assert shown.lower().count("default") <= 1, (name, action.dest, shown)
+            stated += "default" in (action.help or "").lower()
+    assert stated >= 2  # the check above meets options that state their default themselves

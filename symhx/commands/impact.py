@@ -46,9 +46,6 @@ QUICK_SIGMAS = [0.10, 0.14, 0.18, 0.22, 0.26, 0.30]
 QUICK_RUNS = 20
 DATA_FILE = Path(__file__).resolve().parent.parent / "data" / "ensemble_fig7_8.json"
 
-_FMT = argparse.ArgumentDefaultsHelpFormatter
-
-
 def _add_pipes(p: argparse.ArgumentParser, default: int) -> None:
     p.add_argument("--pipes", type=int, default=default,
                    help="number of pipes n in the row (N = n + 1 possible impacts)")
@@ -58,7 +55,7 @@ def _add_pipes(p: argparse.ArgumentParser, default: int) -> None:
 def register(sub: Any) -> None:
     p = sub.add_parser("simulate", help="simulate one random pipe row (section 7)",
                        description="Simulate one random row of pipes (eqs. 17-21) drawn as in "
-                       "section 7 and print its events.", formatter_class=_FMT)
+                       "section 7 and print its events.")
     _add_pipes(p, 10)
     p.add_argument("--sigma", type=float, default=0.3,
                    help="standard deviation of the forcing and initial-condition coefficients")
@@ -74,8 +71,7 @@ def register(sub: Any) -> None:
         "ensemble", help="statistics of impacting pipes against sigma (figs. 7, 8)",
         description="Ensemble of random pipe rows: per sigma, the numbers of impacting pipes and "
         "of distinct impact sites in the window [t_transient, t_transient + t_window] (runs "
-        "without impact excluded and counted; failed runs counted with their reason).",
-        formatter_class=_FMT)
+        "without impact excluded and counted; failed runs counted with their reason).")
     e.add_argument("--sigmas", type=float, nargs="+", default=QUICK_SIGMAS,
                    help="values of sigma (forcing standard deviation)")
     e.add_argument("--runs", type=int, default=QUICK_RUNS, help="runs per sigma")
