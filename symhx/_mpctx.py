@@ -23,8 +23,7 @@ Rules that keep this safe
   goes through :func:`local` (this thread's type, bit for bit) before any operator arithmetic.
 * Values of the thread's context are used only in that thread (never stored where another
   thread can reach them); ``isinstance(x, mpmath.mpf)`` is False for them: use :func:`is_mpf`.
-* Caches shared by threads hold exported values (or plain ints / ``_mpf_`` tuples);
-  :class:`cached_mp_property` does this for cached attributes.
+* Caches shared by threads hold exported values (or plain ints / ``_mpf_`` tuples).
 
 Conventions between modules
 ---------------------------
@@ -60,17 +59,15 @@ mpf('0.33333349227905273')
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
-from typing import Any, Generic, TypeVar
+from typing import Any
 
 import mpmath
 from mpmath import libmp
 from mpmath.ctx_mp_python import _mpf  # the base class of every context's mpf
 
-__all__ = ["cached_mp_property", "export", "is_mpf", "local", "make_mpf", "mp", "prec_of_dps"]
+__all__ = ["export", "is_mpf", "local", "make_mpf", "mp", "prec_of_dps"]
 
 _tls = threading.local()
-T = TypeVar("T")
 
 
 def mp() -> Any:
@@ -142,43 +139,3 @@ def local(x: Any) -> Any:
     if isinstance(x, dict):
         return {k: local(v) for k, v in x.items()}
     return x
-
-
-class cached_mp_property(Generic[T]):
-    """Like :func:`functools.cached_property` for a value holding mpf numbers, safe to share
-    between threads: the first access computes it (in the reader's context), stores it
-    *exported* on the instance, and every access returns it :func:`local`-ized to the reader's
-    context (a fresh container each time: do not mutate it).  Two threads that race on the
-    first access compute the same bits; the last store wins.
-
-    >>> class Third:
-    ...     @cached_mp_property
-    ...     def value(self):
-    ...         ctx = mp()
-    ...         with ctx.workdps(40):
-    ...             return ctx.mpf(1) / 3
-    >>> t = Third()
-    >>> type(t.value) is mp().mpf, mpmath.nstr(t.value, 40)
-    (True, '0.3333333333333333333333333333333333333333')
-    """
-
-    def __init__(self, func: Callable[[Any], T]) -> None:
-        self.func = func
-        self.key = f"_mpcache_{func.__name__}"
-        self.__doc__ = func.__doc__
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.key = f"_mpcache_{name}"
-
-    def __get__(self, obj: Any, owner: type | None = None) -> Any:
-        if obj is None:
-            return self
-        store = obj.__dict__
-        try:
-            value = store[self.key]
-        except KeyError:
-            value = store[self.key] = export(self.func(obj))
-        return local(value)
-
-    def __set__(self, obj: Any, value: Any) -> None:
-        raise AttributeError("a cached mp property is read-only")

@@ -13,7 +13,7 @@ import symhx
 import symhx.asymptotics
 import symhx.circuits
 import symhx.spaces
-from symhx._mpctx import cached_mp_property, export, is_mpf, local, make_mpf, mp, prec_of_dps
+from symhx._mpctx import export, is_mpf, local, make_mpf, mp, prec_of_dps
 
 
 def test_each_thread_has_its_own_context():
@@ -74,34 +74,6 @@ def test_is_mpf_of_every_context_and_nothing_else():
     ctx = mp()
     assert is_mpf(mpmath.mpf(1)) and is_mpf(ctx.mpf(1)) and is_mpf(mpmath.MPContext().mpf(3))
     assert not is_mpf(sympy.Float(1.5)) and not is_mpf(1.5) and not is_mpf(mpmath.mpc(1))
-
-
-def test_cached_mp_property_is_exported_once_and_localised_per_reader():
-    calls = []
-
-    class Holder:
-        @cached_mp_property
-        def value(self):
-            calls.append(1)
-            ctx = mp()
-            with ctx.workdps(60):
-                return (ctx.mpf(1) / 7, 3)
-
-    h = Holder()
-    got = [None, None]
-
-    def read(i: int) -> None:
-        got[i] = h.value
-
-    read(0)
-    t = threading.Thread(target=read, args=(1,))
-    t.start()
-    t.join()
-    assert len(calls) == 1 and got[0][0]._mpf_ == got[1][0]._mpf_ and got[0][1] == 3
-    assert type(got[0][0]) is mp().mpf and type(got[1][0]) is not mp().mpf
-    assert type(h.__dict__["_mpcache_value"][0]) is mpmath.mpf  # stored exported
-    with pytest.raises(AttributeError):
-        h.value = 1
 
 
 def test_the_users_global_precision_has_no_effect():

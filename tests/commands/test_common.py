@@ -59,3 +59,5 @@ def test_jsonable_rounds_numpy_scalars_to_the_digits():
 
     assert jsonable(np.float64(1) / 3, 5) == jsonable(1 / 3, 5) == 0.33333
     assert jsonable(np.int64(7), 5) == 7
+    # float32 is no float subclass (float64 is): converted through .item(), then rounded
+    assert jsonable(np.float32(1) / 3, 3) == 0.333
