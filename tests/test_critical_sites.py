@@ -117,6 +117,20 @@ def test_perturbative_certificate_agrees_with_the_table(N, w):
         assert abs(a.q - b.q) <= abs(b.q) * mpmath.mpf(10) ** -29
 
 
+def test_the_perturbative_certificate_starts_at_its_documented_n():
+    # PERTURBATIVE_MIN_N is inclusive: at it a one-large-class direction takes the certificate,
+    # one below it the table; both give the same point
+    from symhx.critical_sites import PERTURBATIVE_MIN_N
+
+    at, below = (direction_critical_point(n, SiteClasses((2, n - 2), (3, 1)), dps=20)
+                 for n in (PERTURBATIVE_MIN_N, PERTURBATIVE_MIN_N - 1))
+    assert at.method == "perturbative" and below.method == "table"
+    ref = _table(SiteClasses((2, PERTURBATIVE_MIN_N - 2), (3, 1)), 20)
+    assert at.argmins == ref.argmins
+    with mpmath.workdps(30):
+        assert abs(at.p - ref.p) <= ref.p * mpmath.mpf(10) ** -19
+
+
 def test_small_sites_far_from_a_perturbation_go_to_the_table():
     sc = SiteClasses((2, 4998), (100, 1))
     assert _perturbative(sc, 20) is None

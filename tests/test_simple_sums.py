@@ -188,3 +188,35 @@ def test_short_runs_in_integers_match_every_term(N: int, p: Fraction) -> None:
     with mpmath.workdps(60):
         assert abs(mpmath.mpf(mean) / ref[1] - 1) < mpmath.mpf(10) ** -30
         assert abs(mpmath.mpf(var) / ref[2] - 1) < mpmath.mpf(10) ** -29
+
+
+@pytest.mark.parametrize(("N", "p"), [(60, Fraction(1, 20)), (3000, Fraction(1, 1000)),
+                                      (3000, Fraction(1, 10**5)), (20000, Fraction(3, 10**4)),
+                                      (2 * 10**5, Fraction(3, 10**5))])
+def test_sums_weighted_by_D_against_every_term(N: int, p: Fraction) -> None:
+    """Weight 3 (``D(k) = log(Phi(k)/Phi(c))``, the entropy's sum): ``sum f log f`` against
+    every term walked by the exact ratio from mpmath's loggamma, above and below the jump and
+    through both the term-by-term and (N = 2e5) the Euler-Maclaurin routes.  Above the jump
+    the walk covers the mode +- 40 sqrt(mode) (the hump's width is about sqrt(mode); the
+    terms outside are below e**-800 of the top)."""
+    import symhx
+
+    top = symhx.mode(N, p)
+    s = SimpleSums(N, p, 30, top if top > 1 else None)
+    ctx = mp()
+    with ctx.workdps(s.W):
+        s0, s3 = s.sums(1, N, (0, 3))
+    a, b = (1, N) if top == 1 else (max(1, top - 40 * math.isqrt(top)),
+                                    min(N, top + 40 * math.isqrt(top)))
+    with mpmath.workdps(60):
+        pm = mpmath.mpf(p.numerator) / p.denominator
+        f = mpmath.exp(log_phi_ratio(N, p, a, s.c))
+        want0 = want3 = mpmath.mpf(0)
+        for k in range(a, b + 1):
+            if f:
+                want0 += f
+                want3 += f * mpmath.log(f)
+            f = f * pm * (N - k) * k / (k + 1)
+        assert abs(mpmath.mpf(s0) / want0 - 1) < mpmath.mpf(10) ** -30
+        # relative to the sum of f times the weight's scale (|D| + 1 over the mass)
+        assert abs(mpmath.mpf(s3) - want3) < mpmath.mpf(10) ** -29 * (abs(want3) + want0)

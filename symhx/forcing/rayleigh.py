@@ -16,8 +16,9 @@ float64 also has two asymptotic regions where the value is exact to far below an
 ``x min(s) = 1e5 V`` the Laplace asymptotic of ``log P(S > x)`` (:func:`_laplace_logsf`).
 
 The work is bounded before it starts: at most ``MAX_SCALES`` scales (both paths), ``rvs`` at most
-``MAX_DRAWS`` draws, the mpmath path ``MAX_MP_SUM_WORK`` (scales times digits) for three or more
-scales, and ``exp(-E)`` up to ``MAX_EXPONENT``.
+``symhx.validation.MAX_SAMPLE_SIZE`` draws (the limit of every ``rvs``), the mpmath path
+``MAX_MP_SUM_WORK`` (scales times digits) for three or more scales, and ``exp(-E)`` up to
+``MAX_EXPONENT``.
 """
 
 from __future__ import annotations
@@ -57,15 +58,14 @@ from symhx.validation import (
     check_array,
     check_choice,
     check_dps,
-    check_int,
     check_seed,
+    check_size,
     mpf_to_fraction,
     short_value,
     to_rational,
 )
 
 __all__ = [
-    "MAX_DRAWS",
     "MAX_MP_SUM_WORK",
     "MAX_SCALES",
     "RayleighSum",
@@ -75,8 +75,6 @@ __all__ = [
     "scales_of",
 ]
 
-#: most draws of one :meth:`RayleighSum.rvs` call (its memory is ~16 bytes a draw)
-MAX_DRAWS = 10**8
 #: the mpmath path of three or more scales costs about (distinct scales) x (digits) evaluations
 #: of ``erfc`` at the working precision: their product is at most this (64 scales at 250
 #: digits, 8 at 2000; measured ~1 minute at the cap)
@@ -721,10 +719,11 @@ class RayleighSum:
         """Random draws (float64): ``sum_i Rayleigh(s_i)`` with numpy's generator.
 
         ``size``: None (one float), an int ``>= 0`` or a tuple of them (an array of that
-        shape), at most ``MAX_DRAWS`` draws. ``random_state``: None, an int seed ``>= 0`` or a
-        ``numpy.random.Generator``; the same seed gives the same draws.
+        shape), at most :data:`symhx.validation.MAX_SAMPLE_SIZE` draws. ``random_state``:
+        None, an int seed ``>= 0`` or a ``numpy.random.Generator``; the same seed gives the
+        same draws.
         """
-        shape = _check_size(size)
+        shape = check_size(size)
         rng = (random_state if isinstance(random_state, np.random.Generator)
                else np.random.default_rng(check_seed(random_state, "random_state")))
         sc = self._float_scales()
@@ -852,21 +851,6 @@ class RayleighSum:
             val = self._mp_value(x, kind, dps)[0]
             with thread_mp().workdps(dps):
                 return +val
-
-
-def _check_size(size: Any) -> tuple[int, ...] | None:
-    """``size`` of :meth:`RayleighSum.rvs` as a shape (None: one draw), refused with its name
-    before any draw: an int ``>= 0`` or a tuple of them, at most ``MAX_DRAWS`` draws."""
-    if size is None:
-        return None
-    if isinstance(size, (str, bytes)):
-        raise TypeError(f"size must be None, an int >= 0 or a tuple of them, got {size!r}")
-    dims = tuple(size) if isinstance(size, (tuple, list)) else (size,)
-    shape = tuple(check_int(d, "size", minimum=0) for d in dims)
-    total = math.prod(shape)
-    if total > MAX_DRAWS:
-        raise InputError(f"size: {total} draws, more than MAX_DRAWS = {MAX_DRAWS:.0e}")
-    return shape
 
 
 def _to_float(fr: Fraction) -> float:

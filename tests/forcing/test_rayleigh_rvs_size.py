@@ -1,5 +1,6 @@
 """``RayleighSum.rvs`` checks its size like every ``rvs`` (issue 28, item 7): a negative or
-fractional size names ``size``; more than ``MAX_DRAWS`` draws are refused at once."""
+fractional size names ``size``; more than ``MAX_SAMPLE_SIZE`` draws (the limit of every ``rvs``)
+are refused at once."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import time
 import numpy as np
 
 import symhx
-import symhx.forcing.rayleigh as ray
+from symhx.validation import MAX_SAMPLE_SIZE
 from tests.harness.errors import assert_refuses
 
 
@@ -17,7 +18,7 @@ def test_rayleigh_sum_rvs_refuses_bad_sizes_naming_size():
     assert_refuses(r.rvs, -1, arg="size", value="-1", allowed=">= 0")
     assert_refuses(r.rvs, 2.5, exc=TypeError, arg="size", value="2.5")
     t0 = time.perf_counter()
-    assert_refuses(r.rvs, 10**12, arg="size", allowed="MAX_DRAWS")
+    assert_refuses(r.rvs, 10**12, arg="size", allowed="MAX_SAMPLE_SIZE")
     assert time.perf_counter() - t0 < 1.0
 
 
@@ -36,9 +37,14 @@ def test_rayleigh_sum_rvs_refuses_a_string_size_naming_size():
                        allowed=["None", "int >= 0", "tuple"])
 
 
-def test_rayleigh_sum_rvs_accepts_exactly_max_draws():
-    """``MAX_DRAWS`` draws are allowed, one more is refused (checked on the shape, before any
-    draw: ``MAX_DRAWS`` float64 draws would take 800 MB)."""
-    assert ray._check_size(ray.MAX_DRAWS) == (ray.MAX_DRAWS,)
-    assert ray._check_size((ray.MAX_DRAWS // 4, 4)) == (ray.MAX_DRAWS // 4, 4)
-    assert_refuses(ray._check_size, ray.MAX_DRAWS + 1, arg="size", allowed="MAX_DRAWS")
+def test_rayleigh_sum_rvs_has_the_sample_size_limit_of_every_rvs():
+    """The same limit as the distributions' ``rvs``: ``MAX_SAMPLE_SIZE`` draws in any shape
+    (a list is a shape too), one more refused before any draw."""
+    r = symhx.RayleighSum([1, 2])
+    assert r.rvs([3, 2], random_state=1).shape == (3, 2)
+    for too_many in (MAX_SAMPLE_SIZE + 1, (MAX_SAMPLE_SIZE // 2 + 1, 2)):
+        t0 = time.perf_counter()
+        assert_refuses(r.rvs, too_many, arg="size", allowed="MAX_SAMPLE_SIZE")
+        assert time.perf_counter() - t0 < 0.5
+    big = symhx.distribution_of(10, 0.1)
+    assert_refuses(big.rvs, MAX_SAMPLE_SIZE + 1, arg="size", allowed="MAX_SAMPLE_SIZE")
