@@ -100,7 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _one_line(exc: BaseException) -> str:
+def _one_line(exc: BaseException | str) -> str:
     text = " ".join(str(exc).split()) or type(exc).__name__
     return text if len(text) <= 2000 else text[:1997] + "..."
 
@@ -141,8 +141,8 @@ def _run(argv: Sequence[str] | None) -> int:
         except OSError:  # pragma: no cover
             pass
         return 0
-    except InputError as exc:  # bad input, refused by symhx
-        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+    except InputError as exc:  # bad input, refused by symhx (worded for the command line)
+        print(f"{prog}: error: {_one_line(exc.cli or exc)}", file=sys.stderr)
         return 2
     except OSError as exc:  # unwritable --out / --csv, missing file, ...
         msg = (f"{exc.strerror}: {exc.filename}" if exc.filename and exc.strerror

@@ -109,6 +109,7 @@ from symhx.validation import (
     check_real,
     check_seed,
     check_size,
+    exact_work_refusal,
     is_exact_type,
     mpf_to_fraction,
     safe_repr,
@@ -260,10 +261,9 @@ class Distribution:
                              + self.fr.denominator.bit_length())
             self.exact = work <= EXACT_WORK_LIMIT and self.N <= EXACT_N_LIMIT
         if self.exact and self.N > EXACT_N_LIMIT:
-            raise InputError(
+            raise exact_work_refusal(
                 f"exact (rational) arithmetic is limited to N <= {EXACT_N_LIMIT} "
-                f"(symhx.distribution.EXACT_N_LIMIT); got N={_n_show(self.N)}. Pass p as a "
-                f"float or mpmath.mpf for the mpmath path at dps digits, or dps=None for float64.")
+                f"(symhx.distribution.EXACT_N_LIMIT); got N={_n_show(self.N)}")
         # digits lost by the recurrences and the k, k**2 weights
         self._guard = 10 + 2 * digits_of(self.N)
 
@@ -284,12 +284,13 @@ class Distribution:
         else:
             limit, name = MAX_TABLE_N, "MAX_TABLE_N"
         if self.N > limit:
+            head = (f"table() lists one row per k = 1..N: limited to N <= {limit} "
+                    f"(symhx.distribution.{name}, a work limit"
+                    f"{' of exact rows' if self.exact else ''}); got N={_n_show(self.N)}")
             raise InputError(
-                f"table() lists one row per k = 1..N: limited to N <= {limit} "
-                f"(symhx.distribution.{name}, a work limit"
-                f"{' of exact rows' if self.exact else ''}); got N={_n_show(self.N)}. Use "
-                f"pmf(k) on the k you need (an array of k works)"
-                f"{', or a float p' if self.exact else ''}")
+                f"{head}. Use pmf(k) on the k you need (an array of k works)"
+                f"{', or a float p' if self.exact else ''}",
+                cli=f"{head}{'; use --float' if self.exact and self.N <= MAX_TABLE_N else ''}")
 
     def _check_exact_work(self, what: str, limit: int, name: str) -> None:
         """Refuse (before any work) exact sums whose integers would be too large."""
@@ -297,11 +298,10 @@ class Distribution:
         work = self.N * (self.N.bit_length() + self.fr.numerator.bit_length()
                          + self.fr.denominator.bit_length())
         if work > limit:
-            raise InputError(
+            raise exact_work_refusal(
                 f"{what} in exact rational arithmetic would need ~{work:.2g} bit-terms for "
                 f"N={_n_show(self.N)}, p={_p_show(self.fr)} (documented work limit {limit}, "
-                f"symhx.distribution.{name}); pass p as a float or mpmath.mpf for the mpmath "
-                f"path at dps digits, or dps=None for float64")
+                f"symhx.distribution.{name})")
 
     # ----------------------------------------------------------------- subclass hooks
     @property

@@ -51,7 +51,14 @@ from symhx.site_weights import (
     exact_weights,
 )
 from symhx.sites import SiteClasses, show_int
-from symhx.validation import DEFAULT_DPS, InputError, check_dps, check_N, safe_repr
+from symhx.validation import (
+    DEFAULT_DPS,
+    InputError,
+    check_dps,
+    check_N,
+    exact_work_refusal,
+    safe_repr,
+)
 
 __all__ = ["MODES_MAX_BITS", "SitesDistribution", "site_modes"]
 
@@ -146,12 +153,11 @@ class SitesDistribution(Distribution):
         if self.exact:
             bits = exact_table_bits(classes)
             if bits > EXACT_TABLE_BITS_LIMIT:
-                raise InputError(
+                raise exact_work_refusal(
                     f"exact (rational) arithmetic with site classes would hold ~{bits:.2g} bits"
                     f" for N={self.N} (documented work limit "
-                    f"symhx.site_weights.EXACT_TABLE_BITS_LIMIT = {EXACT_TABLE_BITS_LIMIT:.2g});"
-                    f" pass the probabilities as floats or mpf for the mpmath path at dps digits,"
-                    f" or dps=None for float64")
+                    f"symhx.site_weights.EXACT_TABLE_BITS_LIMIT = {EXACT_TABLE_BITS_LIMIT:.2g})",
+                    values="the probabilities as floats or mpf")
         else:
             _check_N_fits(self.N, "the distribution of X")
 

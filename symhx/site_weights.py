@@ -68,7 +68,7 @@ from flint import arb, fmpz, fmpz_poly
 
 from symhx.certify import arb_prec, to_arb
 from symhx.sites import SiteClasses, show_int
-from symhx.validation import InputError
+from symhx.validation import InputError, exact_work_refusal
 
 __all__ = [
     "BALL_TABLE_N_LIMIT",
@@ -376,11 +376,10 @@ def exact_weights(sc: SiteClasses, space: Any = SIMPLE) -> tuple[list[int], int]
     """
     bits = exact_table_bits(sc)
     if bits > EXACT_TABLE_BITS_LIMIT:
-        raise InputError(
+        raise exact_work_refusal(
             f"exact weights with site classes would hold ~{bits:.2g} bits for N={sc.N} "
             f"(documented work limit symhx.site_weights.EXACT_TABLE_BITS_LIMIT = "
-            f"{EXACT_TABLE_BITS_LIMIT:.2g}); pass the probabilities as floats or mpf for the "
-            f"mpmath path, or dps=None for float64")
+            f"{EXACT_TABLE_BITS_LIMIT:.2g})", values="the probabilities as floats or mpf")
     classes = _class_list(sc)
     N = sc.N
     Rs, npolys = _short_polys(space, classes)

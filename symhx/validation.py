@@ -80,6 +80,7 @@ __all__ = [
     "check_real",
     "check_seed",
     "check_size",
+    "exact_work_refusal",
     "is_exact_type",
     "mpf_to_fraction",
     "safe_repr",
@@ -123,7 +124,32 @@ class InputError(ValueError):
     symhx.validation.InputError: N must be an integer, got '2.5'
     >>> issubclass(InputError, ValueError)
     True
+
+    ``cli``: the same refusal worded for the command line, when its remedy is an option there
+    rather than an argument of the API (``--float`` instead of "pass p as a float"); the
+    command line prints it instead of the message.
     """
+
+    def __init__(self, message: str, *, cli: str | None = None) -> None:
+        super().__init__(message)
+        self.cli = cli
+
+
+def exact_work_refusal(head: str, values: str = "p as a float or mpmath.mpf") -> InputError:
+    """The refusal of exact (rational) work beyond a documented limit: ``head`` (what would be
+    computed, how large, which limit), then the remedy, for the API (``values`` passed as
+    floats or mpf: the mpmath path, or ``dps=None``: float64) and for the command line
+    (``--float``).
+
+    >>> e = exact_work_refusal("exact sums of N=10**6 beyond LIMIT")
+    >>> str(e).endswith("; pass p as a float or mpmath.mpf for the mpmath path at dps digits, "
+    ...                 "or dps=None for float64")
+    True
+    >>> print(e.cli)
+    exact sums of N=10**6 beyond LIMIT; use --float (mpmath at --dps digits)
+    """
+    return InputError(f"{head}; pass {values} for the mpmath path at dps digits, or dps=None "
+                      f"for float64", cli=f"{head}; use --float (mpmath at --dps digits)")
 
 
 def short_value(fr: Fraction) -> str:

@@ -179,8 +179,8 @@ def cmd_distribution(args: argparse.Namespace) -> int:
     if args.table:  # first: a refused table costs nothing
         try:
             rows = d.table()
-        except ValueError as e:
-            raise InputError(f"--table: {e}") from None
+        except InputError as e:
+            raise InputError(f"--table: {e}", cli=f"--table: {e.cli or e}") from None
     out: dict[str, Any] = {"N": args.N, "p": args.p, "space": args.space, "exact": d.exact,
                            "mean": d.mean(), "variance": d.var(), "modes": list(d.modes()),
                            "mode": d.mode(), "log_normaliser": d.log_normaliser}

@@ -77,6 +77,7 @@ from symhx.validation import (
     check_dps,
     check_N,
     check_p,
+    exact_work_refusal,
     show_exact,
 )
 
@@ -311,11 +312,10 @@ class SpaceDistribution(Distribution):
         bits_p = self.fr.numerator.bit_length() + self.fr.denominator.bit_length()
         work = self.N * (self.N.bit_length() + (self.sample_space.max_excess + 1) * bits_p)
         if work > limit:
-            raise InputError(
+            raise exact_work_refusal(
                 f"{what} in exact rational arithmetic over space {self.space!r} would need "
                 f"~{work:.2g} bit-terms for N={show_exact(self.N)}, p={show_exact(self.fr)} "
-                f"(documented work limit {limit}, symhx.distribution.{name}); pass p as a float "
-                f"or mpmath.mpf for the mpmath path at dps digits, or dps=None for float64")
+                f"(documented work limit {limit}, symhx.distribution.{name})")
 
     # ----------------------------------------------------------------- exact path
     @cached_property
