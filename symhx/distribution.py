@@ -290,7 +290,8 @@ class Distribution:
             raise InputError(
                 f"{head}. Use pmf(k) on the k you need (an array of k works)"
                 f"{', or a float p' if self.exact else ''}",
-                cli=f"{head}{'; use --float' if self.exact and self.N <= MAX_TABLE_N else ''}")
+                cli=f"{head}" + (f"; use --float (mpmath rows up to N = {MAX_TABLE_N})"
+                                 if self.exact and self.N <= MAX_TABLE_N else ""))
 
     def _check_exact_work(self, what: str, limit: int, name: str) -> None:
         """Refuse (before any work) exact sums whose integers would be too large."""

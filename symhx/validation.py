@@ -81,6 +81,7 @@ __all__ = [
     "check_seed",
     "check_size",
     "exact_work_refusal",
+    "float64_refusal",
     "is_exact_type",
     "mpf_to_fraction",
     "safe_repr",
@@ -133,6 +134,19 @@ class InputError(ValueError):
     def __init__(self, message: str, *, cli: str | None = None) -> None:
         super().__init__(message)
         self.cli = cli
+
+
+def float64_refusal(head: str) -> InputError:
+    """The refusal of a value float64 cannot carry (``head`` says which and why), with the
+    remedy: ``dps=`` (mpmath) in the API, ``--dps`` on the command line.
+
+    >>> e = float64_refusal("sigma = '1e400' is outside the float64 range")
+    >>> print(e); print(e.cli)
+    sigma = '1e400' is outside the float64 range; use dps= (the mpmath path)
+    sigma = '1e400' is outside the float64 range; use --dps (the mpmath path)
+    """
+    return InputError(f"{head}; use dps= (the mpmath path)",
+                      cli=f"{head}; use --dps (the mpmath path)")
 
 
 def exact_work_refusal(head: str, values: str = "p as a float or mpmath.mpf") -> InputError:

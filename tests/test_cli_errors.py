@@ -119,19 +119,22 @@ def test_a_bug_in_a_real_process_is_exit_1_with_traceback_only_under_debug(debug
     assert ("Traceback" in proc.stderr) is debug
 
 
-@pytest.mark.parametrize("argv", [
-    ["spaces", "100000", "1/50000"],                            # exact sums, sample spaces
-    ["distribution", "5000", "1/2500", "--table"],              # exact table rows
-    ["distribution", "3000", "1/1000", "--space", "eq41", "--table"],
-    ["distribution", "300000", "--sites", "2:1/7,rest:1/300000"],  # exact site-class weights
+@pytest.mark.parametrize("argv, option", [
+    (["spaces", "100000", "1/50000"], "--float"),                # exact sums, sample spaces
+    (["distribution", "5000", "1/2500", "--table"], "--float"),  # exact table rows
+    (["distribution", "3000", "1/1000", "--space", "eq41", "--table"], "--float"),
+    (["distribution", "300000", "--sites", "2:1/7,rest:1/300000"], "--float"),  # site weights
+    (["p-sigma", "1e-400"], "--dps"),                            # beyond float64
+    (["p-sigma", "1e400"], "--dps"),
+    (["p-sigma", "--inverse", "1e-400"], "--dps"),
 ])
-def test_a_refused_exact_computation_points_to_the_cli_option(argv, capsys):
-    # the API's remedy ("pass p as a float or mpmath.mpf ... or dps=None") is worded for the
-    # command line there: --float, not the API's arguments
+def test_a_refusal_points_to_the_cli_option_not_the_api_argument(argv, option, capsys):
+    # the API's remedies ("pass p as a float or mpmath.mpf ... or dps=None", "use dps=") are
+    # worded for the command line there: its options
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "use --float" in err
-    assert "dps=None" not in err and "mpmath.mpf" not in err and "pmf(k)" not in err
+    assert err.count("\n") == 1 and f"use {option} " in err
+    assert "dps=" not in err and "mpmath.mpf" not in err and "pmf(k)" not in err
 
 
 def test_an_input_error_may_carry_its_command_line_wording():

@@ -28,7 +28,14 @@ import numpy as np
 
 from symhx._mpctx import export, is_mpf
 from symhx._mpctx import mp as thread_mp
-from symhx.validation import InputError, brief_repr, check_array, check_dps, to_rational
+from symhx.validation import (
+    InputError,
+    brief_repr,
+    check_array,
+    check_dps,
+    float64_refusal,
+    to_rational,
+)
 
 __all__ = [
     "IRRATIONAL_EXTRA_DIGITS",
@@ -144,10 +151,10 @@ def float_arg(name: str, value: Any, *, positive: bool = True) -> np.ndarray:
     try:
         x = float(fr)
     except OverflowError:
-        raise InputError(f"{name} = {brief_repr(value)} is outside the float64 range; "
-                         f"use dps=") from None
+        raise float64_refusal(f"{name} = {brief_repr(value)} is outside the float64 "
+                              "range") from None
     if fr != 0 and x == 0.0:
-        raise InputError(f"{name} = {brief_repr(value)} underflows float64; use dps=")
+        raise float64_refusal(f"{name} = {brief_repr(value)} underflows float64")
     return np.asarray(x)
 
 

@@ -14,7 +14,7 @@ import numpy as np
 from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import ForcingParams, exported, float_arg, is_array, mpf_of
 from symhx.forcing.probability import evaluate, impact_probability
-from symhx.validation import InputError, check_dps, to_rational
+from symhx.validation import InputError, check_dps, float64_refusal, to_rational
 
 __all__ = ["sigma_for_impact_probability"]
 
@@ -96,7 +96,7 @@ def sigma_for_impact_probability(
             return out
         pf = float(_target(p, 40))
         if not 0.0 < pf < 1.0:
-            raise InputError(f"p = {p!r} rounds to {pf} in float64; use dps=")
+            raise float64_refusal(f"p = {p!r} rounds to {pf} in float64")
         return _inverse_float(pf, fp)
 
     def one(pv: Any) -> mpmath.mpf:

@@ -27,7 +27,7 @@ from symhx.forcing.kernels_mp import (
 )
 from symhx.forcing.rawmp import from_xy_raw, single_mp_fast
 from symhx.forcing.rayleigh import RayleighSum, scales_of
-from symhx.validation import InputError, check_dps
+from symhx.validation import InputError, check_dps, float64_refusal
 
 __all__ = [
     "WANTS",
@@ -87,8 +87,8 @@ def _multi(fp: ForcingParams, dps: int | None, want: str) -> Any:
         if dps is None:
             scales = scales_of(f)
             if not all(math.isfinite(s) for s in scales):
-                raise InputError("a forced component's Rayleigh scale sigma1 / |omega**2 - "
-                                 "Omega**2| is beyond float64 here: use dps=")
+                raise float64_refusal("a forced component's Rayleigh scale sigma1 / |omega**2 - "
+                                      "Omega**2| is beyond float64 here")
             S = RayleighSum(scales)
             return getattr(S, kind)(float(f.d))
         # a relative error eps of a scale moves log p by ~2 E eps (p = exp(-E), E = d**2/(2

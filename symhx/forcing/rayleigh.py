@@ -60,6 +60,7 @@ from symhx.validation import (
     check_dps,
     check_seed,
     check_size,
+    float64_refusal,
     mpf_to_fraction,
     short_value,
     to_rational,
@@ -810,8 +811,8 @@ class RayleighSum:
         bad = ~((self.scales > 0) & np.isfinite(self.scales))
         if bad.any():
             i = int(np.argmax(bad))
-            raise InputError(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
-                             "float64 range; use dps=")
+            raise float64_refusal(f"scales[{i}] = {short_value(self._exact[i])} is outside the "
+                                  "float64 range")
         return [float(s) for s in self.scales]
 
     def _mp_value(self, x: Any, kind: str, dps: int) -> tuple[mpmath.mpf, mpmath.mpf]:
