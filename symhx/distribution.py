@@ -325,6 +325,15 @@ class Distribution:
         """``log`` of :attr:`normaliser`."""
         raise NotImplementedError
 
+    @staticmethod
+    def _float_exp(log: float) -> float:
+        """The float64 :attr:`normaliser` from its log: ``inf`` beyond float64's range (the
+        log stays finite), without a warning -- the same in every space."""
+        try:
+            return math.exp(log)
+        except OverflowError:
+            return math.inf
+
     def _exact_partial(self, k: int) -> Fraction:  # pragma: no cover - interface
         raise NotImplementedError
 
@@ -909,7 +918,7 @@ class SimpleDistribution(Distribution):
         """``Gamma_{N,p}`` (eq. 8): Fraction when exact, else mpf (float for ``dps=None``;
         may overflow there: see :attr:`log_normaliser`)."""
         if self.dps is None:
-            return float(np.exp(self.log_normaliser))
+            return self._float_exp(self.log_normaliser)
         if self.exact:
             return self._exact_moments[0]
         ctx = mp()

@@ -258,8 +258,7 @@ class SitesDistribution(Distribution):
         """``sum_k W(k)``: eq. (8)'s ``Gamma_{N,p}`` with per-site probabilities (float for
         ``dps=None``; may overflow there: see :attr:`log_normaliser`)."""
         if self.dps is None:
-            with np.errstate(over="ignore"):  # inf beyond float64, as documented
-                return float(np.exp(self.log_normaliser))
+            return self._float_exp(self.log_normaliser)
         if self.exact:
             return self._exact_moments[0]
         return self._rounded(self._mp_moments[0])

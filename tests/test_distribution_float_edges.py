@@ -24,3 +24,22 @@ def test_float_tails_at_and_beyond_n_are_exact_limits(N, p, space):
     assert arr.dtype == np.float64
     assert not np.signbit(arr).any() and (arr == 0.0).all()
     assert d.logcdf(N - 1) < 0 < d.sf(N - 1)
+
+
+@pytest.mark.parametrize("make", [
+    lambda N, p: symhx.distribution_of(N, p, dps=None),
+    lambda N, p: symhx.distribution_of(N, p, space="eq41", dps=None),
+    lambda N, p: symhx.distribution_of(N, symhx.SiteClasses((2, N - 2), (p, p / 2)), dps=None),
+], ids=["simple", "eq41", "site classes"])
+def test_float_normaliser_is_inf_beyond_float64_without_a_warning(make):
+    # the same contract in every space: a finite log, the normaliser inf once that log passes
+    # log(float64 max) = 709.78, no RuntimeWarning; below it exp(log) to float64 rounding
+    import math
+    import warnings
+
+    small, big = make(40, 0.05), make(3000, 0.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert big.normaliser == math.inf and 709.8 < big.log_normaliser < math.inf
+        assert abs(math.log(small.normaliser) - small.log_normaliser) < 1e-14 * abs(
+            small.log_normaliser) + 1e-15
