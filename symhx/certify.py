@@ -255,11 +255,14 @@ def real_ball(x: Any) -> arb:
 
 
 def decide_with_rising_precision(fn: Callable[[int], T | None], *, start_bits: int,
-                                 max_bits: int = MAX_IRRATIONAL_BITS,
+                                 max_bits: int | None = None,
                                  undecided: Callable[[int], str]) -> T:
     """``fn(bits)`` at ``start_bits``, doubled until it returns a decision (not ``None``);
-    ``UndecidedError(undecided(bits))`` past ``max_bits``. ``fn`` opens its own
+    ``UndecidedError(undecided(bits))`` past ``max_bits`` (default: :data:`MAX_IRRATIONAL_BITS`
+    as it is at the call, so raising that constant reaches every caller). ``fn`` opens its own
     :func:`arb_prec` blocks (the lock is not held between attempts)."""
+    if max_bits is None:
+        max_bits = MAX_IRRATIONAL_BITS
     bits = max(64, int(start_bits))
     while True:
         got = fn(bits)
@@ -270,10 +273,11 @@ def decide_with_rising_precision(fn: Callable[[int], T | None], *, start_bits: i
         bits = min(2 * bits, int(max_bits))
 
 
-def real_sign(x: Any, *, start_bits: int = 64, max_bits: int = MAX_IRRATIONAL_BITS) -> int:
+def real_sign(x: Any, *, start_bits: int = 64, max_bits: int | None = None) -> int:
     """Sign (-1, 0, +1) of a real number (a sympy expression too), proved on its Arb ball with
     rising precision: 0 only when the ball is exactly 0 (an exact zero such as an unevaluated
-    ``0 * sqrt(2)``); :class:`UndecidedError` when no precision up to ``max_bits`` separates
+    ``0 * sqrt(2)``); :class:`UndecidedError` when no precision up to ``max_bits`` (default
+    :data:`MAX_IRRATIONAL_BITS`) separates
     it from 0 (``pi - pi`` written unevaluated); ``TypeError`` for what :func:`real_ball` cannot
     evaluate.
 

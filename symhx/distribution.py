@@ -86,7 +86,6 @@ import numpy as np
 from symhx._mpctx import export, is_mpf, local, mp
 from symhx._numeric import digits_of, mp_value
 from symhx.certify import (
-    MAX_IRRATIONAL_BITS,
     G_arb,
     arb_prec,
     bits_for,
@@ -1560,7 +1559,7 @@ def _irrational_modes(N: int, p: Any) -> tuple[int, ...]:
 
     start = 64 + 2 * N.bit_length()
     return decide_with_rising_precision(
-        attempt, start_bits=start, max_bits=MAX_IRRATIONAL_BITS,
+        attempt, start_bits=start,
         undecided=lambda bits: (
             f"the modes of X at the irrational p={str(p)[:60]} (N={_n_show(N)}) are not "
             f"decided at {bits} bits: {state.get('why', '')}; symhx never guesses a tie: pass "

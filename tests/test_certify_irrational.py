@@ -89,6 +89,16 @@ def test_real_sign_rises_until_proved():
         real_sign(sympy.Add(sympy.pi, -sympy.pi, evaluate=False), max_bits=4096)
 
 
+def test_real_sign_stops_at_the_limit_as_it_is_when_called(monkeypatch):
+    # without max_bits, the documented MAX_IRRATIONAL_BITS at the call (a raised or lowered
+    # constant reaches every caller), not its value at import
+    import symhx.certify
+
+    monkeypatch.setattr(symhx.certify, "MAX_IRRATIONAL_BITS", 1 << 11)
+    with pytest.raises(UndecidedError, match=f"not decided at {1 << 11} bits"):
+        real_sign(sympy.Add(sympy.pi, -sympy.pi, evaluate=False))
+
+
 def test_rational_bracket_encloses_the_reference():
     expr = sympy.root(882, 3) / 42
     ref_lo, ref_hi = bracket(expr, 300)

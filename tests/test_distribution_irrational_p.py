@@ -8,6 +8,7 @@ p * 4 * 336 * p**3 / 4 = 9 p = Phi(1)`` exactly (by hand), and the hump of ``Phi
 
 from __future__ import annotations
 
+import pytest
 import sympy
 
 import symhx
@@ -35,3 +36,15 @@ def test_irrational_p_exactly_at_a_breakpoint_of_the_mode_is_refused():
     msg = assert_refuses(symhx.modes, 9, p, exc=UndecidedError, arg="p",
                          allowed="pass p as an exact rational")
     assert "p lies within the ball's width of a breakpoint (k+1)/(k (N-k)) of the mode" in msg
+
+
+def test_the_irrational_precision_limit_is_read_when_the_modes_are_decided(monkeypatch):
+    # symhx.certify.MAX_IRRATIONAL_BITS is a documented limit: a changed value reaches the
+    # modes (not the value it had when symhx.distribution was imported)
+    import symhx.certify
+
+    x = sympy.Integer(12345678901234567890)
+    p = sympy.Rational(2, 9) * (sympy.sin(x) ** 2 + sympy.cos(x) ** 2)
+    monkeypatch.setattr(symhx.certify, "MAX_IRRATIONAL_BITS", 1 << 12)
+    with pytest.raises(UndecidedError, match=f"not decided at {1 << 12} bits"):
+        symhx.modes(9, p)

@@ -44,7 +44,6 @@ from symhx._numeric import (
     mp_value,
 )
 from symhx.certify import (
-    MAX_IRRATIONAL_BITS,
     UndecidedError,
     arb_prec,
     bits_for,
@@ -280,7 +279,7 @@ def _irrational_modes(space: Space, N: int, p: Any) -> tuple[int, ...]:
 
     start = 96 + 2 * N.bit_length() + 64
     return decide_with_rising_precision(
-        attempt, start_bits=start, max_bits=MAX_IRRATIONAL_BITS,
+        attempt, start_bits=start,
         undecided=lambda bits: (
             f"the modes of X at the irrational p={str(p)[:60]} (N={N}, {space.name}) are not "
             f"decided at {bits} bits: W(k) for k in {tuple(last)} agree (a true tie, or p "
