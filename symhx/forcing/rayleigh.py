@@ -679,7 +679,11 @@ class RayleighSum:
         self.scales = np.array([_to_float(f) for f in exact])
 
     def __repr__(self) -> str:
-        return f"RayleighSum({[float(s) for s in self.scales]!r})"
+        # float64's repr where it holds the scale; beyond it the exact value in 5 digits
+        # (never "inf" or "0.0" for a scale of 1e5000 or 1e-5000)
+        shown = (repr(f) if 1e-300 < (f := _to_float(s)) < 1e300 else short_value(s)
+                 for s in self._exact)
+        return f"RayleighSum([{', '.join(shown)}])"
 
     # ---- moments
     @exported

@@ -126,6 +126,9 @@ def test_bad_input_is_refused_with_its_name():
         tiny.mean()
     S = RayleighSum([0.5, 0.2, 0.1])
     assert repr(S) == "RayleighSum([0.5, 0.2, 0.1])"
+    # beyond float64 the exact scale, briefly (not inf or 0.0)
+    assert repr(RayleighSum([10**5000, "1e-5000", 3])) == \
+        "RayleighSum([1.0e+5000, 1.0e-5000, 3.0])"
     with pytest.raises(TypeError, match="x must be a scalar here"):
         S.probability([1.0])
     with pytest.raises(ValueError, match="tail"):
