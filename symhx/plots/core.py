@@ -99,9 +99,11 @@ def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.
 
 
 def _mode_steps(path: Any, p_max: float) -> tuple[list[float], list[int]]:
+    """The step function ``k*(p)`` on ``[0, p_max]`` as line data; a breakpoint at ``p_max``
+    itself is not drawn, since there the mode is still the smaller maximiser (its ``k_left``)."""
     xs, ys = [0.0], [1]
     for bp, _, right in path.breakpoints:
-        if float(bp) > p_max:
+        if float(bp) >= p_max:
             break
         xs += [float(bp), float(bp)]
         ys += [ys[-1], right]

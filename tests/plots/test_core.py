@@ -133,3 +133,18 @@ def test_figure4_with_one_panel():
 def test_figure6_jump_mechanism_defaults_to_the_papers_row():
     fig = plots.plot_jump_mechanism()
     assert "$N = 101$" in fig.axes[1].get_title(loc="right")
+
+
+def test_figure5_ends_on_the_mode_at_p_max_when_p_max_is_a_breakpoint():
+    # N = 6: the mode steps 3 -> 4 at p = 4/9 and 4 -> 5 at p = 5/8 (exact in float64); at a
+    # breakpoint both lengths maximise Phi and the mode is the smaller one
+    from tests.reference.distribution import brute_modes
+
+    N, p_max = 6, Fraction(5, 8)
+    assert brute_modes(N, p_max) == (4, 5)
+    xs, ys = plots.plot_mode_path(N, p_max=float(p_max)).axes[0].lines[0].get_data()
+    assert xs[-1] == p_max and ys[-1] == min(brute_modes(N, p_max)) == 4
+    # and every step drawn is the brute-force mode at its midpoint
+    for x0, x1, y in zip(xs[:-1], xs[1:], ys[:-1], strict=True):
+        if x1 > x0:
+            assert y == min(brute_modes(N, (Fraction(x0) + Fraction(x1)) / 2)), (x0, x1, y)
