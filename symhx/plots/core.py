@@ -8,6 +8,7 @@ figure, panel letters as in the paper, sized for the book's column (:mod:`symhx.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from fractions import Fraction
 from math import lgamma, log
 from typing import Any
 
@@ -16,7 +17,7 @@ import numpy as np
 
 from symhx._mpctx import mp
 from symhx.api import distribution_of
-from symhx.critical import critical_point, mode_path
+from symhx.critical import compare_with_critical, critical_point, mode_path
 from symhx.plots._style import COLUMN_WIDTH, styled
 from symhx.validation import InputError
 
@@ -99,15 +100,27 @@ def plot_distributions(N: int = 101, ps: Sequence[float] = (0.01, 0.02, 0.05, 0.
 
 
 def _mode_steps(path: Any, p_max: float) -> tuple[list[float], list[int]]:
+    """The step function ``k*(p)`` on ``[0, p_max]`` as line data, ending on the mode at
+    ``p_max`` itself: a breakpoint that rounds to ``p_max`` is passed only if ``p_max`` lies
+    above it exactly (at a breakpoint the mode is still the smaller maximiser, ``k_left``)."""
     xs, ys = [0.0], [1]
-    for bp, _, right in path.breakpoints:
-        if float(bp) > p_max:
+    for i, (bp, _, right) in enumerate(path.breakpoints):
+        x = float(bp)
+        if x > p_max or (x == p_max and not _above_breakpoint(path, i, p_max)):
             break
         xs += [float(bp), float(bp)]
         ys += [ys[-1], right]
     xs.append(p_max)
     ys.append(ys[-1])
     return xs, ys
+
+
+def _above_breakpoint(path: Any, i: int, p: float) -> bool:
+    """``p > p_i`` exactly, for breakpoint ``i`` of ``path`` (the jump ``p_c`` by Arb balls)."""
+    fr = Fraction(p)
+    if i == 0:
+        return compare_with_critical(path.critical, fr) > 0
+    return bool(fr > path.breakpoints[i][0])
 
 
 @styled

@@ -19,3 +19,17 @@ def test_asymptotic_errors_on_log_log_axes_one_line_per_order():
 
 def test_asymptotic_errors_fit_the_column():
     assert_fits_the_column(plot_asymptotic_errors(error_table((10**3, 10**6), dps=30)))
+
+
+def _floor_lines(fig):
+    return [ln for ln in fig.axes[0].get_lines() if ln.get_label() == "precision floor"]
+
+
+def test_precision_floor_is_the_smallest_best_order_error_and_needs_that_row():
+    rows = error_table((10**3, 10**6), dps=30)
+    (floor,) = _floor_lines(plot_asymptotic_errors(rows))
+    best = [float(r["rel_error"]) for r in rows if r["formula"] == "best"]
+    assert best and list(floor.get_ydata()) == [min(best)] * 2
+    # a table without the best-order row has no floor to draw
+    assert _floor_lines(plot_asymptotic_errors([r for r in rows if r["formula"] != "best"])) \
+        == []

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import pytest
+
 import symhx
 import symhx.plots as plots
 from tests.harness.figures import assert_fits_the_column
-from tests.reference.distribution import pmf_table
+from tests.reference.distribution import brute_modes, pmf_table
 
 
 def test_figure4_panels_a_to_d_hold_the_pmf():
@@ -133,3 +135,30 @@ def test_figure4_with_one_panel():
 def test_figure6_jump_mechanism_defaults_to_the_papers_row():
     fig = plots.plot_jump_mechanism()
     assert "$N = 101$" in fig.axes[1].get_title(loc="right")
+
+
+@pytest.mark.parametrize("N, p_max, mode", [
+    # N = 6: the mode steps 4 -> 5 at p = 5/8, exact in float64; at a breakpoint both lengths
+    # maximise Phi and the mode is the smaller one
+    (6, 0.625, 4),
+    # N = 7: it steps 4 -> 5 at p = 5/12, whose float64 lies above 5/12: the mode there is 5
+    (7, 5 / 12, 5),
+])
+def test_figure5_ends_on_the_mode_at_p_max_when_p_max_is_a_breakpoint(N, p_max, mode):
+    end = Fraction(p_max)  # the float exactly
+    assert min(brute_modes(N, end)) == mode
+    xs, ys = plots.plot_mode_path(N, p_max=p_max).axes[0].lines[0].get_data()
+    assert xs[-1] == p_max and ys[-1] == mode
+    # and every step drawn is the brute-force mode at its midpoint
+    for x0, x1, y in zip(xs[:-1], xs[1:], ys[:-1], strict=True):
+        if x1 > x0:
+            assert y == min(brute_modes(N, (Fraction(x0) + Fraction(x1)) / 2)), (x0, x1, y)
+
+
+@pytest.mark.parametrize("N", [5, 7])
+def test_figure5_ends_on_the_mode_at_p_max_when_p_max_is_the_rounded_jump(N):
+    # p_max = p_c rounded to float64 (exactly 1/2 for N = 5, where 1, 2 and 3 tie; irrational
+    # for N = 7, and its float64 lies above it): the last step is the brute-force mode there
+    pc = float(symhx.critical_point(N).p)
+    xs, ys = plots.plot_mode_path(N, p_max=pc).axes[0].lines[0].get_data()
+    assert xs[-1] == pc and ys[-1] == min(brute_modes(N, Fraction(pc))) == {5: 1, 7: 3}[N]

@@ -172,3 +172,20 @@ def test_every_figure_is_drawn_by_paper_figure_with_one_choice_of_spaces():
             assert "spaces=" not in call or "FIG13_SPACES" in call, (page.name, call)
     with pytest.raises(ValueError, match="number: the paper's figures are 1 to 13, got 14"):
         P.paper_figure(14)
+
+
+def test_save_paper_figure_draws_the_given_ensemble_and_closes_it(tmp_path, ensemble):
+    import dataclasses
+
+    from matplotlib.image import imread
+
+    # every other sigma of the stored ensemble: a figure 7 that differs from the default one
+    half = dataclasses.replace(ensemble, per_sigma=ensemble.per_sigma[::2])
+    assert P.save_paper_figure(7, tmp_path / "half.png", ensemble=half) == tmp_path / "half.png"
+    assert plt.get_fignums() == []
+    P.paper_figure(7, ensemble=half).savefig(tmp_path / "ref.png", dpi=P.PNG_DPI,
+                                             bbox_inches="tight")
+    P.save_paper_figure(7, tmp_path / "stored.png")
+    got, ref, stored = (imread(tmp_path / f"{n}.png") for n in ("half", "ref", "stored"))
+    assert got.shape == ref.shape and (got == ref).all()
+    assert got.shape != stored.shape or not (got == stored).all()

@@ -5,7 +5,10 @@ result on its own. Their agreement with symhx.asymptotics is tested in tests/tes
 
 from __future__ import annotations
 
-from symhx.symbolic import derivation
+import sympy as sp
+
+from symhx.symbolic import N, derivation, k
+from symhx.symbolic.asymptotic import log_Nc_expansion
 from tests.harness.derivations import contract_tests, tamper_part
 
 #: every derivation of the module and its number of checks
@@ -19,3 +22,15 @@ CHECKS = {"16-series": 2, "log-Nc-expansion": 1, "pc-lambert": 1}
 def test_both_entries_of_the_lambert_result_are_verified():
     for j in (0, 1):
         assert tamper_part(derivation("pc-lambert"), j).verify() is False
+
+
+def test_log_Nc_expansion_has_exactly_the_terms_of_its_order():
+    # log(N c_k) = log k/(k-1) + sum_{m <= order} S_m(k-1) / (m (k-1) N**m), S_m(K) the power
+    # sums, here summed term by term
+    for order in (1, 2, 3, 4):
+        e = log_Nc_expansion(order)
+        for kk in (2, 3, 5):
+            K = kk - 1
+            ref = sp.log(kk) / K + sum(sp.Rational(sum(i**m for i in range(1, K + 1)), m * K)
+                                       / N**m for m in range(1, order + 1))
+            assert sp.cancel(e.subs(k, kk) - ref) == 0, (order, kk)

@@ -67,6 +67,10 @@ def test_sym_equal_and_log_equal():
     assert sym_equal(sp.factorial(N) / sp.factorial(N - 1), N)
     assert not sym_equal(N + 1, N)
     assert sym_equal(sp.gamma(N + 1) / sp.gamma(N), N)
+    # a gamma ratio at half-integer arguments (proved through gammasimp)
+    assert sym_equal(sp.gamma(N + sp.Rational(1, 2)) / sp.gamma(N - sp.Rational(1, 2)),
+                     N - sp.Rational(1, 2))
+    assert not sym_equal(sp.gamma(N + sp.Rational(1, 2)) / sp.gamma(N - sp.Rational(1, 2)), N)
     assert log_equal((N ** (1 / (k - 1))) ** (k - 1), N)
     assert not log_equal(2 * N, N)
 

@@ -58,3 +58,15 @@ def test_the_mapping_of_derivations_names_an_unknown_label_and_counts_built_ones
     assert repr(ds) == f"<Derivations: {n} labels, 0 built>"
     ds["12"]
     assert repr(ds) == f"<Derivations: {n} labels, 1 built>"
+
+
+def test_verify_all_reports_the_checks_of_each_label(monkeypatch):
+    # on three cheap labels (all of them take about 10 s); a derivation whose result is
+    # tampered with is reported as failed under its own label
+    import symhx.symbolic as symbolic
+    from tests.harness.derivations import tamper_result
+
+    monkeypatch.setattr(symbolic, "labels", lambda: ["4", "13", "15"])
+    assert symbolic.verify_all() == {"4": True, "13": True, "15": True}
+    monkeypatch.setitem(symbolic._BUILT, "13", tamper_result(derivation("13")))
+    assert symbolic.verify_all() == {"4": True, "13": False, "15": True}

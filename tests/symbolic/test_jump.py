@@ -4,6 +4,9 @@ paper's form, and the lambdified results agree with symhx.critical (the certifie
 
 from __future__ import annotations
 
+from fractions import Fraction
+from math import factorial
+
 import mpmath
 import pytest
 import sympy as sp
@@ -12,7 +15,7 @@ from hypothesis import strategies as st
 
 from symhx.critical import critical_point, discriminant_root
 from symhx.symbolic import N, derivation, k, p
-from symhx.symbolic.jump import kappa
+from symhx.symbolic.jump import c_k, kappa
 from tests.harness.derivations import contract_tests, tamper_part, tamper_rhs
 
 #: every derivation of the module and its number of checks
@@ -74,3 +77,13 @@ def test_crossing_values_give_the_exact_critical_point(n):
         best = max(kk for kk, v in zip(range(2, n + 1), vals, strict=True)
                    if abs(v - min(vals)) < mpmath.mpf(10) ** -30)
         assert best == cp.k_after
+
+
+def test_c_k_is_the_crossing_value_at_each_length():
+    # Phi(k) = Phi(1) at p = c_k: c_k**(k-1) = k (N-k)! / (N-1)!, from the factorials
+    for n in (3, 5, 8):
+        for kk in range(2, n + 1):
+            c = c_k(kk).subs(N, n)
+            want = Fraction(kk * factorial(n - kk), factorial(n - 1))
+            assert c.is_positive and sp.simplify(c ** (kk - 1)) == sp.Rational(
+                want.numerator, want.denominator), (n, kk, c)

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import symhx
 from symhx import circuits
 from symhx.symbolic import N, derivation, k, p
-from tests.harness.derivations import contract_tests, tamper
+from tests.harness.derivations import assert_check_rejects, contract_tests, tamper, tamper_rhs
 
 #: every derivation of the module and its number of checks
 CHECKS = {"4": 3, "5": 3, "6": 2, "7": 2, "8": 3}
@@ -62,3 +62,12 @@ def test_eq8_carries_the_papers_printed_form():
     assert d.paper is not None
     assert sym_equal(d.paper, p**k * sp.factorial(N) / (k * sp.factorial(N - k)))
     assert sym_equal(d.result.rhs, d.paper)
+
+
+def test_eq7_brute_force_check_compares_every_length_including_one():
+    # a pmf wrong only at k = 1 (the other lengths untouched) is rejected by the brute force
+    d = derivation("7")
+    index = next(i for i, c in enumerate(d.checks) if "brute-force" in c.description)
+    wrong_at_one = tamper_rhs(lambda d: d.result.rhs + sp.KroneckerDelta(k, 1))(d)
+    assert wrong_at_one.result.rhs.subs({N: 3, k: 2}) == d.result.rhs.subs({N: 3, k: 2})
+    assert_check_rejects(d, index, wrong_at_one)
