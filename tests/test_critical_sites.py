@@ -143,8 +143,8 @@ def test_small_sites_far_from_a_perturbation_go_to_the_table():
 
 def test_the_perturbative_certificate_needs_the_sign_right_after_its_argmin():
     """Hypothesis (ii) (``E_w > 0`` on ``[k* + 1, n/2)``) starts at ``k* + 1``: with ``E_n``
-    doctored to -1 there alone (so ``E_w(k* + 1) < 0``, which no real direction was seen to
-    do) the certificate must not close, whatever the search found."""
+    doctored to -1 there alone (so ``E_w(k* + 1) < 0``: a made-up sign pattern, not a real
+    direction) the certificate must not close, whatever the search found."""
     n, small = 2998, [(2, Fraction(3))]
     k = _perturbative_argmin(_Perturbed(n, small))
     assert k is not None
