@@ -11,12 +11,15 @@ from fractions import Fraction
 
 import mpmath
 import pytest
+from flint import arb
 
 from symhx.critical import critical_point
 from symhx.critical_sites import (
     CriticalCurve,
     DirectionCriticalPoint,
     _perturbative,
+    _perturbative_argmin,
+    _Perturbed,
     _table,
     critical_curve,
     direction_critical_point,
@@ -136,6 +139,21 @@ def test_small_sites_far_from_a_perturbation_go_to_the_table():
     assert _perturbative(sc, 20) is None
     cp = direction_critical_point(5000, sc, dps=20)
     assert cp.method == "table"
+
+
+def test_the_perturbative_certificate_needs_the_sign_right_after_its_argmin():
+    """Hypothesis (ii) (``E_w > 0`` on ``[k* + 1, n/2)``) starts at ``k* + 1``: with ``E_n``
+    doctored to -1 there alone (so ``E_w(k* + 1) < 0``: a made-up sign pattern, not a real
+    direction) the certificate must not close, whatever the search found."""
+    n, small = 2998, [(2, Fraction(3))]
+    k = _perturbative_argmin(_Perturbed(n, small))
+    assert k is not None
+
+    class Doctored(_Perturbed):
+        def E_n(self, j):
+            return arb(-1) if j == k + 1 else super().E_n(j)
+
+    assert _perturbative_argmin(Doctored(n, small)) is None
 
 
 def _mp_log_c(N: int, sizes, w, k: int, dps: int):

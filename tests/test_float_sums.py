@@ -129,6 +129,27 @@ def test_huge_n_keeps_integer_differences_exact() -> None:
     assert np.all(np.isfinite(lo))
 
 
+def test_far_windows_beyond_and_inside_the_float64_range_in_one_call() -> None:
+    """N = 10**308, p = 1: k = N/2 has every term below exp(-1.8e308) of the mode (its lower
+    tail is -inf) and k = N - 10**4 a lower tail of a few terms (each ~1/(N - k) of the next);
+    asked together, each is what it is alone, the second against an mpmath sum of its terms
+    (``log Phi(i)/Phi(c) = log(c/i) + loggamma(N - c + 1) - loggamma(N - i + 1)``)."""
+    N = 10**308
+    fs, c, _ = _sums(N, Fraction(1))
+    k = N - 10**4
+    lo, _ = fs.log_tails(np.array([N // 2, k], dtype=object))
+    alone, _ = fs.log_tails(np.array([k], dtype=object))
+    with mpmath.workdps(40):
+        def d(i: int):
+            return (mpmath.log(mpmath.mpf(c) / i) + mpmath.loggamma(N - c + 1)
+                    - mpmath.loggamma(N - i + 1))
+
+        want = float(d(k) + mpmath.log(mpmath.fsum(mpmath.exp(d(k - j) - d(k))
+                                                   for j in range(12))))
+    assert lo[0] == -np.inf and lo[1] == alone[0]
+    assert abs(lo[1] + fs.shift - want) <= 1e-14 * abs(want)
+
+
 def test_one_structure_serves_any_number_of_k() -> None:
     """The per-distribution work is done once: 2000 more k add no panels or items."""
     N = 10**15

@@ -165,6 +165,7 @@ def test_the_distribution_keeps_its_classes_as_p() -> None:
     classes = SiteClasses((4, 5), (Fraction(1, 7), Fraction(2, 9)))
     d = SitesDistribution(9, classes)
     assert d.p is classes and d.N == 9
+    assert d.fr is None          # no scalar rational p (documented): classes carry the values
 
 
 def test_the_float_normaliser_is_the_exact_one_rounded() -> None:

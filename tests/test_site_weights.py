@@ -143,6 +143,34 @@ def test_binomial_product_balls_contain_the_exact_coefficients(parts, prec):
         assert one.contains(to_arb(exact[t])) and one.rel_accuracy_bits() >= prec
 
 
+@pytest.mark.parametrize(("sizes", "probs", "prec"), [
+    ((3, 2), (Fraction(1), Fraction(1, 10**400)), 80),  # log(q x) < -700: logistic underflows
+    ((5, 5), (Fraction(1), Fraction(1, 10**6)), 80),    # a tilt placed past e_1 skips e_0
+    ((6, 6), (Fraction(1), Fraction(1, 10**6)), 110),
+])
+def test_binomial_product_balls_hold_every_coefficient_of_widely_spread_classes(sizes, probs,
+                                                                               prec):
+    """One ball per ``t = 0..M``, each holding ``e_t`` summed over all ``t``-subsets."""
+    parts = list(zip(sizes, probs, strict=True))
+    each = expand(sizes, probs)
+    balls = binomial_product_balls(parts, prec)
+    assert len(balls) == sum(sizes) + 1
+    with arb_prec(2 * prec + 64):
+        for t, x in enumerate(balls):
+            assert x.contains(to_arb(elementary(each, t))), t
+            assert x.rel_accuracy_bits() >= prec, t
+
+
+def test_the_simple_pattern_space_counts_only_simple_circuits():
+    """The duck-typed :data:`SIMPLE` gives the ratios of the simple space of
+    :mod:`symhx.spaces`: 1 for simple circuits of any length, 0 for every other class."""
+    simple = parse_space("simple")
+    for shape in [(), (2,), (3,), (2, 2), (2, 3)]:
+        for k in range(1, 7):
+            assert SIMPLE.ratio(shape, k) == simple.ratio(shape, k), (shape, k)
+    assert SIMPLE.ratio((), 3) == 1 and SIMPLE.ratio((2,), 3) == 0
+
+
 @pytest.mark.parametrize("space", ["simple", "eq41", "excess<=2;distinct"])
 def test_ball_tables_contain_the_exact_weights(space):
     sc = SiteClasses((5, 30, 12), ("0.3", "1/70", 4))

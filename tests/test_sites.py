@@ -10,7 +10,13 @@ import mpmath
 import numpy as np
 import pytest
 
-from symhx.sites import MAX_SITE_SEQUENCE, SiteClasses, as_site_classes, is_site_input
+from symhx.sites import (
+    MAX_SITE_SEQUENCE,
+    SiteClasses,
+    as_site_classes,
+    is_site_input,
+    show_int,
+)
 from tests.harness.errors import assert_refuses
 
 
@@ -32,6 +38,14 @@ def test_huge_sizes_are_exact_and_shown_readably():
     assert "10**100" not in repr(s) and "~" in repr(s)
     shown = "SiteClasses(sizes=(10**100,), probabilities=(1,))"
     assert repr(SiteClasses((10**100,), (1,))) == shown
+
+
+def test_shown_ints_are_exact_below_10_to_the_30_and_never_longer():
+    for n in (0, 7, 10**29, 10**30 - 1):
+        assert show_int(n) == str(n)
+    for n in (10**30, 10**30 + 1, 3 * 10**30 - 1, 10**31, 10**400 + 1):
+        assert len(show_int(n)) <= 30 and show_int(n) != str(n)
+    assert show_int(10**30) == "10**30" and show_int(10**31 + 1) == "~1.0e+31"
 
 
 def test_long_probabilities_are_shown_in_at_most_60_characters():

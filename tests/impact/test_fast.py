@@ -17,7 +17,7 @@ import pytest
 import symhx.impact
 from symhx.impact import IMPACT, SQRT2, STICK, PipeRow, SimulationError, simulate
 from symhx.impact import fast as fast_mod
-from symhx.impact.engine import FloatContext, row_arrays
+from symhx.impact.engine import FloatContext, default_v_stick, row_arrays
 from symhx.impact.fast import available, count_impacts
 from tests.harness.twins import check_twins
 
@@ -125,6 +125,13 @@ def test_fortran_ordered_inputs():
     assert not rowF.alpha.flags.c_contiguous
     a, b = simulate(row, 20.0), simulate(rowF, 20.0)
     assert len(a) > 10 and np.array_equal(_table(a), _table(b))
+    # the contiguous copies made for the C engine keep the caller's event cap (and no cap)
+    with pytest.raises(SimulationError, match="max_events=10 "):
+        simulate(rowF, 20.0, max_events=10)
+    assert len(simulate(rowF, 20.0, max_events=len(a))) == len(a)
+    vs = default_v_stick(row, None)
+    c = fast_mod.simulate_c(rowF, 20.0, v_stick=vs)
+    assert np.array_equal(_table(c), _table(fast_mod.simulate_c(row, 20.0, v_stick=vs)))
 
 
 # ----------------------------------------------------------------- C = Python, seeded twins
@@ -283,6 +290,15 @@ def test_max_events_guard():
     row = PipeRow.random(20, 0.4, seed=1, restitution=1.0)
     with pytest.raises(RuntimeError, match="max_events"):
         simulate(row, 100.0, max_events=10)
+
+
+def test_the_c_engine_without_its_extension_says_it_is_not_built(monkeypatch):
+    row = PipeRow.random(3, 0.4, seed=1)
+    monkeypatch.setattr(fast_mod, "_fast", None)
+    assert not available() and fast_mod.source_sha256() is None
+    with pytest.raises(SimulationError, match=r"^the C extension symhx\.impact\._fast is not "
+                                              r"built$"):
+        fast_mod.simulate_c(row, 5.0, v_stick=0.01)
 
 
 def test_simulation_error_is_runtime_error():

@@ -100,6 +100,16 @@ def test_horizon_and_event_caps():
     assert_refuses(simulate, row, 1.0, max_events=10**1000, arg="max_events")
 
 
+@pytest.mark.parametrize("kw", [{}, {"max_events": 10_000}])
+def test_engine_c_without_the_extension_says_it_is_not_built(kw, monkeypatch):
+    row = PipeRow.random(4, 2.0, seed=3, restitution=0.8)
+    monkeypatch.setattr(fast_mod, "_fast", None)
+    with pytest.raises(SimulationError, match=r"^the C extension symhx\.impact\._fast is not "
+                                              r"built$"):
+        simulate(row, 10.0, engine="c", **kw)
+    assert len(simulate(row, 10.0, **kw)) > 5          # "auto" falls back to Python
+
+
 @pytest.mark.parametrize("engine", ["python", "c"])
 def test_the_event_cap_applies_by_default(engine, monkeypatch):
     # without max_events the documented default cap MAX_EVENTS holds on the common float64

@@ -198,3 +198,28 @@ def test_refusals_name_the_argument():
                    value="None")
     bad = SiteHitResult({**PARAMS, "sigma0": [0.1]}, res.tables)
     assert_refuses(fit_models, simulated_x(bad), arg="params", value="sigma0")
+    two = SiteHitResult({**PARAMS, "Omega": [1.0, 2.5]}, res.tables)
+    assert_refuses(fit_models, simulated_x(two), arg="params", value="Omega=[1.0, 2.5]",
+                   allowed="one forcing component")
+
+
+def test_a_model_whose_mode_stays_one_over_the_range_has_no_threshold_band():
+    """Forcing far below the jump: the geometric model's mode is 1 at every kept sigma (checked
+    by the certified modes), so every replicate's threshold is NaN and so are its 16-84 %
+    bounds (``None`` in the JSON form, which also keeps the bootstrap's seed and size)."""
+    rng = np.random.default_rng(1)
+    tables = [SiteHitTable.from_counts(float(s), (rng.random((200, 11)) < 0.1).astype(int))
+              for s in np.linspace(0.02, 0.04, 4)]
+    cmp = compare_site_models(SiteHitResult(dict(PARAMS), tables), replicates=2, seed=3)
+    geo = cmp.fits["geometry"]
+    for pw, pp in zip(geo.p_wall, geo.p_pipe, strict=True):
+        assert site_modes(11, SiteClasses((2, 9), (float(pw), float(pp)))) == (1,)
+    assert math.isnan(geo.threshold)
+    assert all(math.isnan(x) for x in cmp.boot["geometry"]["threshold"])
+    band = cmp.summary()["geometry"]
+    assert math.isnan(band["threshold_lo"]) and math.isnan(band["threshold_hi"])
+    d = cmp.as_dict()
+    assert d["summary"]["geometry"]["threshold_lo"] is None
+    assert d["summary"]["geometry"]["threshold_hi"] is None
+    assert (d["seed"], d["replicates"]) == (3, 2)
+    json.dumps(d, allow_nan=False)
