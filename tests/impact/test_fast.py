@@ -296,8 +296,7 @@ def test_the_c_engine_without_its_extension_says_it_is_not_built(monkeypatch):
     row = PipeRow.random(3, 0.4, seed=1)
     monkeypatch.setattr(fast_mod, "_fast", None)
     assert not available() and fast_mod.source_sha256() is None
-    with pytest.raises(SimulationError, match=r"^the C extension symhx\.impact\._fast is not "
-                                              r"built$"):
+    with pytest.raises(SimulationError, match=r"C extension symhx\.impact\._fast is not built"):
         fast_mod.simulate_c(row, 5.0, v_stick=0.01)
 
 
