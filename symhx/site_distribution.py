@@ -106,13 +106,12 @@ def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, 
         with arb_prec(bits + 64):
             best = max(range(N), key=lambda i: w[i].mid())
             lo = w[best].lower()
+            # a ball reaching the top ball's lower end may hold the maximum; only a single
+            # such candidate decides (dropping the candidates proved below another could never
+            # leave one: the top ball and the one with the highest lower end both stay)
             cand = [i for i in range(N) if not w[i].upper() < lo]
             if len(cand) == 1:
                 return (cand[0] + 1,)
-            # every candidate strictly below another one is out
-            alive = [i for i in cand if not any(w[i].upper() < w[j].lower() for j in cand)]
-        if len(alive) == 1:
-            return (alive[0] + 1,)
         bits *= 2
     if exact_table_bits(classes) > EXACT_TABLE_BITS_LIMIT:
         raise UndecidedError(

@@ -115,11 +115,9 @@ def boundary_table(N: Any = None) -> list[dict[str, Any]]:
         if N is None:
             import sympy as sp
 
-            Ns = sp.Symbol("N", integer=True, positive=True)
             form = sp.factor(sp.expand_func(printed_formula(eq).subs(
                 sp.Symbol("L", integer=True, positive=True), L).rewrite(sp.ff)))
-            form = sp.factor(sp.combsimp(form)).subs(sp.Symbol("N", integer=True, positive=True),
-                                                      Ns)
+            form = sp.factor(sp.combsimp(form))
             true = pattern_count_symbolic(shape)
             rows.append({"eq": eq, "class": shape, "length": L, "formula": form, "true": true,
                          "correction": sp.factor(true - form)})
