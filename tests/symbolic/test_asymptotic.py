@@ -34,3 +34,16 @@ def test_log_Nc_expansion_has_exactly_the_terms_of_its_order():
             ref = sp.log(kk) / K + sum(sp.Rational(sum(i**m for i in range(1, K + 1)), m * K)
                                        / N**m for m in range(1, order + 1))
             assert sp.cancel(e.subs(k, kk) - ref) == 0, (order, kk)
+
+
+def test_the_expansion_check_rejects_an_expansion_of_another_order():
+    # the check pins the order: a result one order short (error too large) or one order
+    # beyond (error far below the next term) fails as the tampered one does
+    from dataclasses import replace
+
+    d = derivation("log-Nc-expansion")
+    (check,) = d.checks
+    for order in (2, 4):
+        other = replace(d, result=sp.Eq(d.result.lhs, log_Nc_expansion(order)))
+        assert check.fn(other) is False, order
+    assert check.fn(d) is True
