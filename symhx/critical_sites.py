@@ -59,6 +59,7 @@ import mpmath
 from flint import arb, fmpz
 from flint import ctx as flint_ctx
 
+from symhx import site_weights as _sw  # its work limits, read when called (raised there)
 from symhx._mpctx import export, mp
 from symhx.certify import (
     G_arb,
@@ -73,9 +74,6 @@ from symhx.certify import (
 from symhx.critical import CriticalPoint
 from symhx.critical import critical_point as simple_critical_point
 from symhx.site_weights import (
-    BALL_TABLE_N_LIMIT,
-    EXACT_TABLE_BITS_LIMIT,
-    MAX_SMALL_SITES,
     SIMPLE,
     ball_weights,
     elementary_ball,
@@ -266,7 +264,7 @@ def _one_class(N: int, sc: SiteClasses, dps: int) -> DirectionCriticalPoint:
 # --------------------------------------------------------------------------- the table
 def _exact_V(sc: SiteClasses) -> list[int]:
     exact = SiteClasses(sc.sizes, sc.values)
-    if exact_table_bits(exact) > EXACT_TABLE_BITS_LIMIT:
+    if exact_table_bits(exact) > _sw.EXACT_TABLE_BITS_LIMIT:
         raise UndecidedError(
             f"c_k of two candidates agree to {TABLE_MAX_BITS} bits and the exact table of "
             f"N={sc.N} would exceed symhx.site_weights.EXACT_TABLE_BITS_LIMIT: an exact tie is "
@@ -337,7 +335,7 @@ def _table(sc: SiteClasses, dps: int) -> DirectionCriticalPoint:
     if k == 2:
         p_exact = e1 / elementary_exact(classes, 2)  # c_2 = e_1 / (1! e_2)
     elif k * N.bit_length() < 2_000 and exact_table_bits(SiteClasses(sc.sizes, sc.values)) \
-            <= EXACT_TABLE_BITS_LIMIT // 16:
+            <= _sw.EXACT_TABLE_BITS_LIMIT // 16:
         ck = e1 / (math.factorial(k - 1) * elementary_exact(classes, k))
         p_exact = _rational_root(ck, k - 1)
     if p_exact is not None:
@@ -687,13 +685,13 @@ def direction_critical_point(N: Any, weights: Any, *, dps: int = DEFAULT_DPS
         cp = _perturbative(sc, d)
         if cp is not None:
             return cp
-    if N > BALL_TABLE_N_LIMIT:
+    if N > _sw.BALL_TABLE_N_LIMIT:
         raise InputError(
             f"the critical point along {sc!r} at N={show_int(N)}: several large classes (more than "
-            f"symhx.site_weights.MAX_SMALL_SITES = {MAX_SMALL_SITES} sites outside the largest "
+            f"symhx.site_weights.MAX_SMALL_SITES = {_sw.MAX_SMALL_SITES} sites outside the largest "
             f"class), or small classes that are not a small perturbation of the large one, "
             f"are decided by a table of every k, limited to N <= "
-            f"symhx.site_weights.BALL_TABLE_N_LIMIT = {BALL_TABLE_N_LIMIT}")
+            f"symhx.site_weights.BALL_TABLE_N_LIMIT = {_sw.BALL_TABLE_N_LIMIT}")
     return _table(sc, d)
 
 

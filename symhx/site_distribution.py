@@ -37,13 +37,12 @@ import mpmath
 import numpy as np
 from flint import arb
 
+from symhx import site_weights as _sw  # its work limits, read when called (raised there)
 from symhx._mpctx import export, mp
 from symhx._numeric import digits_of
 from symhx.certify import UndecidedError, arb_prec
 from symhx.distribution import Distribution
 from symhx.site_weights import (
-    BALL_TABLE_N_LIMIT,
-    EXACT_TABLE_BITS_LIMIT,
     SIMPLE,
     ball_weights,
     check_pattern_work,
@@ -75,11 +74,11 @@ def _arb_to_mpf(x: arb, prec: int) -> Any:
 
 
 def _check_N_fits(N: int, what: str) -> None:
-    if N > BALL_TABLE_N_LIMIT:
+    if N > _sw.BALL_TABLE_N_LIMIT:
         raise InputError(
             f"{what} with several site classes tabulates every k = 1..N; N={show_int(N)} is "
             f"above the documented work limit symhx.site_weights.BALL_TABLE_N_LIMIT = "
-            f"{BALL_TABLE_N_LIMIT} (one class, a scalar p, has no such limit)")
+            f"{_sw.BALL_TABLE_N_LIMIT} (one class, a scalar p, has no such limit)")
 
 
 def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, ...]:
@@ -113,7 +112,7 @@ def site_modes(N: int, classes: SiteClasses, space: Any = SIMPLE) -> tuple[int, 
             if len(cand) == 1:
                 return (cand[0] + 1,)
         bits *= 2
-    if exact_table_bits(classes) > EXACT_TABLE_BITS_LIMIT:
+    if exact_table_bits(classes) > _sw.EXACT_TABLE_BITS_LIMIT:
         raise UndecidedError(
             f"the largest weights of X agree to {MODES_MAX_BITS} bits (N={show_int(N)}, "
             f"{classes!r}) and the exact table would exceed "
@@ -151,11 +150,11 @@ class SitesDistribution(Distribution):
         check_pattern_work(space, len(classes))
         if self.exact:
             bits = exact_table_bits(classes)
-            if bits > EXACT_TABLE_BITS_LIMIT:
+            if bits > _sw.EXACT_TABLE_BITS_LIMIT:
                 raise exact_work_refusal(
                     f"exact (rational) arithmetic with site classes would hold ~{bits:.2g} bits"
-                    f" for N={self.N} (documented work limit "
-                    f"symhx.site_weights.EXACT_TABLE_BITS_LIMIT = {EXACT_TABLE_BITS_LIMIT:.2g})",
+                    f" for N={self.N} (documented work limit symhx.site_weights."
+                    f"EXACT_TABLE_BITS_LIMIT = {_sw.EXACT_TABLE_BITS_LIMIT:.2g})",
                     values="the probabilities as floats or mpf")
         else:
             _check_N_fits(self.N, "the distribution of X")
