@@ -241,7 +241,8 @@ class ForcingParams:
             if len(Omega) + 1 > MAX_SCALES:
                 raise InputError(f"Omega: {len(Omega)} forcing components, more than "
                                  f"MAX_SCALES - 1 = {MAX_SCALES - 1} (a sum of at most "
-                                 f"MAX_SCALES = {MAX_SCALES} Rayleigh amplitudes, eq. 22)")
+                                 f"symhx.forcing.arguments.MAX_SCALES = {MAX_SCALES} Rayleigh "
+                                 f"amplitudes, eq. 22)")
             if any(is_array(o) for o in Omega):
                 raise TypeError("Omega: each forcing component must be a scalar")
             om_t = tuple(conv(f"Omega[{i}]", o) for i, o in enumerate(Omega))

@@ -33,8 +33,9 @@ import numpy as np
 from scipy import special
 
 from symhx._mpctx import mp as thread_mp
+from symhx.forcing import arguments as _arguments  # MAX_SCALES, read when called
+from symhx.forcing import kernels_mp as _kernels_mp  # MAX_EXPONENT, read when called
 from symhx.forcing.arguments import (
-    MAX_SCALES,
     ForcingParams,
     exported,
     float_arg,
@@ -52,7 +53,7 @@ from symhx.forcing.kernels_float import (
     pq_float,
     uv_from_h,
 )
-from symhx.forcing.kernels_mp import MAX_EXPONENT, mp_i2, mp_q_from_xy
+from symhx.forcing.kernels_mp import mp_i2, mp_q_from_xy
 from symhx.validation import (
     InputError,
     check_array,
@@ -68,7 +69,6 @@ from symhx.validation import (
 
 __all__ = [
     "MAX_MP_SUM_WORK",
-    "MAX_SCALES",
     "RayleighSum",
     "RayleighSumResult",
     "rayleigh_scales",
@@ -669,9 +669,10 @@ class RayleighSum:
         arr = np.asarray(scales, dtype=object).ravel()
         if arr.size == 0:
             raise InputError("scales: need at least one Rayleigh scale, got an empty sequence")
-        if arr.size > MAX_SCALES:
-            raise InputError(f"scales: {arr.size} Rayleigh scales, more than MAX_SCALES = "
-                             f"{MAX_SCALES} (the documented limit of the sum's evaluation)")
+        if arr.size > _arguments.MAX_SCALES:
+            raise InputError(f"scales: {arr.size} Rayleigh scales, more than "
+                             f"symhx.forcing.arguments.MAX_SCALES = {_arguments.MAX_SCALES} (the "
+                             f"documented limit of the sum's evaluation)")
         exact = []
         for i, s in enumerate(arr):
             exact.append(rational_arg(f"scales[{i}]", s))
@@ -793,7 +794,8 @@ class RayleighSum:
         if len(self._exact) >= 3 and n * dps > MAX_MP_SUM_WORK:
             raise InputError(
                 f"dps: {dps} digits for {n} distinct Rayleigh scales (work {n * dps}) is above "
-                f"the cap MAX_MP_SUM_WORK = {MAX_MP_SUM_WORK} (distinct scales x dps) of the "
+                f"the cap symhx.forcing.rayleigh.MAX_MP_SUM_WORK = {MAX_MP_SUM_WORK} (distinct "
+                f"scales x dps) of the "
                 "mpmath evaluation of a sum of three or more scales")
 
     def _exp_digits(self, x: Any) -> int:
@@ -803,11 +805,11 @@ class RayleighSum:
             xm = _mp_x(x)   # a sympy expression too (evaluated), not taken as 0
             var = thread_mp().fsum(mpf_of(s) ** 2 for s in self._exact)
             e = xm * xm / (2 * var) if xm > 0 else thread_mp().mpf(0)
-        if e > MAX_EXPONENT:
+        if e > _kernels_mp.MAX_EXPONENT:
             raise InputError(
                 f"x: P(S > x) = exp(-E) with E ~ {thread_mp().nstr(e, 3)} above the cap "
-                f"MAX_EXPONENT "
-                f"= {MAX_EXPONENT:.3g} of the mpmath evaluation (exp(-E) would need log10(E) "
+                f"symhx.forcing.kernels_mp.MAX_EXPONENT = {_kernels_mp.MAX_EXPONENT:.3g} of the "
+                f"mpmath evaluation (exp(-E) would need log10(E) "
                 "guard digits); logsf has no cap")
         return int(thread_mp().log10(e)) + 1 if e > 1 else 0
 

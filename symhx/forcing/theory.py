@@ -9,7 +9,7 @@ import numpy as np
 from symhx._mpctx import mp as thread_mp
 from symhx.forcing.arguments import ForcingParams, float_arg
 from symhx.forcing.probability import evaluate
-from symhx.validation import InputError, check_dps, check_N
+from symhx.validation import InputError, check_dps, check_N, show_exact
 
 __all__ = ["THEORY_MAX_N", "THEORY_P_FLOOR", "TheoryCurve", "theory_curve"]
 
@@ -79,7 +79,11 @@ def theory_curve(
     N = check_N(N)
     if N > THEORY_MAX_N:
         shown = f"{N}" if N < 10**30 else f"an integer of {len(str(N))} digits"
-        raise InputError(f"N must be <= THEORY_MAX_N = 10**300, got {shown}")
+        cap = THEORY_MAX_N
+        cap_shown = f"10**{len(str(cap)) - 1}" if cap == 10 ** (len(str(cap)) - 1) else \
+            show_exact(cap)
+        raise InputError(f"N must be <= THEORY_MAX_N = {cap_shown} (the limit "
+                         f"symhx.forcing.theory.THEORY_MAX_N), got {shown}")
     dps = check_dps(dps)
     s = np.atleast_1d(float_arg("sigma", sigma))
     fp = ForcingParams.validated(1, sigma1, omega, Omega, d, dps=dps)
