@@ -7,17 +7,20 @@ from typing import Any
 
 from symhx._mpctx import export
 from symhx.impact import fast
+from symhx.impact import model as _model  # MAX_EVENTS, MAX_HORIZON: read when called
 from symhx.impact.engine import V_STICK_FLOAT64, Engine, MPContext, default_v_stick, work_dps
 from symhx.impact.history import History
-from symhx.impact.model import MAX_EVENTS, MAX_HORIZON, PipeRow, SimulationError, check_horizon
+from symhx.impact.model import PipeRow, SimulationError, check_horizon
 from symhx.validation import InputError, check_choice, check_dps, check_int, check_real
 
 __all__ = ["default_v_stick", "simulate", "work_dps"]
 
 _FLOAT_ENGINES = ("auto", "c", "python")
-#: below this, the float64 product ``omega * t_end`` (relative error <= 2**-53) certainly has an
-#: exact value <= MAX_HORIZON; at or above it the exact ``Fraction`` check decides
-_HORIZON_SAFE = MAX_HORIZON * (1 - 2.0**-50)
+#: below ``MAX_HORIZON * _HORIZON_SAFE`` the float64 product ``omega * t_end`` (relative error
+#: <= 2**-53) certainly has an exact value <= MAX_HORIZON; at or above it the exact ``Fraction``
+#: check decides (the cap is read at the call, so a changed ``symhx.impact.model.MAX_HORIZON``
+#: reaches this fast path too)
+_HORIZON_SAFE = 1 - 2.0**-50
 
 
 def simulate(
@@ -73,26 +76,26 @@ def simulate(
         raise TypeError(f"row must be a PipeRow, got {type(row).__name__} {row!r:.60}")
     if (dps is None and v_stick is None and max_events is None and engine.__class__ is str
             and engine in _FLOAT_ENGINES and t_end.__class__ is float
-            and 0.0 < t_end * row.omega < _HORIZON_SAFE):
+            and 0.0 < t_end * row.omega < _model.MAX_HORIZON * _HORIZON_SAFE):
         # the common float64 call, validated without Fractions: a float t_end > 0 whose
         # omega * t_end is clearly inside MAX_HORIZON (the rounded product cannot cross it)
         vs = row.omega * row.d * V_STICK_FLOAT64   # = default_v_stick(row, None)
         if engine != "python" and fast.available():
-            return fast.simulate_c(row, t_end, v_stick=vs, max_events=MAX_EVENTS)
+            return fast.simulate_c(row, t_end, v_stick=vs, max_events=_model.MAX_EVENTS)
         if engine == "c":
             raise SimulationError("the C extension symhx.impact._fast is not built")
-        return fast.simulate_python(row, t_end, v_stick=vs, max_events=MAX_EVENTS)
+        return fast.simulate_python(row, t_end, v_stick=vs, max_events=_model.MAX_EVENTS)
     t_end_x = check_horizon(t_end, "t_end", row.omega)
     t_end_f = float(t_end_x)
     dps = check_dps(dps, allow_none=True)
     engine = check_choice(engine, "engine", ("auto", "c", "python"))
     if max_events is None:
-        max_events = MAX_EVENTS
+        max_events = _model.MAX_EVENTS
     else:
         max_events = check_int(max_events, "max_events", minimum=1)
-        if max_events > MAX_EVENTS:
-            raise InputError(f"max_events must be <= {MAX_EVENTS} (a recorded history of that "
-                             "many events needs gigabytes; the cap "
+        if max_events > _model.MAX_EVENTS:
+            raise InputError(f"max_events must be <= {_model.MAX_EVENTS} (a recorded history "
+                             "of that many events needs gigabytes; the cap "
                              f"symhx.impact.model.MAX_EVENTS), got {max_events}")
     vs_x: Any
     if v_stick is None:

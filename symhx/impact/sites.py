@@ -45,8 +45,6 @@ import numpy as np
 
 from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.ensemble import (
-    MAX_RUNS,
-    MAX_TOTAL_RUNS,
     EnsembleResult,
     SigmaStats,
     run_seed,
@@ -490,7 +488,14 @@ def site_hit_tables(
     sig = [float(check_real(s, f"sigmas[{i}]", low=0)) for i, s in enumerate(sigmas)]
     if not sig:
         raise InputError("sigmas must be a non-empty sequence of numbers >= 0, got []")
-    runs = check_int(runs, "runs", minimum=1, maximum=MAX_RUNS)
+    # the work caps as they are at the call (symhx.impact.ensemble is shadowed by its function
+    # ensemble in the package namespace, so the module's own names are imported here)
+    from symhx.impact.ensemble import MAX_RUNS, MAX_TOTAL_RUNS
+
+    runs = check_int(runs, "runs", minimum=1)
+    if runs > MAX_RUNS:
+        raise InputError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
+                         f"symhx.impact.ensemble.MAX_RUNS), got {runs}")
     if len(sig) * runs > MAX_TOTAL_RUNS:
         raise InputError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
                          f"symhx.impact.ensemble.MAX_TOTAL_RUNS = {MAX_TOTAL_RUNS}")
