@@ -49,16 +49,18 @@ def _arg_type(fn: Callable[[str], Any], what: str) -> Callable[[str], Any]:
     return convert
 
 
-def int_arg(name: str, minimum: int | None = None, maximum: int | None = None
-            ) -> Callable[[str], int]:
+def int_arg(name: str, minimum: int | None = None, maximum: int | None = None,
+            limit: str | None = None) -> Callable[[str], int]:
     """argparse ``type=``: an exact integer such as ``101``, ``1e100`` or ``10**100``
-    (:func:`symhx.validation.check_int`)."""
+    (:func:`symhx.validation.check_int`); ``limit`` names the documented constant ``maximum``
+    comes from (shown in the refusal)."""
     def conv(text: str) -> int:
         v = V.check_int(text, name)
         if minimum is not None and v < minimum:
             raise V.InputError(f"{name} must be >= {int_show(minimum)}, got {int_show(v)}")
         if maximum is not None and v > maximum:
-            raise V.InputError(f"{name} must be <= {int_show(maximum)}, got {int_show(v)}")
+            why = f" (the work limit {limit})" if limit else ""
+            raise V.InputError(f"{name} must be <= {int_show(maximum)}{why}, got {int_show(v)}")
         return v
 
     return _arg_type(conv, name)

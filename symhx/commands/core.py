@@ -82,7 +82,8 @@ def register(sub: Any) -> None:
                        f"simple circuits through k of N vertices (N <= {MAX_PHI_TABLE_N}).")
     k.add_argument("N", type=int_arg("N", minimum=1), help=N_HELP)
     k.add_argument("--visits", help="visit pattern, e.g. 2,1,1 (one vertex twice, two once)")
-    k.add_argument("--length", type=int_arg("--length", minimum=1, maximum=MAX_CIRCUIT_LENGTH),
+    k.add_argument("--length", type=int_arg("--length", minimum=1, maximum=MAX_CIRCUIT_LENGTH,
+                                            limit="symhx.commands.core.MAX_CIRCUIT_LENGTH"),
                    help=f"all visit patterns of this length (at most {MAX_CIRCUIT_LENGTH})")
     add_json(k)
     k.set_defaults(func=cmd_circuits)
@@ -241,8 +242,9 @@ def cmd_circuits(args: argparse.Namespace) -> int:
         print(f"  {'total':<30s} {int_show(total)}")
         return 0
     if args.N > MAX_PHI_TABLE_N:
-        raise InputError(f"the table of phi_N(k) is for N <= {MAX_PHI_TABLE_N} "
-                         f"(got N = {int_show(args.N)}); use --visits 1,1,... for one k")
+        raise InputError(f"the table of phi_N(k) is for N <= {MAX_PHI_TABLE_N} (the work limit "
+                         f"symhx.commands.core.MAX_PHI_TABLE_N; got N = {int_show(args.N)}); use "
+                         f"--visits 1,1,... for one k")
     phi = {k: C.phi(args.N, k) for k in range(1, args.N + 1)}
     total = C.total_simple_circuits(args.N)
     if args.json:

@@ -27,29 +27,28 @@ from symhx.commands._common import (
     write_csv,
 )
 from symhx.commands.core import p_or_sites
-from symhx.spaces import MAX_EXCESS, MAX_SPACE_WORK
-from symhx.spaces.study import STUDY_N_LIMIT
+from symhx.spaces import _classes, study  # their work limits, read when the parser is built
 from symhx.validation import InputError
 
 ORDER = 60
 
 #: the paper's row for figures 11-13: 100 pipes -> N = 101
 PAPER_N = 101
-#: The largest N of ``symhx spaces`` over eq41 (the default space): the API's work limit
-#: ``N * (m + 1) <= symhx.spaces.MAX_SPACE_WORK`` (one limit for the API and the CLI, checked by
-#: the API before any work; ``N <= 153846`` for excess<=25).
-MAX_SPACES_N = MAX_SPACE_WORK // 4
 
 
 def register(sub: Any) -> None:
+    # the work limits as they are now (each ``main`` call builds its parser): the help shows
+    # them and --max-m / convergence's N are checked against them, naming their owner
+    space_work, max_excess = _classes.MAX_SPACE_WORK, _classes.MAX_EXCESS
+    study_n = study.STUDY_N_LIMIT
     s = sub.add_parser("spaces", help="higher-order sample spaces (section 8): jump, E[X], "
                        "modes, class probabilities",
                        description="The distribution of X over a sample space with "
                        "higher-order circuits (section 8): the jump of the mode and, given p, "
                        "E[X], Var[X], the modes and the class probabilities.")
     s.add_argument("N", type=int_arg("N", minimum=2),
-                   help=N_HELP + f"; N * (m + 1) <= {MAX_SPACE_WORK:.0e} (work limit: N <= "
-                   f"{MAX_SPACES_N:.0e} for eq41)")
+                   help=N_HELP + f"; N * (m + 1) <= {space_work:.0e} (work limit "
+                   f"symhx.spaces._classes.MAX_SPACE_WORK: N <= {space_work // 4:.0e} for eq41)")
     s.add_argument("p", type=rational_arg("p"), nargs="?", default=None,
                    help=P_HELP + "; omit for the jump only")
     s.add_argument("--sites", type=sites_arg, default=None,
@@ -65,10 +64,12 @@ def register(sub: Any) -> None:
 
     c = sub.add_parser("convergence", help="E[X] and the jump p_c for excess<=m, m = 0..M, "
                        "against eq. (41)")
-    c.add_argument("N", type=int_arg("N", minimum=2, maximum=STUDY_N_LIMIT), nargs="?",
-                   default=100, help=N_HELP + f"; at most {STUDY_N_LIMIT:.0e} (work limit)")
-    c.add_argument("--max-m", type=int_arg("--max-m", minimum=0, maximum=MAX_EXCESS), default=6,
-                   help=f"largest excess m of the truncated spaces (at most {MAX_EXCESS}, "
+    c.add_argument("N", type=int_arg("N", minimum=2, maximum=study_n,
+                                     limit="symhx.spaces.study.STUDY_N_LIMIT"), nargs="?",
+                   default=100, help=N_HELP + f"; at most {study_n:.0e} (work limit)")
+    c.add_argument("--max-m", type=int_arg("--max-m", minimum=0, maximum=max_excess,
+                                           limit="symhx.spaces._classes.MAX_EXCESS"), default=6,
+                   help=f"largest excess m of the truncated spaces (at most {max_excess}, "
                    "a work limit)")
     c.add_argument("--p", action="append", default=None, type=rational_arg("--p"),
                    help=P_HELP + " (repeatable; default: the paper's figure values "

@@ -42,8 +42,8 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 
+from symhx import circuits as _circuits  # MAX_COUNT_BITS, read when called
 from symhx.circuits import (
-    MAX_COUNT_BITS,
     necklaces_with_content,
     normalise_visits,
     partitions,
@@ -169,8 +169,8 @@ def check_space_work(space: Space, N: int, what: str) -> None:
     raise InputError(
         f"N={show_exact(N)} is beyond the documented work limit of {what} over space "
         f"{space.name!r}: N <= {space_n_limit(space)} (N * (m + 1) <= MAX_SPACE_WORK = "
-        f"{MAX_SPACE_WORK} with m = {space.max_excess}, symhx.spaces.MAX_SPACE_WORK); raise "
-        f"that constant to allow it")
+        f"{MAX_SPACE_WORK} with m = {space.max_excess}, symhx.spaces._classes.MAX_SPACE_WORK); "
+        f"raise that constant to allow it")
 
 
 def paper_label(shape: tuple[int, ...]) -> str:
@@ -279,12 +279,13 @@ def class_count(N: int, shape: tuple[int, ...], k: int, *, printed: bool = False
     shape = check_shape(shape)  # validated even where the count is 0 (k outside 1..N)
     if k < 1 or k > N:
         return 0
-    if k * N.bit_length() > MAX_COUNT_BITS:  # the count has about k log2(N) bits
+    if k * N.bit_length() > _circuits.MAX_COUNT_BITS:  # the count has about k log2(N) bits
         from symhx.validation import show_exact
 
         raise InputError(f"class_count(N={show_exact(N)}, k={show_exact(k)}) would have about "
                          f"k * bit_length(N) = {show_exact(k * N.bit_length())} bits, beyond "
-                         f"the documented work limit k * bit_length(N) <= {MAX_COUNT_BITS} "
+                         f"the documented work limit k * bit_length(N) <= "
+                         f"{_circuits.MAX_COUNT_BITS} "
                          f"(symhx.circuits.MAX_COUNT_BITS); use symhx.log_phi for the size of "
                          f"such counts")
     val = class_ratio(shape, k, printed=printed) * Fraction(math.perm(N, k), k)

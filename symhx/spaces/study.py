@@ -13,7 +13,8 @@ import mpmath
 
 from symhx._mpctx import export, mp
 from symhx._numeric import mp_value
-from symhx.spaces._classes import MAX_EXCESS, WEIGHTINGS
+from symhx.spaces import _classes  # MAX_EXCESS, read when called
+from symhx.spaces._classes import WEIGHTINGS
 from symhx.spaces._critical import critical_point
 from symhx.spaces._dist import distribution
 from symhx.validation import InputError, check_choice, check_dps, check_int, check_N, check_p
@@ -35,6 +36,16 @@ def _sequence(x: Any, name: str) -> tuple[Any, ...]:
     if not isinstance(x, (list, tuple, range)):
         raise TypeError(f"{name} must be a list, tuple or range, got {x!r:.60}")
     return tuple(x)
+
+
+def _check_excess(m: Any) -> int:
+    """One maximum excess ``m`` of ``ms``: an int in ``[0, MAX_EXCESS]`` (the limit as it is at
+    the call, named in the refusal)."""
+    m = check_int(m, "each maximum excess m of ms", minimum=0)
+    if m > _classes.MAX_EXCESS:
+        raise InputError(f"each maximum excess m of ms must be <= {_classes.MAX_EXCESS} (the "
+                         f"documented work limit symhx.spaces._classes.MAX_EXCESS), got {m}")
+    return m
 
 
 @dataclass(frozen=True)
@@ -88,11 +99,10 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
     dps = check_dps(dps)
     weighting = check_choice(weighting, "weighting", WEIGHTINGS)
     if isinstance(ms, range) and ms \
-            and max(ms[0], ms[-1]) > MAX_EXCESS:  # refuse a huge range before listing it
-        raise InputError(f"ms={ms!r:.60} goes beyond the documented work limit m <= {MAX_EXCESS} "
-                         f"(symhx.spaces._classes.MAX_EXCESS)")
-    ms = tuple(check_int(m, "each maximum excess m of ms", minimum=0, maximum=MAX_EXCESS)
-               for m in _sequence(ms, "ms"))
+            and max(ms[0], ms[-1]) > _classes.MAX_EXCESS:  # refuse a huge range before listing
+        raise InputError(f"ms={ms!r:.60} goes beyond the documented work limit m <= "
+                         f"{_classes.MAX_EXCESS} (symhx.spaces._classes.MAX_EXCESS)")
+    ms = tuple(_check_excess(m) for m in _sequence(ms, "ms"))
     ps = tuple(_sequence(ps, "ps"))
     if not ps:
         raise InputError("ps must hold at least one p value (decimal strings), got none")
