@@ -719,7 +719,8 @@ def mode_path(N: int, *, p_max: Any = 1, dps: int = DEFAULT_DPS) -> ModePath:
     if count > MAX_BREAKPOINTS:
         raise InputError(
             f"mode_path(N={_fmt_int(N)}, p_max={p_max!r}) would list {count} breakpoints "
-            f"(more than MAX_BREAKPOINTS = {MAX_BREAKPOINTS}); choose a smaller p_max")
+            f"(more than symhx.critical.MAX_BREAKPOINTS = {MAX_BREAKPOINTS}, a work limit); "
+            f"choose a smaller p_max")
     bps: list[tuple[Any, int, int]] = [(pc, 1, cp.k_after)]
     prev = cp.p_exact if cp.p_exact is not None else _frac(cp.p_bounds[0])
     for k in range(cp.k_after, last + 1):

@@ -44,6 +44,7 @@ TypeError: dps must be an int between 1 and 5000 (or None for float64), got bool
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import operator
@@ -306,10 +307,13 @@ _POWER = re.compile(r"^\s*(\d+)\s*\*\*\s*(\d+)\s*$")
 _DECIMAL = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*$")
 
 
-#: ``10**(MAX_DECIMAL_EXPONENT + 1)``: the smallest magnitude refused (its decimal exponent is
-#: beyond the cap), and its bit length
-_DECIMAL_LIMIT = 10 ** (MAX_DECIMAL_EXPONENT + 1)
-_LIMIT_BITS = _DECIMAL_LIMIT.bit_length()
+@functools.lru_cache(maxsize=4)
+def _decimal_limit(max_exponent: int) -> tuple[int, int]:
+    """``10**(max_exponent + 1)``: the smallest magnitude refused (its decimal exponent is beyond
+    the cap), and its bit length; called with :data:`MAX_DECIMAL_EXPONENT` as it is at the call
+    (so a changed cap takes effect), computed once per value."""
+    limit = 10 ** (max_exponent + 1)
+    return limit, limit.bit_length()
 
 
 #: an underscore that does not sit between two digits ("_1", "1_", "1__0", "1._5", "1e_5")
@@ -337,8 +341,9 @@ def _parse_string(text: str, name: str, integer: bool = False) -> Fraction:
     if m:
         base, exp = int(m.group(1)), int(m.group(2))
         # base**exp >= 2**(exp * (bit_length - 1)): refused before it is computed when that bound
-        # is already >= 2**_LIMIT_BITS > 10**(MAX_DECIMAL_EXPONENT + 1); otherwise exactly
-        if exp * (base.bit_length() - 1) >= _LIMIT_BITS or base**exp >= _DECIMAL_LIMIT:
+        # is already >= 2**limit_bits > 10**(MAX_DECIMAL_EXPONENT + 1); otherwise exactly
+        limit, limit_bits = _decimal_limit(MAX_DECIMAL_EXPONENT)
+        if exp * (base.bit_length() - 1) >= limit_bits or base**exp >= limit:
             raise InputError(_exponent_error(name, text))
         return Fraction(base**exp)
     if _DECIMAL.match(s):
