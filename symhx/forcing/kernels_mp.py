@@ -139,8 +139,8 @@ def guard_digits(e: float) -> int:
         raise InputError(
             f"sigma, d: the forcing gives p = exp(-E) with E ~ "
             f"{'> 1e308' if e == math.inf else format(e, '.3g')} above the cap "
-            f"symhx.forcing.kernels_mp.MAX_EXPONENT = {MAX_EXPONENT:.3g} of the mpmath "
-            "evaluation (d/sigma must stay "
+            f"MAX_EXPONENT = {MAX_EXPONENT:.3g} (symhx.forcing.kernels_mp.MAX_EXPONENT) of the "
+            "mpmath evaluation (d/sigma must stay "
             "below ~1e154)")
     return 12 + (int(math.log10(e)) + 1 if e > 1 else 0)
 

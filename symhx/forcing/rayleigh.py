@@ -808,8 +808,9 @@ class RayleighSum:
         if e > _kernels_mp.MAX_EXPONENT:
             raise InputError(
                 f"x: P(S > x) = exp(-E) with E ~ {thread_mp().nstr(e, 3)} above the cap "
-                f"symhx.forcing.kernels_mp.MAX_EXPONENT = {_kernels_mp.MAX_EXPONENT:.3g} of the "
-                f"mpmath evaluation (exp(-E) would need log10(E) "
+                f"MAX_EXPONENT = {_kernels_mp.MAX_EXPONENT:.3g} "
+                f"(symhx.forcing.kernels_mp.MAX_EXPONENT) of the mpmath evaluation (exp(-E) "
+                f"would need log10(E) "
                 "guard digits); logsf has no cap")
         return int(thread_mp().log10(e)) + 1 if e > 1 else 0
 
