@@ -210,8 +210,7 @@ MAX_SAMPLE_SIZE = 10**7
 
 def check_size(size: Any, name: str = "size") -> tuple[int, ...] | None:
     """A sample ``size`` of an ``rvs`` method: ``None`` (one draw), a non-negative int or a tuple
-    (or list) of them (a shape), with at most :data:`MAX_SAMPLE_SIZE` draws in all; returns the
-    shape.
+    of them (a shape), with at most :data:`MAX_SAMPLE_SIZE` draws in all; returns the shape.
 
     >>> check_size(3), check_size((2, 3)), check_size(None)
     ((3,), (2, 3), None)
@@ -220,7 +219,7 @@ def check_size(size: Any, name: str = "size") -> tuple[int, ...] | None:
         return None
     if isinstance(size, (str, bytes)):
         raise TypeError(f"{name} must be None, an int >= 0 or a tuple of them, got {size!r}")
-    if isinstance(size, (tuple, list)):
+    if isinstance(size, tuple):
         shape = tuple(check_int(s, f"each entry of {name}", minimum=0) for s in size)
     else:
         shape = (check_int(size, name, minimum=0),)

@@ -38,10 +38,13 @@ def test_rayleigh_sum_rvs_refuses_a_string_size_naming_size():
 
 
 def test_rayleigh_sum_rvs_has_the_sample_size_limit_of_every_rvs():
-    """The same limit as the distributions' ``rvs``: ``MAX_SAMPLE_SIZE`` draws in any shape
-    (a list is a shape too), one more refused before any draw."""
+    """The same size rules and limit as the distributions' ``rvs``: a shape is a tuple (a list,
+    empty or not, is refused naming ``size``), at most ``MAX_SAMPLE_SIZE`` draws in any shape,
+    one more refused before any draw."""
     r = symhx.RayleighSum([1, 2])
-    assert r.rvs([3, 2], random_state=1).shape == (3, 2)
+    assert r.rvs((3, 2), random_state=1).shape == (3, 2)
+    for bad in ([3, 2], []):
+        assert_refuses(r.rvs, bad, exc=TypeError, arg="size")
     for too_many in (MAX_SAMPLE_SIZE + 1, (MAX_SAMPLE_SIZE // 2 + 1, 2)):
         t0 = time.perf_counter()
         assert_refuses(r.rvs, too_many, arg="size", allowed="MAX_SAMPLE_SIZE")
