@@ -64,7 +64,9 @@ counts as survived. Reports written by earlier versions of this script are read 
 
 ``--resume`` continues a stopped run in its ``--workdir`` with the current sources and tests:
 mutmut keeps the verdict of every mutant whose function is unchanged (it compares a hash of each
-function's source) and runs the rest.
+function's source) and runs the rest; with ``--rerun NAMES`` it brings the work folder to the
+current sources and tests first and then runs only those mutants (a survivor's function may have
+changed since its verdict).
 
 ``--sample K`` runs, for each Python module, ``K`` mutants drawn at random (``--seed``) from those
 without a verdict (all of them in a fresh run; with ``--resume``, the ones a stopped run did not
@@ -724,8 +726,8 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
     """mutmut over the Python modules in ``workdir``; the report with their entries."""
     tests = sorted({t for m in modules for t in tests_of[m]})
     if args.resume:
-        if args.rerun or not (workdir / "mutants").is_dir():
-            raise SystemExit("--resume needs the --workdir of an earlier run and no --rerun")
+        if not (workdir / "mutants").is_dir():
+            raise SystemExit("--resume needs the --workdir of an earlier run")
         _copy_repo(workdir, keep_mutants=True)
         for m in modules:  # mutmut regenerates a module's mutants only when its source is newer
             # (copy2 kept the old time, and an earlier run on other modules left a plain copy)
@@ -760,8 +762,7 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
         _write_mutmut_config(workdir, modules, tests, args.timeout_multiplier)
         # mutmut, also mutating functions with symhx's decorators (scripts/mutmut_decorated.py)
         cmd = [sys.executable, str(ROOT / "scripts" / "mutmut_decorated.py"), "run",
-               "--max-children", str(args.max_children),
-               *(args.rerun or [])]
+               "--max-children", str(args.max_children)]
         if not args.no_nice:
             cmd = ["nice", "-n", "19", *cmd]
         # mutmut puts mutants/ first on sys.path itself; an inherited PYTHONPATH (for instance the
@@ -769,7 +770,7 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
         env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
         print("running:", " ".join(cmd), "in", workdir, "\n  tests:", " ".join(tests), flush=True)
         if args.sample is None:
-            subprocess.run(cmd, cwd=workdir, env=env, check=False)
+            subprocess.run([*cmd, *(args.rerun or [])], cwd=workdir, env=env, check=False)
         else:
             # a filter that matches no mutant: mutmut generates the mutants and collects which
             # tests run which function, then stops
@@ -777,8 +778,9 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
                            capture_output=True)
             chosen = sample_mutants(workdir, modules, args.sample, args.seed)
             print(f"  a random sample of {len(chosen)} mutants (seed {args.seed})", flush=True)
-            if chosen:
-                subprocess.run([*cmd, *chosen], cwd=workdir, env=env, check=False)
+            if chosen or args.rerun:
+                subprocess.run([*cmd, *(args.rerun or []), *chosen], cwd=workdir, env=env,
+                               check=False)
     sample = None if args.sample is None else {
         m: {"size_per_run": args.sample, "seed": args.seed} for m in modules}
     return build_report(workdir, modules, old, tests_of, sample)
