@@ -80,3 +80,12 @@ def test_figure10_of_the_stored_ensemble_is_the_paper_row_N_101():
     (line,) = _theory_lines(fig).values()
     xs, ys = line.get_data()
     assert list(ys) == pytest.approx([float(_exact_mean(101, x)) for x in xs], rel=1e-14)
+
+
+def test_figures_7_and_8_count_from_zero(small_ensemble):
+    # a number of impacting pipes is >= 0: both axes start at 0, whatever the data's range
+    from symhx.plots.impact import plot_mean_vs_sigma, plot_mode_vs_sigma
+
+    for plot in (plot_mode_vs_sigma, plot_mean_vs_sigma):
+        fig = plot(small_ensemble, min_count=1)
+        assert fig.axes[0].get_ylim()[0] == 0, plot.__name__
