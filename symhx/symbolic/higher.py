@@ -22,7 +22,7 @@ from __future__ import annotations
 import itertools
 import math
 from fractions import Fraction
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import sympy as sp
 
@@ -532,45 +532,44 @@ _CLASSES = {
 }
 
 
-def _class_builder(label: str) -> None:
-    repeats, name, what, paper = _CLASSES[label]
+def _class_derivation(label: str) -> dict:
+    """The derivation of one class of :data:`_CLASSES` (built when first asked for; a plain
+    module function, so each build runs the current code)."""
+    repeats, name, _, paper = _CLASSES[label]
     M = sum(repeats)
 
-    def build() -> dict:
-        def generic_vs_paper(d: Derivation) -> bool:
-            e = rhs(d)
-            return isinstance(e, sp.Piecewise) and sym_equal(e.args[0].expr, paper)
+    def generic_vs_paper(d: Derivation) -> bool:
+        e = rhs(d)
+        return isinstance(e, sp.Piecewise) and sym_equal(e.args[0].expr, paper)
 
-        def erratum(d: Derivation) -> bool:
-            e = rhs(d)
-            # at the boundary k = M the paper's formula gives (words)/M, not the circuit count
-            return all(e.subs({N: n, k: M}) != paper.subs({N: n, k: M}) for n in range(2, 8))
+    def erratum(d: Derivation) -> bool:
+        e = rhs(d)
+        # at the boundary k = M the paper's formula gives (words)/M, not the circuit count
+        return all(e.subs({N: n, k: M}) != paper.subs({N: n, k: M}) for n in range(2, 8))
 
-        return dict(
-            result=sp.Eq(sp.Function(name)(k), pattern_count(repeats)),
-            checks=(
-                Check(f"generic branch (k > {M}) equals the paper's formula, symbolic",
-                      "symbolic", generic_vs_paper,
-                      f"the generic branch ($k > {M}$) equals the paper's formula, symbolically"),
-                Check("equals circuit_count for all k, N <= 10, and brute force for N <= 4, "
-                      "length <= 7", "exact", _pattern_exact(repeats),
-                      r"equals `circuit_count` for all $k$ and $N \le 10$, and brute force for "
-                      r"$N \le 4$, length $\le 7$"),
-                Check(f"at k = {M} differs from the paper's formula (corrected boundary), "
-                      "N = 2..7", "exact", erratum,
-                      f"at $k = {M}$ differs from the paper's formula (the corrected boundary), "
-                      r"$N = 2, \dots, 7$"),
-            ),
-            paper=paper,
-        )
-
-    register(label, 8, f"Circuits of length k with {what}, others at most once (all k, "
-             "boundary corrected)", rf"Circuits of length $k$ with {what}, the others at most "
-             "once (all $k$, boundary corrected)")(build)
+    return dict(
+        result=sp.Eq(sp.Function(name)(k), pattern_count(repeats)),
+        checks=(
+            Check(f"generic branch (k > {M}) equals the paper's formula, symbolic",
+                  "symbolic", generic_vs_paper,
+                  f"the generic branch ($k > {M}$) equals the paper's formula, symbolically"),
+            Check("equals circuit_count for all k, N <= 10, and brute force for N <= 4, "
+                  "length <= 7", "exact", _pattern_exact(repeats),
+                  r"equals `circuit_count` for all $k$ and $N \le 10$, and brute force for "
+                  r"$N \le 4$, length $\le 7$"),
+            Check(f"at k = {M} differs from the paper's formula (corrected boundary), "
+                  "N = 2..7", "exact", erratum,
+                  f"at $k = {M}$ differs from the paper's formula (the corrected boundary), "
+                  r"$N = 2, \dots, 7$"),
+        ),
+        paper=paper,
+    )
 
 
-for _label in _CLASSES:
-    _class_builder(_label)
+for _label, _spec in _CLASSES.items():
+    register(_label, 8, f"Circuits of length k with {_spec[2]}, others at most once (all k, "
+             "boundary corrected)", rf"Circuits of length $k$ with {_spec[2]}, the others at "
+             "most once (all $k$, boundary corrected)")(partial(_class_derivation, _label))
 
 
 _EQ41_TERMS = (((), 0), ((2,), 1), ((3,), 2), ((4,), 3), ((2, 2), 2))
