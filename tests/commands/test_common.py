@@ -29,6 +29,11 @@ def test_int_str_prints_every_digit_beyond_the_int_str_limit_and_int_show_abbrev
     assert len(s) == 16902 and int(Decimal(s)) == n
     assert int_show(10**100) == "10**100"
     assert int_show(2**300).endswith("(exact integer, 91 digits)")
+    # in full up to MAX_INT_DIGITS_SHOWN digits, abbreviated from one digit more
+    from symhx.commands._common import MAX_INT_DIGITS_SHOWN as D
+
+    assert int_show(10**D - 1) == "9" * D and int_show(-(10**D - 1)) == "-" + "9" * D
+    assert int_show(10**D) == f"10**{D}" and int_show(-(10**D)) == f"-10**{D}"
 
 
 def test_csv_num_round_trips_float64():

@@ -48,6 +48,10 @@ def test_derive_paper_section_verifies_every_derivation(tmp_path):
         header = next(csv.reader(fh))
     assert header == ["N", "formula", "quantity", "rel_error", "k", "k_exact", "decay"]
     assert lines and "verified" in lines[0]
+    # "n/m verified (s with a symbolic check)": s counted from the derivations' check kinds
+    with_symbolic = sum("symbolic" in d["kinds"] for d in data)
+    assert 0 < with_symbolic < len(data)
+    assert lines[0].endswith(f"({with_symbolic} with a symbolic check)")
 
 
 def test_derive_verify_text_ends_with_the_count_verified(capsys):

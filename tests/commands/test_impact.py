@@ -37,6 +37,9 @@ def test_cli_simulate_table_and_json(capsys):
     data = json.loads(out2)
     last = out.strip().splitlines()[-1]
     assert data["pipes"] == 4 and last.startswith(f"{len(data['events'])} events")
+    # the JSON states every setting of the run (the defaults included)
+    assert {k: data[k] for k in ("sigma", "seed", "restitution", "t_end", "dps")} == {
+        "sigma": 0.4, "seed": 0, "restitution": 0.8, "t_end": 5.0, "dps": None}
 
 
 def test_cli_ensemble(capsys, tmp_path):

@@ -45,6 +45,9 @@ def test_convergence_text_table_has_a_header_and_the_api_values(capsys):
     assert row[0] == "excess<=0"
     mean = symhx.mean(20, "0.05", space="excess<=0", dps=20)
     assert abs(float(row[3]) - float(mean)) <= 5e-5 * float(mean)
+    # the p_c column is the space's critical point
+    pc = symhx.critical_point(20, space="excess<=0", dps=20).p
+    assert abs(float(row[1]) - float(pc)) <= 5e-5 * float(pc)
 
 
 def test_spaces_paper_section_against_the_api(tmp_path):

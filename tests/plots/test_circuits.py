@@ -25,6 +25,7 @@ def test_circuit_counts_plot_phi_over_the_total_for_every_length(N):
     assert list(ks) == list(range(1, N + 1))
     for y, c in zip(ys, counts, strict=True):
         assert y == float(Fraction(c, sum(counts)))
+    assert ax.get_xlim() == (0, N + 1)  # every length k = 1..N inside, with a margin of one
     fig.canvas.draw()
 
 

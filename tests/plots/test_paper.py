@@ -145,6 +145,13 @@ def test_figure_11_has_the_papers_four_panels_with_the_small_k_detail(figures):
     assert axes[1].get_xlim()[1] < 0.2 * axes[0].get_xlim()[1]
 
 
+def test_figure_9_is_drawn_on_its_documented_sigma_grid(figures):
+    # FIG9_SIGMAS = (lo, hi, n): the p curve has n log-spaced points from lo to hi
+    lo, hi, n = P.FIG9_SIGMAS
+    xs = figures[9].axes[0].get_lines()[0].get_xdata()
+    assert len(xs) == n and np.allclose(xs, np.geomspace(lo, hi, n), rtol=1e-15, atol=0)
+
+
 def test_figure_6_shows_the_four_stages_with_p_c(figures):
     import symhx
 
