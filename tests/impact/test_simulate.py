@@ -210,3 +210,22 @@ def test_engine_python_never_runs_the_c_kernel(monkeypatch):
     if fast_mod.available():
         with pytest.raises(AssertionError, match="the C engine ran"):
             simulate(row, 5.0)
+
+
+@pytest.mark.parametrize("engine", ["python", "c"])
+def test_the_quick_float64_path_sticks_at_the_default_threshold(engine):
+    # simulate(row, float t_end) takes a shortcut past the argument checks; it must use the
+    # same sticking threshold as every other call, default_v_stick(row, None) = omega d V,
+    # also when the spacing d and the frequency omega are not 1
+    from symhx.impact import default_v_stick
+
+    if engine == "c" and not fast_mod.available():
+        pytest.skip("the C extension is not built")
+    row = PipeRow.random(5, 10.0, seed=4, restitution=0.5, d=2.5, omega=1.7)
+    quick = simulate(row, 40.0, engine=engine)
+    checked = simulate(row, 40.0, engine=engine, v_stick=default_v_stick(row, None),
+                       max_events=MAX_EVENTS)
+    assert len(quick) == len(checked) > 10
+    assert np.array_equal(quick.times, checked.times)
+    assert np.array_equal(quick.sites, checked.sites) and np.array_equal(quick.kinds, checked.kinds)
+    assert set(quick.kinds.tolist()) > {IMPACT}  # sticking happens: the threshold matters
