@@ -98,6 +98,9 @@ def test_horizon_and_event_caps():
     assert_refuses(simulate, row, 1.0, max_events=MAX_EVENTS + 1, arg="max_events",
                    value=str(MAX_EVENTS + 1), allowed="MAX_EVENTS")
     assert_refuses(simulate, row, 1.0, max_events=10**1000, arg="max_events")
+    for few in (0, -5):  # a run records at least one event
+        assert_refuses(simulate, row, 1.0, max_events=few, arg="max_events", value=str(few),
+                       allowed=">= 1")
 
 
 @pytest.mark.parametrize("kw", [{}, {"max_events": 10_000}])
