@@ -769,13 +769,16 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
         # work tree) would make the tests import the unmutated code, or confuse its statistics.
         env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
         print("running:", " ".join(cmd), "in", workdir, "\n  tests:", " ".join(tests), flush=True)
+        # a filter that matches no mutant: mutmut generates the mutants and collects which tests
+        # run which function, then stops; each function then gets every test of the files
+        # that run it (widen_to_test_files), and the mutants run
+        subprocess.run([*cmd, "symhx.no_such_mutant"], cwd=workdir, env=env, check=False,
+                       capture_output=True)
+        added = widen_to_test_files(workdir / "mutants" / "mutmut-stats.json")
+        print(f"  {added} (function, test) pairs added from the same test files", flush=True)
         if args.sample is None:
             subprocess.run([*cmd, *(args.rerun or [])], cwd=workdir, env=env, check=False)
         else:
-            # a filter that matches no mutant: mutmut generates the mutants and collects which
-            # tests run which function, then stops
-            subprocess.run([*cmd, "symhx.no_such_mutant"], cwd=workdir, env=env, check=False,
-                           capture_output=True)
             chosen = sample_mutants(workdir, modules, args.sample, args.seed)
             print(f"  a random sample of {len(chosen)} mutants (seed {args.seed})", flush=True)
             if chosen or args.rerun:
@@ -784,6 +787,31 @@ def run_python_modules(args: argparse.Namespace, modules: list[str],
     sample = None if args.sample is None else {
         m: {"size_per_run": args.sample, "seed": args.seed} for m in modules}
     return build_report(workdir, modules, old, tests_of, sample)
+
+
+def widen_to_test_files(stats_path: Path) -> int:
+    """Give each function every recorded test of the test files that run it; returns the number
+    of (function, test) pairs added.
+
+    mutmut records which tests run a function by watching the calls, so a module- or
+    session-scoped fixture counts only for the first test that uses it: a later test of the
+    same file that checks the fixture's result (a figure drawn once for the whole file) is never
+    run on that function's mutants, which then survive although a normal run kills them. A
+    test file is one behaviour's tests, so its tests go together."""
+    if not stats_path.exists():
+        return 0
+    stats = json.loads(stats_path.read_text())
+    by_file: dict[str, set[str]] = {}
+    for test in stats.get("duration_by_test", {}):
+        by_file.setdefault(test.split("::", 1)[0], set()).add(test)
+    added = 0
+    table = stats.get("tests_by_mangled_function_name", {})
+    for name, tests in table.items():
+        wide = set(tests).union(*(by_file.get(t.split("::", 1)[0], set()) for t in tests))
+        added += len(wide) - len(set(tests))
+        table[name] = sorted(wide)
+    stats_path.write_text(json.dumps(stats))
+    return added
 
 
 def sample_mutants(workdir: Path, modules: list[str], k: int, seed: int) -> list[str]:

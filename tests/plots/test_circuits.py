@@ -26,6 +26,8 @@ def test_circuit_counts_plot_phi_over_the_total_for_every_length(N):
     for y, c in zip(ys, counts, strict=True):
         assert y == float(Fraction(c, sum(counts)))
     assert ax.get_xlim() == (0, N + 1)  # every length k = 1..N inside, with a margin of one
+    lo, hi = ax.get_ylim()  # every plotted fraction inside, a decade of margin below
+    assert hi == 3.0 and 0 < lo <= min(ys) / 10
     fig.canvas.draw()
 
 

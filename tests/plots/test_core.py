@@ -45,6 +45,15 @@ def test_figure5_has_a_blow_up_and_the_mode_of_each_step():
         assert ys[-1] == ys[-2] and xs[-1] > xs[-2]
 
 
+def test_figure6_reference_lines_mark_where_f_and_the_log_ratio_vanish():
+    # f = 0 (the roots) on the top panel, log Phi(k) - log Phi(1) = 0 (Phi(k) = Phi(1)) below
+    fig = plots.plot_f_and_phi(101)
+    for ax in fig.axes:
+        flat = [ln for ln in ax.lines if len(set(ln.get_ydata())) == 1 and
+                list(ln.get_xdata()) == [0, 1]]  # axhline: axes-fraction x from 0 to 1
+        assert [ln.get_ydata()[0] for ln in flat] == [0]
+
+
 def test_figure6_same_colour_for_same_p_and_a_legend_on_each_panel():
     fig = plots.plot_f_and_phi(101)
     top, bottom = fig.axes

@@ -256,3 +256,22 @@ def test_functions_with_symhx_decorators_are_mutated_and_keep_their_decorators()
     exec(compile(code, "m.py", "exec"), namespace)
     assert namespace["draw"](1) == 2 and namespace["cached"](2) == 4
     assert namespace["A"]().value == 7
+
+
+def test_a_function_is_tested_by_every_test_of_the_files_that_run_it(tmp_path):
+    # mutmut credits a module-scoped fixture's calls to the first test that uses it only: the
+    # later tests of that file (the figure-data checks of a figure drawn once) are added, the
+    # files that never run the function are not, and the other fields are kept
+    stats = {"tests_by_mangled_function_name": {"f": ["t/a.py::one"], "g": ["t/b.py::x[1]"]},
+             "duration_by_test": {"t/a.py::one": 0.1, "t/a.py::two": 0.2, "t/b.py::x[1]": 0.1,
+                                  "t/b.py::x[2]": 0.1, "t/c.py::other": 0.3},
+             "function_hashes": {"f": "h"}}
+    path = tmp_path / "mutmut-stats.json"
+    path.write_text(json.dumps(stats))
+    assert mutation.widen_to_test_files(path) == 2
+    got = json.loads(path.read_text())
+    assert got["tests_by_mangled_function_name"] == {
+        "f": ["t/a.py::one", "t/a.py::two"], "g": ["t/b.py::x[1]", "t/b.py::x[2]"]}
+    assert got["function_hashes"] == {"f": "h"} and got["duration_by_test"] == stats[
+        "duration_by_test"]
+    assert mutation.widen_to_test_files(tmp_path / "none.json") == 0
