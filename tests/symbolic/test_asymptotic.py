@@ -47,3 +47,9 @@ def test_the_expansion_check_rejects_an_expansion_of_another_order():
         other = replace(d, result=sp.Eq(d.result.lhs, log_Nc_expansion(order)))
         assert check.fn(other) is False, order
     assert check.fn(d) is True
+
+
+def test_the_expansion_is_stated_for_log_of_n_times_c_k():
+    # the derivation's left side, as the book prints it: log(N c_k)
+    d = derivation("log-Nc-expansion")
+    assert sp.simplify(d.result.lhs - sp.log(N * sp.Symbol("c_k"))) == 0
