@@ -13,6 +13,7 @@ def test_asymptotic_errors_on_log_log_axes_one_line_per_order():
     fig = plot_asymptotic_errors(error_table((10**3, 10**6, 10**10), dps=40))
     ax = fig.axes[0]
     assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+    assert ax.get_ylabel() == "relative error" and "N" in ax.get_xlabel()
     assert len(ax.get_lines()) >= 7
     plt.close(fig)
 

@@ -107,6 +107,17 @@ def test_exp_of_a_compound_argument_is_printed_as_exp():
     assert latex(sp.exp(2 * x)) == r"\exp\left(2 x\right)"
 
 
+def test_polygamma_is_printed_as_psi_with_its_order_and_power():
+    import sympy as sp
+
+    from symhx.symbolic._core import latex
+
+    x = sp.Symbol("x")
+    assert latex(sp.polygamma(0, x)) == r"\psi\left(x\right)"
+    assert latex(sp.polygamma(1, x)) == r"\psi^{(1)}\left(x\right)"
+    assert latex(sp.polygamma(1, x) ** 2) == r"\psi^{(1)}\left(x\right)^{2}"
+
+
 def test_as_dict_names_label_section_and_result():
     from symhx.symbolic import derivation
 
