@@ -137,14 +137,6 @@ def _dps(dps: Any) -> int:
 MAX_PD_TERMS = 10_000
 
 
-def _check_terms(n_terms: Any) -> int:
-    n_terms = check_int(n_terms, "n_terms", minimum=1)
-    if n_terms > MAX_PD_TERMS:
-        raise InputError(f"n_terms must be <= {MAX_PD_TERMS} (the work limit "
-                         f"symhx.asymptotics.MAX_PD_TERMS), got {show_exact(n_terms)}")
-    return n_terms
-
-
 # ----------------------------------------------------------------------------- p_d series
 def pd_series_coefficients(n_terms: int = 5) -> tuple[tuple[int, Fraction], ...]:
     """Exact coefficients of ``p_d = sum c * N**(-power/2)``: ``((power, c), ...)``.
@@ -154,7 +146,8 @@ def pd_series_coefficients(n_terms: int = 5) -> tuple[tuple[int, Fraction], ...]
     >>> [(pw, str(c)) for pw, c in pd_series_coefficients(6)]
     [(2, '1'), (3, '2'), (4, '2'), (5, '1'), (7, '-1/4'), (9, '1/8')]
     """
-    n_terms = _check_terms(n_terms)
+    n_terms = check_int(n_terms, "n_terms", minimum=1, maximum=MAX_PD_TERMS,
+                        limit="symhx.asymptotics.MAX_PD_TERMS")
     out: list[tuple[int, Fraction]] = [(2, Fraction(1)), (3, Fraction(2)), (4, Fraction(2))]
     j = 1
     while len(out) < n_terms:
@@ -209,7 +202,8 @@ def pd_series(N: int, n_terms: int = 5, *, dps: int = 50) -> PdSeries:
     ('1.25e-28', True)
     """
     N = check_N(N)
-    n_terms = _check_terms(n_terms)
+    n_terms = check_int(n_terms, "n_terms", minimum=1, maximum=MAX_PD_TERMS,
+                        limit="symhx.asymptotics.MAX_PD_TERMS")
     dps = _dps(dps)
     coeffs = pd_series_coefficients(n_terms + 3)
     used, omitted = coeffs[:n_terms], coeffs[n_terms:]

@@ -507,10 +507,18 @@ def check_real(x: Any, name: str, *, low: float | None = None, high: float | Non
 
 
 # --------------------------------------------------------------------------- integers
-def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | None = None) -> int:
+def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | None = None,
+              limit: str | None = None) -> int:
     """An exact integer: ints, numpy ints, integral Fractions / sympy Rationals and integer strings
     (``"101"``, ``"1e100"``, ``"10**100"``).  Floats are refused (above 2**53 they are not exact);
-    bools are refused.  A non-integral rational (``"2.5"``, ``Fraction(5, 2)``) is a ValueError."""
+    bools are refused.  A non-integral rational (``"2.5"``, ``Fraction(5, 2)``) is a ValueError.
+    ``limit``: the documented constant ``maximum`` comes from, named in the refusal.
+
+    >>> check_int("7", "n", maximum=5, limit="symhx.x.MAX_N")
+    Traceback (most recent call last):
+        ...
+    symhx.validation.InputError: n must be <= 5 (the work limit symhx.x.MAX_N), got 7
+    """
     if isinstance(x, (bool, np.bool_)):
         raise TypeError(f"{name} must be an integer, got {_show(x)}")
     if isinstance(x, str):
@@ -536,7 +544,8 @@ def check_int(x: Any, name: str, *, minimum: int | None = None, maximum: int | N
     if minimum is not None and v < minimum:
         raise InputError(f"{name} must be >= {brief_repr(minimum)}, got {brief_repr(v)}")
     if maximum is not None and v > maximum:
-        raise InputError(f"{name} must be <= {brief_repr(maximum)}, got {brief_repr(v)}")
+        why = f" (the work limit {limit})" if limit else ""
+        raise InputError(f"{name} must be <= {brief_repr(maximum)}{why}, got {brief_repr(v)}")
     return v
 
 

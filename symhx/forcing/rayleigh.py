@@ -682,8 +682,8 @@ class RayleighSum:
     def __repr__(self) -> str:
         # float64's repr where it holds the scale; beyond it the exact value in 5 digits
         # (never "inf" or "0.0" for a scale of 1e5000 or 1e-5000)
-        shown = (repr(f) if 1e-300 < (f := _to_float(s)) < 1e300 else short_value(s)
-                 for s in self._exact)
+        shown = (repr(float(f)) if 1e-300 < f < 1e300 else short_value(s)
+                 for f, s in zip(self.scales, self._exact, strict=True))
         return f"RayleighSum([{', '.join(shown)}])"
 
     # ---- moments

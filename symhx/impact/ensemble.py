@@ -381,14 +381,30 @@ class EnsembleResult:
 
 
 # --------------------------------------------------------------------------- the ensemble
-def _check_sigmas(sigmas: Any) -> list[float]:
+def check_sweep(sigmas: Any, runs: Any) -> tuple[list[float], int]:
+    """The sigma values (each a float64 ``>= 0``) and the runs per sigma of a sweep of random
+    rows (:func:`ensemble`, :func:`symhx.impact.sites.site_hit_tables`), refused before any
+    work: ``1 <= runs <= MAX_RUNS`` and ``len(sigmas) * runs <= MAX_TOTAL_RUNS``, both caps as
+    they are at the call.
+
+    >>> check_sweep([0.1, 0.25], 3)
+    ([0.1, 0.25], 3)
+    """
     if isinstance(sigmas, (str, bytes)) or not isinstance(sigmas, (Sequence, np.ndarray)):
         raise TypeError(f"sigmas must be a sequence of numbers, got {type(sigmas).__name__} "
                         f"{sigmas!r}")
     if len(sigmas) == 0:
         raise InputError("sigmas must be a non-empty sequence of numbers >= 0, got []")
-    return [_float(check_real(s, f"sigmas[{i}]", low=0), f"sigmas[{i}]")
-            for i, s in enumerate(sigmas)]
+    sig = [_float(check_real(s, f"sigmas[{i}]", low=0), f"sigmas[{i}]")
+           for i, s in enumerate(sigmas)]
+    runs = check_int(runs, "runs", minimum=1)
+    if runs > MAX_RUNS:
+        raise InputError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
+                         f"symhx.impact.ensemble.MAX_RUNS), got {runs}")
+    if len(sig) * runs > MAX_TOTAL_RUNS:
+        raise InputError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
+                         f"symhx.impact.ensemble.MAX_TOTAL_RUNS = {MAX_TOTAL_RUNS}")
+    return sig, runs
 
 
 def _make_progress(total: int, progress: bool | None) -> Any:
@@ -459,14 +475,7 @@ def ensemble(
     >>> res.per_sigma[1].stats["sites"]["mean"] > 0
     True
     """
-    sig = _check_sigmas(sigmas)
-    runs = check_int(runs, "runs", minimum=1)
-    if runs > MAX_RUNS:
-        raise InputError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
-                         f"symhx.impact.ensemble.MAX_RUNS), got {runs}")
-    if len(sig) * runs > MAX_TOTAL_RUNS:
-        raise InputError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
-                         f"symhx.impact.ensemble.MAX_TOTAL_RUNS = {MAX_TOTAL_RUNS}")
+    sig, runs = check_sweep(sigmas, runs)
     n = check_pipes(n)
     seed_i = check_seed(seed)
     if seed_i is None:

@@ -47,6 +47,7 @@ from symhx.impact.engine import IMPACT, STICK
 from symhx.impact.ensemble import (
     EnsembleResult,
     SigmaStats,
+    check_sweep,
     run_seed,
     window_counts,
 )
@@ -483,22 +484,7 @@ def site_hit_tables(
     >>> t.runs, int(t.sites_histogram().sum())
     (3, 3)
     """
-    if isinstance(sigmas, (str, bytes)) or not isinstance(sigmas, (Sequence, np.ndarray)):
-        raise TypeError(f"sigmas must be a sequence of numbers, got {type(sigmas).__name__}")
-    sig = [float(check_real(s, f"sigmas[{i}]", low=0)) for i, s in enumerate(sigmas)]
-    if not sig:
-        raise InputError("sigmas must be a non-empty sequence of numbers >= 0, got []")
-    # the work caps as they are at the call (symhx.impact.ensemble is shadowed by its function
-    # ensemble in the package namespace, so the module's own names are imported here)
-    from symhx.impact.ensemble import MAX_RUNS, MAX_TOTAL_RUNS
-
-    runs = check_int(runs, "runs", minimum=1)
-    if runs > MAX_RUNS:
-        raise InputError(f"runs must be <= {MAX_RUNS} per sigma (the work cap "
-                         f"symhx.impact.ensemble.MAX_RUNS), got {runs}")
-    if len(sig) * runs > MAX_TOTAL_RUNS:
-        raise InputError(f"runs: len(sigmas) * runs = {len(sig) * runs} exceeds the work cap "
-                         f"symhx.impact.ensemble.MAX_TOTAL_RUNS = {MAX_TOTAL_RUNS}")
+    sig, runs = check_sweep(sigmas, runs)
     n = check_pipes(n)
     seed_i = check_seed(seed)
     if seed_i is None:

@@ -509,7 +509,7 @@ class SpaceDistribution(Distribution):
     def normaliser(self) -> Any:
         """``sum_k W(k)``: the generalisation of ``Gamma_{N,p}`` (eq. 8) to this space."""
         if self.dps is None:
-            return self._float_exp(float(self._ftab["lognorm"]))
+            return self._float_exp(self.log_normaliser)
         if self.exact:
             return self._exact_moments[0]
         return export(self._mp_norm, self.dps)

@@ -38,16 +38,6 @@ def _sequence(x: Any, name: str) -> tuple[Any, ...]:
     return tuple(x)
 
 
-def _check_excess(m: Any) -> int:
-    """One maximum excess ``m`` of ``ms``: an int in ``[0, MAX_EXCESS]`` (the limit as it is at
-    the call, named in the refusal)."""
-    m = check_int(m, "each maximum excess m of ms", minimum=0)
-    if m > _classes.MAX_EXCESS:
-        raise InputError(f"each maximum excess m of ms must be <= {_classes.MAX_EXCESS} (the "
-                         f"documented work limit symhx.spaces._classes.MAX_EXCESS), got {m}")
-    return m
-
-
 @dataclass(frozen=True)
 class ConvergenceRow:
     """One space of the study: its jump ``p_c -> k_after`` and ``E[X]`` at each ``p``."""
@@ -102,7 +92,9 @@ def convergence_study(N: int = 100, ms: Iterable[int] = range(0, 7), *,
             and max(ms[0], ms[-1]) > _classes.MAX_EXCESS:  # refuse a huge range before listing
         raise InputError(f"ms={ms!r:.60} goes beyond the documented work limit m <= "
                          f"{_classes.MAX_EXCESS} (symhx.spaces._classes.MAX_EXCESS)")
-    ms = tuple(_check_excess(m) for m in _sequence(ms, "ms"))
+    ms = tuple(check_int(m, "each maximum excess m of ms", minimum=0,
+                         maximum=_classes.MAX_EXCESS, limit="symhx.spaces._classes.MAX_EXCESS")
+               for m in _sequence(ms, "ms"))
     ps = tuple(_sequence(ps, "ps"))
     if not ps:
         raise InputError("ps must hold at least one p value (decimal strings), got none")

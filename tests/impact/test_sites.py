@@ -163,6 +163,9 @@ def test_refusals_name_the_argument():
     assert_refuses(site_hit_tables, [0.1], 0, arg="runs", value="0", allowed=">= 1")
     assert_refuses(site_hit_tables, [-0.1], 3, arg="sigmas[0]", value="-0.1", allowed=">= 0")
     assert_refuses(site_hit_tables, [], 3, arg="sigmas", value="[]")
+    # the same checks as ensemble's: a sigma beyond float64 is refused, not run as inf
+    assert_refuses(site_hit_tables, ["1e400"], 2, arg="sigmas[0]", value="1.0e+400",
+                   allowed="float64 range")
     assert_refuses(site_hit_tables, "0.1", 3, exc=TypeError, arg="sigmas", value="str")
     assert_refuses(site_hit_tables, [0.1], 3, seed=None, exc=TypeError, arg="seed",
                    value="None")
